@@ -1,0 +1,52 @@
+// brdfit: fit, factor, preview and report tabulated isotropic BRDFs.
+#include <fmt/core.h>
+
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <map>
+
+#include "cli/command.h"
+#include "cli/demo.h"
+#include "io/error.h"
+
+namespace brdfit::cli {
+std::vector<CommandSpec>& Commands() {
+  static std::vector<CommandSpec> commands;
+  return commands;
+}
+std::vector<DemoStep>& DemoSteps() {
+  static std::vector<DemoStep> steps;
+  return steps;
+}
+}  // namespace brdfit::cli
+
+int main(int argc, char** argv) {
+  using namespace brdfit::cli;
+  CLI::App app{"brdfit: fit analytic models to tabulated isotropic BRDFs, factor them, preview "
+               "and report.\nRun 'brdfit <command> --help' for a command's options and examples."};
+  app.set_version_flag("--version", "brdfit 0.1.0");
+  app.require_subcommand(1);
+  std::map<CLI::App*, RunFn> runs;
+  for (auto& spec : Commands()) {
+    CLI::App* sub = app.add_subcommand(spec.name, spec.description);
+    runs[sub] = spec.setup(*sub);
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitBadInput;
+  }
+  try {
+    for (auto& [sub, run] : runs) {
+      if (sub->parsed()) return run();
+    }
+  } catch (const brdfit::InputError& e) {
+    fmt::print(stderr, "brdfit: error: {}\n", e.what());
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "brdfit: error: {}\n", e.what());
+    return kExitBadInput;
+  }
+  return kExitBadInput;
+}

@@ -1,0 +1,21 @@
+// Atomic output: every writer writes to a temporary file in the destination's folder and
+// renames it over the destination only when the write completed. A crash or an exception
+// never leaves a half-written result under the final name.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+
+namespace brdfit {
+
+// Calls write(tmp_path), then renames tmp_path to dest. If write throws, the temporary file is
+// removed and the exception propagates; dest is left as it was. Throws OutputError if dest is
+// a directory or the rename fails.
+void WriteFileAtomically(const std::filesystem::path& dest,
+                         const std::function<void(const std::filesystem::path& tmp)>& write);
+
+// Convenience: writes bytes atomically.
+void WriteTextAtomically(const std::filesystem::path& dest, const std::string& contents);
+
+}  // namespace brdfit
