@@ -39,9 +39,9 @@ struct Ggx {
   static constexpr std::string_view kDoc =
       "GGX microfacet lobe (Walter 2007), separable Smith G, Fresnel folded into ks";
   static constexpr std::array<ParamSpec, 4> kParams = {{
-      {"ks_r", "1", 0.0, 1e3, 0.1, false, "specular weight, red"},
-      {"ks_g", "1", 0.0, 1e3, 0.1, false, "specular weight, green"},
-      {"ks_b", "1", 0.0, 1e3, 0.1, false, "specular weight, blue"},
+      {"ks_r", "1", 0.0, 1e3, 0.1, false, "specular weight, red", ParamRole::kWeightR},
+      {"ks_g", "1", 0.0, 1e3, 0.1, false, "specular weight, green", ParamRole::kWeightG},
+      {"ks_b", "1", 0.0, 1e3, 0.1, false, "specular weight, blue", ParamRole::kWeightB},
       {"alpha", "1", 1e-4, 1.0, 0.1, true, "GGX slope-space roughness alpha"},
   }};
 

@@ -14,9 +14,9 @@ struct Lambert {
   static constexpr std::string_view kName = "lambert";
   static constexpr std::string_view kDoc = "Lambertian diffuse, f = kd / pi";
   static constexpr std::array<ParamSpec, 3> kParams = {{
-      {"kd_r", "1", 0.0, 1.0, 0.5, false, "diffuse albedo, red"},
-      {"kd_g", "1", 0.0, 1.0, 0.5, false, "diffuse albedo, green"},
-      {"kd_b", "1", 0.0, 1.0, 0.5, false, "diffuse albedo, blue"},
+      {"kd_r", "1", 0.0, 1.0, 0.5, false, "diffuse albedo, red", ParamRole::kWeightR},
+      {"kd_g", "1", 0.0, 1.0, 0.5, false, "diffuse albedo, green", ParamRole::kWeightG},
+      {"kd_b", "1", 0.0, 1.0, 0.5, false, "diffuse albedo, blue", ParamRole::kWeightB},
   }};
 
   template <class T>

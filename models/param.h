@@ -10,6 +10,12 @@
 
 namespace brdfit {
 
+// How a parameter enters the model. kWeightR/G/B: the model's value in that channel is LINEAR in
+// the parameter and it has no constant term (colour weights of lobes). The fitter uses this to
+// solve weights by linear least squares at fixed shape parameters (variable projection
+// initialization). Everything else is kShape.
+enum class ParamRole { kShape, kWeightR, kWeightG, kWeightB };
+
 struct ParamSpec {
   std::string_view name;  // e.g. "kd_r", "alpha"
   std::string_view unit;  // "1" (dimensionless), "1/sr", "rad", ...
@@ -18,6 +24,7 @@ struct ParamSpec {
   double init;            // default / initial value
   bool log_scale;         // optimize log(value) (strictly positive parameters such as alpha)
   std::string_view doc;   // one line for `brdfit models`
+  ParamRole role = ParamRole::kShape;
 };
 
 // A model M is a stateless type with
