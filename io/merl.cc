@@ -1,0 +1,146 @@
+#include "io/merl.h"
+
+#include <fmt/core.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+#include "io/atomic_file.h"
+#include "io/error.h"
+#include "io/input_file.h"
+
+namespace brdfit {
+
+namespace fs = std::filesystem;
+
+static_assert(std::endian::native == std::endian::little,
+              "MERL files are little-endian; add byte swapping for this platform");
+
+namespace {
+
+constexpr std::array<std::int32_t, 3> kMerlDims = {90, 90, 180};
+constexpr std::array<const char*, 3> kDimNames = {"theta_h", "theta_d", "phi_d"};
+constexpr std::array<const char*, 3> kChannelNames = {"R", "G", "B"};
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+
+std::string CellName(const Grid& g, std::size_t idx) {
+  int ih, id, ip;
+  g.Unindex(idx, &ih, &id, &ip);
+  return fmt::format("cell {} (theta_h {}, theta_d {}, phi_d {})", idx, ih, id, ip);
+}
+
+}  // namespace
+
+double MerlRawFromValue(double v, int channel) {
+  const double s = kMerlChannelScale[channel];
+  const double r0 = v / s;
+  if (r0 * s == v || !std::isfinite(r0)) return r0;
+  // r0 * s rounds to a neighbour of v: look one and two ulps either side of r0.
+  for (int step = 1; step <= 2; ++step) {
+    for (const double dir : {-HUGE_VAL, HUGE_VAL}) {
+      double r = r0;
+      for (int k = 0; k < step; ++k) r = std::nextafter(r, dir);
+      if (r * s == v) return r;
+    }
+  }
+  return r0;  // v is not a product raw * s (e.g. a synthetic value): nearest raw
+}
+
+Table ReadMerl(const fs::path& path, MerlReadReport* report) {
+  const std::uintmax_t size = CheckInputFile(path);
+  const auto expected = fmt::format("expected {}", kMerlFileBytes);
+  if (size < kMerlHeaderBytes) {
+    throw InputError(path, fmt::format("truncated header: file is {} bytes, {}", size, expected));
+  }
+  std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
+  if (!f) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
+  std::int32_t dims[3];
+  if (std::fread(dims, sizeof(std::int32_t), 3, f.get()) != 3) {
+    throw InputError(path, "truncated header");
+  }
+  for (int k = 0; k < 3; ++k) {
+    if (dims[k] != kMerlDims[k]) {
+      throw InputError(path, fmt::format("header dimension {} ({} bins) is {}, expected {}", k + 1,
+                                         kDimNames[k], dims[k], kMerlDims[k]));
+    }
+  }
+  if (size < kMerlFileBytes) {
+    throw InputError(path, fmt::format("truncated: file is {} bytes, {}", size, expected));
+  }
+  if (size > kMerlFileBytes) {
+    throw InputError(path, fmt::format("file is {} bytes, {}", size, expected));
+  }
+
+  const Grid grid = Grid::Merl();
+  const std::size_t n = grid.NumCells();
+  std::vector<double> raw(3 * n);
+  if (std::fread(raw.data(), sizeof(double), raw.size(), f.get()) != raw.size()) {
+    throw InputError(path, "truncated: body ended early while reading");
+  }
+
+  Table t = Table::Empty(grid);
+  std::size_t negative = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    bool is_negative = false;
+    for (int c = 0; c < 3; ++c) {
+      const double r = raw[c * n + i];
+      if (!std::isfinite(r)) {
+        throw InputError(path, fmt::format("{} at {}, channel {}", std::isnan(r) ? "NaN" : "Inf",
+                                           CellName(grid, i), kChannelNames[c]));
+      }
+      is_negative |= r < 0;
+      t.rgb[3 * i + c] = r * kMerlChannelScale[c];  // channel scale applied once, here
+    }
+    t.valid[i] = !is_negative;
+    negative += is_negative;
+  }
+  t.provenance.source = path.string();
+  t.provenance.generator = "merl";
+  if (report) report->negative_cells = negative;
+  return t;
+}
+
+void WriteMerl(const Table& t, const fs::path& path) {
+  if (!(t.grid == Grid::Merl())) {
+    throw InputError(path, fmt::format("MERL files hold only the 90x90x180 grid with sqrt theta_h "
+                                       "mapping; this table is {}x{}x{} ({})",
+                                       t.grid.n_theta_h, t.grid.n_theta_d, t.grid.n_phi_d,
+                                       ToString(t.grid.theta_h_mapping)));
+  }
+  const std::size_t n = t.grid.NumCells();
+  std::vector<double> raw(3 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* v = t.Value(i);
+    const bool finite = std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+    if (t.valid[i]) {
+      if (!finite || v[0] < 0 || v[1] < 0 || v[2] < 0) {
+        throw InputError(path, fmt::format("{} is valid but holds ({}, {}, {}); MERL can store "
+                                           "only finite non-negative valid values",
+                                           CellName(t.grid, i), v[0], v[1], v[2]));
+      }
+      for (int c = 0; c < 3; ++c) raw[c * n + i] = MerlRawFromValue(v[c], c);
+    } else if (finite && (v[0] < 0 || v[1] < 0 || v[2] < 0)) {
+      for (int c = 0; c < 3; ++c) raw[c * n + i] = MerlRawFromValue(v[c], c);  // as read
+    } else {
+      for (int c = 0; c < 3; ++c) raw[c * n + i] = -1.0;
+    }
+  }
+  WriteFileAtomically(path, [&](const fs::path& tmp) {
+    std::unique_ptr<std::FILE, FileCloser> f(std::fopen(tmp.c_str(), "wb"));
+    if (!f) throw OutputError(tmp, std::string("cannot create: ") + std::strerror(errno));
+    if (std::fwrite(kMerlDims.data(), sizeof(std::int32_t), 3, f.get()) != 3 ||
+        std::fwrite(raw.data(), sizeof(double), raw.size(), f.get()) != raw.size() ||
+        std::fflush(f.get()) != 0) {
+      throw OutputError(path, std::string("write failed: ") + std::strerror(errno));
+    }
+  });
+}
+
+}  // namespace brdfit
