@@ -1,0 +1,78 @@
+#include "io/table_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+
+#include "io/error.h"
+#include "io/hdf5_table.h"
+#include "io/input_file.h"
+#include "io/merl.h"
+
+namespace brdfit {
+
+namespace fs = std::filesystem;
+
+const char* ToString(TableFormat f) {
+  return f == TableFormat::kMerl ? "merl" : "h5";
+}
+
+TableFormat TableFormatFromString(const std::string& s) {
+  if (s == "merl" || s == "binary") return TableFormat::kMerl;
+  if (s == "h5" || s == "hdf5") return TableFormat::kHdf5;
+  throw InputError("unknown table format '" + s + "' (expected merl or h5)");
+}
+
+TableFormat DetectTableFormat(const fs::path& path) {
+  CheckInputFile(path);
+  // HDF5 format specification, "Format Signature": \211HDF\r\n\032\n at offset 0 (brdfit never
+  // writes a user block, so the signature is always at 0 in its files).
+  static constexpr char kSignature[8] = {'\211', 'H', 'D', 'F', '\r', '\n', '\032', '\n'};
+  const std::vector<char> head = ReadFilePrefix(path, sizeof(kSignature));
+  if (head.size() == sizeof(kSignature) &&
+      std::equal(head.begin(), head.end(), std::begin(kSignature))) {
+    return TableFormat::kHdf5;
+  }
+  return TableFormat::kMerl;
+}
+
+std::optional<TableFormat> TableFormatFromExtension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".binary" || ext == ".merl") return TableFormat::kMerl;
+  if (ext == ".h5" || ext == ".hdf5") return TableFormat::kHdf5;
+  return std::nullopt;
+}
+
+Table LoadTable(const fs::path& path, LoadReport* report) {
+  const TableFormat format = DetectTableFormat(path);
+  LoadReport r;
+  r.format = format;
+  Table t;
+  if (format == TableFormat::kHdf5) {
+    t = ReadHdf5Table(path);
+  } else {
+    MerlReadReport mr;
+    t = ReadMerl(path, &mr);
+    r.negative_cells = mr.negative_cells;
+  }
+  if (report) *report = r;
+  return t;
+}
+
+void SaveTable(const Table& table, const fs::path& path, std::optional<TableFormat> format) {
+  if (!format) format = TableFormatFromExtension(path);
+  if (!format) {
+    throw InputError(path,
+                     "cannot tell the output format from the extension (use .binary or "
+                     ".h5, or give the format)");
+  }
+  if (*format == TableFormat::kMerl) {
+    WriteMerl(table, path);
+  } else {
+    WriteHdf5Table(table, path);
+  }
+}
+
+}  // namespace brdfit
