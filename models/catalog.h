@@ -1,14 +1,27 @@
 // The list of every registered model, as types. The registry (models/registry.h) and the
 // fitter's static dispatch (fit/) both iterate this one list, so a model added here is
 // available to `brdfit models`, `synth`, `fit` and the preview at once.
+//
+// The catalog holds what users fit or render: every single model and Lambert plus each
+// specular lobe, two-lobe GGX and two/three-lobe Lafortune. Each entry costs one Ceres autodiff
+// instantiation in fit/, so seed-reproduction variants (Schlick-k choices, legacy
+// normalizations, anisotropic Ward, ...) are types outside the catalog
+// (models/seed_variants.h, docs/models.md).
 #pragma once
 
 #include <string>
 #include <tuple>
+#include <type_traits>
 
+#include "models/beckmann.h"
+#include "models/blinn_phong.h"
+#include "models/cook_torrance.h"
 #include "models/ggx.h"
+#include "models/lafortune.h"
 #include "models/lambert.h"
+#include "models/phong.h"
 #include "models/sum.h"
+#include "models/ward.h"
 
 namespace brdfit {
 
@@ -22,7 +35,15 @@ std::string ModelName() {
   }
 }
 
-using ModelCatalog = std::tuple<Lambert, Ggx, Sum<Lambert, Ggx>>;
+using ModelCatalog = std::tuple<
+    // single lobes
+    Lambert, Phong, BlinnPhong, Ward, WardDuer, Beckmann, Ggx, GgxHc, CookTorrance, Lafortune,
+    // diffuse + specular
+    Sum<Lambert, Phong>, Sum<Lambert, BlinnPhong>, Sum<Lambert, Ward>, Sum<Lambert, Beckmann>,
+    Sum<Lambert, Ggx>, Sum<Lambert, CookTorrance>, Sum<Lambert, Lafortune>,
+    // multi-lobe
+    Sum<Lambert, Ggx, Ggx>, Sum<Lambert, Lafortune, Lafortune>,
+    Sum<Lambert, Lafortune, Lafortune, Lafortune>>;
 
 // Calls f(std::type_identity<M>{}) for every model type M in the catalog.
 template <class F>

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <string_view>
 
 #include "models/geometry.h"
 #include "models/param.h"
@@ -13,6 +14,7 @@ namespace brdfit {
 struct Lambert {
   static constexpr std::string_view kName = "lambert";
   static constexpr std::string_view kDoc = "Lambertian diffuse, f = kd / pi";
+  static constexpr bool kEnergyConserving = true;
   static constexpr std::array<ParamSpec, 3> kParams = {{
       {"kd_r", "1", 0.0, 1.0, 0.5, false, "diffuse albedo, red", ParamRole::kWeightR},
       {"kd_g", "1", 0.0, 1.0, 0.5, false, "diffuse albedo, green", ParamRole::kWeightG},

@@ -14,6 +14,8 @@ namespace brdfit {
 
 struct ModelInfo {
   std::string name;                      // "lambert+ggx"
+  std::string doc;                       // one line: paper, form, options
+  bool energy_conserving = false;        // albedo <= 1 for unit weights (sums: weights sum <= 1)
   std::vector<ParamSpec> params;         // in parameter-vector order
   std::vector<std::string> param_names;  // qualified for sums: "lambert.kd_r", "ggx.alpha"
   // f_r (1/sr, no cosine) at a geometry, double precision.
@@ -30,6 +32,12 @@ template <class M>
 ModelInfo MakeModelInfo() {
   ModelInfo info;
   info.name = ModelName<M>();
+  if constexpr (requires { M::Doc(); }) {
+    info.doc = M::Doc();
+  } else {
+    info.doc = std::string(M::kDoc);
+  }
+  info.energy_conserving = M::kEnergyConserving;
   info.params.assign(M::kParams.begin(), M::kParams.end());
   if constexpr (requires { M::QualifiedParamNames(); }) {
     info.param_names = M::QualifiedParamNames();

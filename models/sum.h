@@ -45,12 +45,22 @@ struct Sum {
     return off;
   }();
 
+  // A sum conserves energy when every lobe does and the lobes' weights sum to <= 1 per channel.
+  static constexpr bool kEnergyConserving = (Lobes::kEnergyConserving && ...);
+
   // Registry-style name, e.g. "lambert+ggx".
   static std::string Name() {
     std::string n;
     ((n += (n.empty() ? "" : "+"), n += std::string(Lobes::kName)), ...);
     return n;
   }
+  // One-line description (each lobe is documented under its own name).
+  static std::string Doc() {
+    std::string d;
+    ((d += (d.empty() ? "" : " + "), d += std::string(Lobes::kName)), ...);
+    return "sum of lobes " + d + ", each with its own RGB weights";
+  }
+
   // Parameter names qualified by lobe: "lambert.kd_r", "ggx.alpha"; a repeated lobe gets an
   // index ("ggx1.alpha", "ggx2.alpha").
   static std::vector<std::string> QualifiedParamNames() {

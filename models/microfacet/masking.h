@@ -1,0 +1,155 @@
+// Shadowing-masking terms G(wi, wo) of the microfacet BRDF f = D G F / (4 cos_i cos_o).
+//
+// Each policy type has
+//   template <class Ndf, class T> static T G(const T& alpha, const Geometry& g);
+// Ndf supplies Lambda for the Smith terms; the others ignore it. Every G is symmetric in
+// (wi, wo), so every microfacet lobe built from them is reciprocal. The seeds' list of
+// visibility terms (seeds-digest §2.8, disagreements D1-D3, D21) maps onto these types as
+// documented in docs/models.md.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <string_view>
+
+#include "models/geometry.h"
+#include "models/math.h"
+
+namespace brdfit {
+
+// Smith G1 for GGX in Walter et al. 2007's closed form (eq. 34):
+//   G1(v) = 2 / (1 + sqrt(1 + alpha^2 tan^2 theta_v)) = 1 / (1 + Lambda_GGX(v)).
+template <class T>
+T G1SmithGgx(const T& alpha, const Vec3& v) {
+  using std::sqrt;
+  return 2.0 / (1.0 + sqrt(1.0 + alpha * alpha * Tan2Theta(v)));
+}
+
+// Separable ("uncorrelated") Smith masking-shadowing, Heitz 2014 eq. 98:
+//   G2 = G1(wi) G1(wo),  G1(v) = 1 / (1 + Lambda(v))   (Smith 1967; Walter et al. 2007 eq. 23).
+struct SmithSeparable {
+  static constexpr std::string_view kName = "Smith separable";
+  template <class Ndf, class T>
+  static T G(const T& alpha, const Geometry& g) {
+    return 1.0 / ((1.0 + Ndf::Lambda(alpha, g.wi)) * (1.0 + Ndf::Lambda(alpha, g.wo)));
+  }
+};
+
+// Height-correlated Smith masking-shadowing, Heitz 2014 eq. 99:
+//   G2 = 1 / (1 + Lambda(wi) + Lambda(wo)).
+// For GGX this is the G inside Frostbite's V_SmithGGXCorrelated (Lagarde & de Rousiers 2014,
+// "Moving Frostbite to PBR", Listing 2; seed 004 Sphere(15)), without seed 004's second
+// division by 4 cos_i cos_o.
+struct SmithHeightCorrelated {
+  static constexpr std::string_view kName = "Smith height-correlated";
+  template <class Ndf, class T>
+  static T G(const T& alpha, const Geometry& g) {
+    return 1.0 / (1.0 + Ndf::Lambda(alpha, g.wi) + Ndf::Lambda(alpha, g.wo));
+  }
+};
+
+// Schlick 1994, "An Inexpensive BRDF Model for Physically-based Rendering" (CGF 13(3)),
+// approximation of Smith's G1:  G1(c) = c / (c (1 - k) + k),  G2 = G1(cos_i) G1(cos_o).
+// The seeds disagree on k (seeds-digest §2.14 D1); each choice is a named option:
+enum class SchlickK {
+  kAlphaHalf,     // k = alpha / 2                      seed 000 text, eq. 74
+  kAlphaSqHalf,   // k = alpha^2 / 2                    seed 000 code (a*a*0.5, a = roughness^2)
+  kUe4,           // k = (r + 1)^2 / 8, r = sqrt(alpha)  Karis 2013 (UE4), seed 002 §1.3
+  kBeckmannFit,   // k = alpha sqrt(2 / pi)             Schlick 1994 for Beckmann m; seed 001
+};
+
+template <class T>
+T SchlickKValue(SchlickK choice, const T& alpha) {
+  using std::sqrt;
+  switch (choice) {
+    case SchlickK::kAlphaHalf:
+      return 0.5 * alpha;
+    case SchlickK::kAlphaSqHalf:
+      return 0.5 * alpha * alpha;
+    case SchlickK::kUe4: {
+      const T r1 = sqrt(alpha) + 1.0;  // alpha >= 1e-4 in bounds: sqrt' is finite
+      return 0.125 * r1 * r1;
+    }
+    case SchlickK::kBeckmannFit:
+      return std::sqrt(2.0 / kPi) * alpha;
+  }
+  return T(0.0);
+}
+
+template <SchlickK K>
+struct SchlickSmith {
+  static constexpr std::string_view kName = "Schlick-Smith";
+  template <class Ndf, class T>
+  static T G(const T& alpha, const Geometry& g) {
+    const T k = SchlickKValue(K, alpha);
+    const T gi = g.cos_i / (g.cos_i * (1.0 - k) + k);
+    const T go = g.cos_o / (g.cos_o * (1.0 - k) + k);
+    return gi * go;
+  }
+};
+
+// Cook & Torrance 1982, "A Reflectance Model for Computer Graphics" (ACM TOG 1(1)), V-groove
+// geometric attenuation (after Torrance & Sparrow 1967):
+//   G = min(1, 2 (n.h)(n.wo) / (wo.h), 2 (n.h)(n.wi) / (wo.h)).
+// wi.h == wo.h, so seeds 001/003/004's different denominators agree (D3).
+struct VGroove {
+  static constexpr std::string_view kName = "V-groove";
+  template <class Ndf, class T>
+  static T G(const T& /*alpha*/, const Geometry& g) {
+    const double s = 2.0 * g.cos_h / g.cos_d;
+    return T(std::min({1.0, s * g.cos_o, s * g.cos_i}));
+  }
+};
+
+// Implicit G = cos_i cos_o: visibility G / (4 cos_i cos_o) = 1/4 (Hoffman 2010, "Physics and
+// Math of Shading", SIGGRAPH course; seed 001: the G hidden in Blinn-Phong).
+struct ImplicitG {
+  static constexpr std::string_view kName = "implicit";
+  template <class Ndf, class T>
+  static T G(const T& /*alpha*/, const Geometry& g) {
+    return T(g.cos_i * g.cos_o);
+  }
+};
+
+// Kelemen & Szirmay-Kalos 2001, "A Microfacet Based Coupled Specular-Matte BRDF Model with
+// Importance Sampling" (Eurographics short): G / (cos_i cos_o) ~ 2 / (1 + wi.wo) = 1 / cos_d^2
+// (seed 001, as an approximation of Torrance-Sparrow's G).
+struct KelemenG {
+  static constexpr std::string_view kName = "Kelemen";
+  template <class Ndf, class T>
+  static T G(const T& /*alpha*/, const Geometry& g) {
+    return T(g.cos_i * g.cos_o / (g.cos_d * g.cos_d));
+  }
+};
+
+// Neumann, Neumann, Szirmay-Kalos 1999, "Compact Metallic Reflectance Models" (CGF 18(3)):
+//   G / (cos_i cos_o) = 1 / max(cos_i, cos_o)   (seed 001).
+struct NeumannG {
+  static constexpr std::string_view kName = "Neumann";
+  template <class Ndf, class T>
+  static T G(const T& /*alpha*/, const Geometry& g) {
+    return T(std::min(g.cos_i, g.cos_o));  // cos_i cos_o / max(cos_i, cos_o)
+  }
+};
+
+// Ashikhmin & Premoze 2007, "Distribution-based BRDFs" (tech. report):
+//   G / (cos_i cos_o) = 1 / (cos_i + cos_o - cos_i cos_o)   (seed 001, the arrow's target).
+struct AshikhminPremozeG {
+  static constexpr std::string_view kName = "Ashikhmin-Premoze";
+  template <class Ndf, class T>
+  static T G(const T& /*alpha*/, const Geometry& g) {
+    return T(g.cos_i * g.cos_o / (g.cos_i + g.cos_o - g.cos_i * g.cos_o));
+  }
+};
+
+// No masking, G = 1 (Ward 1992's implicit visibility 1 / (cos_i cos_o); seed 001: "too bright
+// at grazing").
+struct NoMasking {
+  static constexpr std::string_view kName = "none";
+  template <class Ndf, class T>
+  static T G(const T& /*alpha*/, const Geometry& /*g*/) {
+    return T(1.0);
+  }
+};
+
+}  // namespace brdfit

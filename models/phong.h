@@ -1,0 +1,52 @@
+// Normalized (modified) Phong specular lobe ("phong").
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <string_view>
+
+#include "models/geometry.h"
+#include "models/math.h"
+#include "models/param.h"
+
+namespace brdfit {
+
+// Phong 1975, "Illumination for Computer Generated Pictures" (CACM 18(6)), as the
+// energy-normalized "modified Phong" BRDF of Lewis 1994, "Making Shaders More Physically
+// Plausible" (CGF 13(2)), as printed in seed 001:
+//   f_r = ks (n + 2) / (2 pi) max(0, cos alpha_r)^n,   cos alpha_r = wo . reflect(wi)
+// [1/sr, without the cosine]. At normal incidence the albedo is exactly ks; elsewhere the
+// horizon clips the lobe, so the albedo is <= ks: energy conserving for ks <= 1.
+// Seeds: 001 (raw Phong BRDF c_spec cos^m / (pi cos_i), and this normalized form), 004
+// Sphere(4)/(5) (un-normalized (R.V)^n, preview only).
+//
+// Parameters: ks_r, ks_g, ks_b [0, 1e3] linear weights; n = exponent [1, 1e5] (log).
+struct Phong {
+  static constexpr std::string_view kName = "phong";
+  static constexpr std::string_view kDoc =
+      "normalized Phong lobe ks (n+2)/(2 pi) cos^n alpha_r (Lewis 1994; seed 001)";
+  static constexpr bool kEnergyConserving = true;
+  static constexpr std::array<ParamSpec, 4> kParams = {{
+      {"ks_r", "1", 0.0, 1e3, 0.1, false, "specular weight, red", ParamRole::kWeightR},
+      {"ks_g", "1", 0.0, 1e3, 0.1, false, "specular weight, green", ParamRole::kWeightG},
+      {"ks_b", "1", 0.0, 1e3, 0.1, false, "specular weight, blue", ParamRole::kWeightB},
+      {"n", "1", 1.0, 1e5, 100.0, true, "Phong exponent (shininess)"},
+  }};
+
+  template <class T>
+  static void Eval(const T* p, const Geometry& g, T rgb[3]) {
+    using std::exp;
+    const T& n = p[3];
+    if (g.cos_r <= 0.0) {  // the lobe is clipped to max(0, cos alpha_r)^n = 0
+      for (int c = 0; c < 3; ++c) rgb[c] = T(0.0);
+      return;
+    }
+    // 1 - cos alpha_r = |wo - r|^2 / 2 with r = reflect(wi) = (-wi.x, -wi.y, wi.z): no
+    // cancellation near the mirror direction, where n up to 1e5 amplifies rounding errors.
+    const double d2 = Sq(g.wo.x + g.wi.x) + Sq(g.wo.y + g.wi.y) + Sq(g.wo.z - g.wi.z);
+    const T spec = (n + 2.0) / (2.0 * kPi) * exp(n * std::log1p(-0.5 * d2));
+    for (int c = 0; c < 3; ++c) rgb[c] = p[c] * spec;
+  }
+};
+
+}  // namespace brdfit
