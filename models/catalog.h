@@ -15,12 +15,15 @@
 
 #include "models/beckmann.h"
 #include "models/blinn_phong.h"
+#include "models/burley.h"
 #include "models/cook_torrance.h"
 #include "models/ggx.h"
 #include "models/lafortune.h"
 #include "models/lambert.h"
+#include "models/oren_nayar.h"
 #include "models/phong.h"
 #include "models/sum.h"
+#include "models/ue4.h"
 #include "models/ward.h"
 
 namespace brdfit {
@@ -37,7 +40,8 @@ std::string ModelName() {
 
 using ModelCatalog = std::tuple<
     // single lobes
-    Lambert, Phong, BlinnPhong, Ward, WardDuer, Beckmann, Ggx, GgxHc, CookTorrance, Lafortune,
+    Lambert, OrenNayar, Burley, Phong, BlinnPhong, Ward, WardDuer, Beckmann, Ggx, GgxHc,
+    CookTorrance, Lafortune, Ue4,
     // diffuse + specular
     Sum<Lambert, Phong>, Sum<Lambert, BlinnPhong>, Sum<Lambert, Ward>, Sum<Lambert, Beckmann>,
     Sum<Lambert, Ggx>, Sum<Lambert, CookTorrance>, Sum<Lambert, Lafortune>,

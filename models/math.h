@@ -19,10 +19,14 @@ inline double Pow5(double x) {
 }
 
 // sin^2 of a direction's polar angle from its components (no cancellation near the pole).
-inline double Sin2Theta(const Vec3& v) { return v.x * v.x + v.y * v.y; }
+inline double Sin2Theta(const Vec3& v) {
+  return v.x * v.x + v.y * v.y;
+}
 
 // tan^2 of a direction's polar angle; v.z > 0 is a precondition of every Eval.
-inline double Tan2Theta(const Vec3& v) { return Sin2Theta(v) / (v.z * v.z); }
+inline double Tan2Theta(const Vec3& v) {
+  return Sin2Theta(v) / (v.z * v.z);
+}
 
 // x^n for a data-side base x in [0, 1] and a parameter-side exponent n >= 1:
 // exp(n log x). x == 0 returns 0 (log would be -inf and the Jet derivative NaN; the true

@@ -25,7 +25,7 @@ constexpr auto ConcatParams() {
   if constexpr (sizeof...(Lobes) == 0) {
     return std::array<ParamSpec, 0>{};
   } else {
-    return [] <class First, class... Rest>(std::type_identity<First>, std::type_identity<Rest>...) {
+    return []<class First, class... Rest>(std::type_identity<First>, std::type_identity<Rest>...) {
       return Concat(First::kParams, ConcatParams<Rest...>());
     }(std::type_identity<Lobes>{}...);
   }

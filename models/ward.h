@@ -76,8 +76,9 @@ struct WardDuer : WardLobe<WardNormalization::kDuer2006> {
 };
 
 // Anisotropic Ward lobe, Ward 1992 eq. 5 (seed 004 Sphere(8)):
-//   f_r = rho_s exp(-tan^2 th_h (cos^2 ph_h / ax^2 + sin^2 ph_h / ay^2)) / (4 pi ax ay sqrt(cos_i cos_o))
-//       = rho_s exp(-((h.x/ax)^2 + (h.y/ay)^2) / h.z^2) / (...),
+//   f_r = rho_s exp(-tan^2 th_h (cos^2 ph_h / ax^2 + sin^2 ph_h / ay^2))
+//         / (4 pi ax ay sqrt(cos_i cos_o))
+//       = rho_s exp(-((h.x/ax)^2 + (h.y/ay)^2) / h.z^2) / (4 pi ax ay sqrt(cos_i cos_o)),
 // x = the tangent direction of the local frame. For the preview and synthetic anisotropic
 // data; NOT in the catalog (fitted tables are isotropic). Parameters: rho_s RGB weights,
 // alpha_x, alpha_y [1e-4, 1] (log).

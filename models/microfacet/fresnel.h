@@ -69,10 +69,9 @@ T IorFromF0(const T& f0) {
 // Unpolarized Fresnel reflectance of a conductor with complex IOR eta + i k, closed form of
 // the Fresnel equations (Born & Wolf, "Principles of Optics", §14.2; the arrangement of
 // Pharr, Jakob, Humphreys, "Physically Based Rendering" 3rd ed. §8.2.1, FrConductor):
-//   a^2 + b^2 = sqrt((eta^2 - k^2 - s^2)^2 + 4 eta^2 k^2),  a = sqrt((a^2 + b^2 + eta^2 - k^2 - s^2)/2)
-//   Rs = (a^2 + b^2 + c^2 - 2 a c) / (a^2 + b^2 + c^2 + 2 a c)
-//   Rp = Rs (c^2 (a^2 + b^2) + s^4 - 2 a c s^2) / (c^2 (a^2 + b^2) + s^4 + 2 a c s^2)
-//   F  = (Rs + Rp) / 2,   s^2 = 1 - c^2.
+//   a^2 + b^2 = sqrt((eta^2 - k^2 - s^2)^2 + 4 eta^2 k^2),  a = sqrt((a^2 + b^2 + eta^2 - k^2 -
+//   s^2)/2) Rs = (a^2 + b^2 + c^2 - 2 a c) / (a^2 + b^2 + c^2 + 2 a c) Rp = Rs (c^2 (a^2 + b^2) +
+//   s^4 - 2 a c s^2) / (c^2 (a^2 + b^2) + s^4 + 2 a c s^2) F  = (Rs + Rp) / 2,   s^2 = 1 - c^2.
 template <class T>
 T FConductor(const T& eta, const T& k, double c) {
   using std::sqrt;

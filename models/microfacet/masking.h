@@ -52,10 +52,10 @@ struct SmithHeightCorrelated {
 // approximation of Smith's G1:  G1(c) = c / (c (1 - k) + k),  G2 = G1(cos_i) G1(cos_o).
 // The seeds disagree on k (seeds-digest §2.14 D1); each choice is a named option:
 enum class SchlickK {
-  kAlphaHalf,     // k = alpha / 2                      seed 000 text, eq. 74
-  kAlphaSqHalf,   // k = alpha^2 / 2                    seed 000 code (a*a*0.5, a = roughness^2)
-  kUe4,           // k = (r + 1)^2 / 8, r = sqrt(alpha)  Karis 2013 (UE4), seed 002 §1.3
-  kBeckmannFit,   // k = alpha sqrt(2 / pi)             Schlick 1994 for Beckmann m; seed 001
+  kAlphaHalf,    // k = alpha / 2                      seed 000 text, eq. 74
+  kAlphaSqHalf,  // k = alpha^2 / 2                    seed 000 code (a*a*0.5, a = roughness^2)
+  kUe4,          // k = (r + 1)^2 / 8, r = sqrt(alpha)  Karis 2013 (UE4), seed 002 §1.3
+  kBeckmannFit,  // k = alpha sqrt(2 / pi)             Schlick 1994 for Beckmann m; seed 001
 };
 
 template <class T>

@@ -1,0 +1,68 @@
+// Burley (Disney) diffuse with Frostbite's renormalization ("burley").
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <string_view>
+
+#include "models/geometry.h"
+#include "models/math.h"
+#include "models/param.h"
+
+namespace brdfit {
+
+enum class BurleyVariant {
+  kFrostbite,  // Lagarde & de Rousiers 2014 renormalized, linearRoughness r = sqrt(alpha)
+  kDisney,     // Burley 2012 original (albedo up to ~1.2 at r = 1: not energy conserving)
+  kSeed004,    // seed 004 Sphere(14)/(15): Frostbite's code fed alpha as linearRoughness (D20)
+};
+
+// Burley 2012, "Physically-Based Shading at Disney" (SIGGRAPH course), §5.3 diffuse:
+//   f_d = kd / pi (1 + (F_D90 - 1)(1 - cos_i)^5)(1 + (F_D90 - 1)(1 - cos_o)^5),
+//   F_D90 = 0.5 + 2 r cos_d^2,
+// and Lagarde & de Rousiers 2014, "Moving Frostbite to Physically Based Rendering 3.0"
+// (SIGGRAPH course), Listing 1 (Fr_DisneyDiffuse), quoted by seed 004 Sphere(14):
+//   energyBias = lerp(0, 0.5, r), energyFactor = lerp(1, 1/1.51, r),
+//   F_D90 = energyBias + 2 r cos_d^2,  f_d = kd / pi * F(cos_i) F(cos_o) * energyFactor,
+//   F(c) = 1 + (F_D90 - 1)(1 - c)^5.                                         [1/sr, no cosine]
+// r is Frostbite's "linearRoughness", the perceptual roughness: r = sqrt(alpha) (the project's
+// parameter is alpha). Seed 004 passes alpha itself as linearRoughness (kSeed004 reproduces it).
+// Energy: see docs/models.md (Frostbite's renormalization keeps the albedo <= 1 — tested).
+//
+// Parameters: kd_r, kd_g, kd_b [0, 1] linear weights; alpha [1e-4, 1].
+template <BurleyVariant V>
+struct BurleyDiffuse {
+  static constexpr bool kEnergyConserving = V != BurleyVariant::kDisney;
+  static constexpr std::array<ParamSpec, 4> kParams = {{
+      {"kd_r", "1", 0.0, 1.0, 0.5, false, "diffuse albedo (base colour), red", ParamRole::kWeightR},
+      {"kd_g", "1", 0.0, 1.0, 0.5, false, "diffuse albedo (base colour), green",
+       ParamRole::kWeightG},
+      {"kd_b", "1", 0.0, 1.0, 0.5, false, "diffuse albedo (base colour), blue",
+       ParamRole::kWeightB},
+      {"alpha", "1", 1e-4, 1.0, 0.25, false, "roughness alpha (linearRoughness = sqrt(alpha))"},
+  }};
+
+  template <class T>
+  static void Eval(const T* p, const Geometry& g, T rgb[3]) {
+    using std::sqrt;
+    const T& alpha = p[3];
+    // alpha >= 1e-4 in bounds: sqrt's derivative is finite.
+    const T r = V == BurleyVariant::kSeed004 ? alpha : sqrt(alpha);
+    const bool frostbite = V != BurleyVariant::kDisney;
+    const T bias = frostbite ? 0.5 * r : T(0.5);
+    const T factor = frostbite ? 1.0 + (1.0 / 1.51 - 1.0) * r : T(1.0);
+    const T fd90 = bias + 2.0 * (g.cos_d * g.cos_d) * r;
+    const T fl = 1.0 + (fd90 - 1.0) * Pow5(1.0 - g.cos_i);
+    const T fv = 1.0 + (fd90 - 1.0) * Pow5(1.0 - g.cos_o);
+    const T shape = fl * fv * factor * kInvPi;
+    for (int c = 0; c < 3; ++c) rgb[c] = p[c] * shape;
+  }
+};
+
+struct Burley : BurleyDiffuse<BurleyVariant::kFrostbite> {
+  static constexpr std::string_view kName = "burley";
+  static constexpr std::string_view kDoc =
+      "Burley/Disney diffuse with Frostbite renormalization (Lagarde 2014), r = sqrt(alpha)";
+};
+
+}  // namespace brdfit

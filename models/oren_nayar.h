@@ -1,0 +1,50 @@
+// Oren-Nayar rough diffuse reflection, qualitative model ("oren-nayar").
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <string_view>
+
+#include "models/geometry.h"
+#include "models/param.h"
+
+namespace brdfit {
+
+// Oren & Nayar 1994, "Generalization of Lambert's Reflectance Model" (SIGGRAPH), eq. 30 (the
+// qualitative model), as printed in seed 001:
+//   f_r = kd / pi (A + B max(0, cos(ph_i - ph_o)) sin(a) tan(b)),  a = max(th_i, th_o),
+//   b = min(th_i, th_o),  A = 1 - 0.5 s^2 / (s^2 + 0.33),  B = 0.45 s^2 / (s^2 + 0.09),
+// s = sigma, the standard deviation of the facet slope angle (radians).     [1/sr, no cosine]
+// Vector form without angles or singular points (seed 001's vector form, with its L_proj typo
+// fixed, D19): cos(dph) sin(th_i) sin(th_o) = wi.x wo.x + wi.y wo.y and
+// sin(a) tan(b) = sin(th_i) sin(th_o) / cos(b) = sin(th_i) sin(th_o) / max(cos_i, cos_o), so
+//   f_r = kd / pi (A + B max(0, wi.x wo.x + wi.y wo.y) / max(cos_i, cos_o)).
+// sigma = 0 is Lambert. Energy: see docs/models.md (the qualitative model is not exactly
+// energy conserving; its albedo stays below 1 for kd = 1 — tested).
+//
+// Parameters: kd_r, kd_g, kd_b [0, 1] linear weights; sigma [0, pi/2] rad.
+struct OrenNayar {
+  static constexpr std::string_view kName = "oren-nayar";
+  static constexpr std::string_view kDoc =
+      "Oren-Nayar rough diffuse (1994, qualitative model eq. 30), sigma = facet slope std. dev.";
+  static constexpr bool kEnergyConserving = true;
+  static constexpr std::array<ParamSpec, 4> kParams = {{
+      {"kd_r", "1", 0.0, 1.0, 0.5, false, "diffuse albedo, red", ParamRole::kWeightR},
+      {"kd_g", "1", 0.0, 1.0, 0.5, false, "diffuse albedo, green", ParamRole::kWeightG},
+      {"kd_b", "1", 0.0, 1.0, 0.5, false, "diffuse albedo, blue", ParamRole::kWeightB},
+      {"sigma", "rad", 0.0, kPi / 2, 0.3, false, "std. dev. of the facet slope angle"},
+  }};
+
+  template <class T>
+  static void Eval(const T* p, const Geometry& g, T rgb[3]) {
+    const T s2 = p[3] * p[3];
+    const T a = 1.0 - 0.5 * s2 / (s2 + 0.33);
+    const T b = 0.45 * s2 / (s2 + 0.09);
+    const double sxy = g.wi.x * g.wo.x + g.wi.y * g.wo.y;
+    const double geo = std::max(0.0, sxy) / std::max(g.cos_i, g.cos_o);
+    const T shape = (a + b * geo) * kInvPi;
+    for (int c = 0; c < 3; ++c) rgb[c] = p[c] * shape;
+  }
+};
+
+}  // namespace brdfit
