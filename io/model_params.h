@@ -1,0 +1,29 @@
+// Model parameters by name at the CLI boundary (synth, later fit/report): "name=value" with
+// qualified names ("ggx.alpha", "lambert.kd_r") or unqualified ones ("alpha") when exactly one
+// parameter of the model has that name. Errors list the valid names.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "models/registry.h"
+
+namespace brdfit {
+
+// Index of a parameter in the model's parameter vector. Throws InputError for an unknown name
+// (listing every valid name) or an ambiguous unqualified one (listing the qualified choices).
+std::size_t FindParamIndex(const ModelInfo& model, std::string_view name);
+
+// The model's defaults with each "name=value" applied. Values must parse as finite numbers and
+// lie inside the parameter's bounds; a parameter may be given once. Throws InputError.
+std::vector<double> ResolveModelParams(const ModelInfo& model,
+                                       const std::vector<std::string>& assignments);
+
+// {"lambert.kd_r": 0.5, ...} in parameter order (qualified names), as compact JSON.
+std::string ParamsToJson(const ModelInfo& model, const std::vector<double>& params);
+
+// "lambert.kd_r (kd_r), ..., ggx.alpha (alpha)": every accepted spelling.
+std::string ValidParamNames(const ModelInfo& model);
+
+}  // namespace brdfit

@@ -1,0 +1,266 @@
+#include "io/nbrdf.h"
+
+#include <H5Cpp.h>
+#include <fmt/core.h>
+#include <hdf5.h>
+#include <zip.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <thread>
+
+#include "io/error.h"
+#include "io/input_file.h"
+
+namespace brdfit {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kMemberDir = "merl_nbrdf/";
+constexpr const char* kMemberExt = ".h5";
+
+struct ZipCloser {
+  void operator()(zip_t* z) const { zip_discard(z); }  // read-only: nothing to write back
+};
+using ZipPtr = std::unique_ptr<zip_t, ZipCloser>;
+
+ZipPtr OpenZip(const fs::path& zip) {
+  CheckInputFile(zip);
+  int err = 0;
+  zip_t* z = zip_open(zip.c_str(), ZIP_RDONLY, &err);
+  if (!z) {
+    zip_error_t e;
+    zip_error_init_with_code(&e, err);
+    const std::string msg = zip_error_strerror(&e);
+    zip_error_fini(&e);
+    throw InputError(zip, "cannot open zip archive: " + msg);
+  }
+  return ZipPtr(z);
+}
+
+std::vector<std::string> Materials(const fs::path& path, zip_t* z) {
+  std::vector<std::string> out;
+  const zip_int64_t n = zip_get_num_entries(z, 0);
+  const std::string dir = kMemberDir, ext = kMemberExt;
+  for (zip_int64_t i = 0; i < n; ++i) {
+    const char* name = zip_get_name(z, static_cast<zip_uint64_t>(i), 0);
+    if (!name) throw InputError(path, "cannot read the archive's directory");
+    const std::string s = name;
+    if (s.size() > dir.size() + ext.size() && s.starts_with(dir) && s.ends_with(ext)) {
+      out.push_back(s.substr(dir.size(), s.size() - dir.size() - ext.size()));
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<char> ReadMember(const fs::path& path, zip_t* z, const std::string& member) {
+  zip_stat_t st;
+  zip_stat_init(&st);
+  if (zip_stat(z, member.c_str(), 0, &st) != 0 || !(st.valid & ZIP_STAT_SIZE)) {
+    throw InputError(path, "cannot stat member " + member);
+  }
+  std::unique_ptr<zip_file_t, decltype(&zip_fclose)> f(zip_fopen(z, member.c_str(), 0),
+                                                       &zip_fclose);
+  if (!f) throw InputError(path, "cannot open member " + member + ": " + zip_strerror(z));
+  std::vector<char> buf(st.size);
+  zip_uint64_t got = 0;
+  while (got < st.size) {
+    const zip_int64_t n = zip_fread(f.get(), buf.data() + got, st.size - got);
+    if (n <= 0) throw InputError(path, "cannot decompress member " + member);
+    got += static_cast<zip_uint64_t>(n);
+  }
+  return buf;
+}
+
+// Reads dataset `name` ([rows][cols] or [cols]) as doubles in row-major order.
+Eigen::MatrixXd ReadWeights(const fs::path& path, const std::string& member, const H5::H5File& f,
+                            const std::string& name, hsize_t rows, hsize_t cols) {
+  if (!f.nameExists(name)) throw InputError(path, member + ": missing dataset " + name);
+  H5::DataSet ds = f.openDataSet(name);
+  const H5::DataSpace space = ds.getSpace();
+  std::vector<hsize_t> dims(space.getSimpleExtentNdims());
+  space.getSimpleExtentDims(dims.data());
+  const bool ok = (rows == 0) ? (dims.size() == 1 && dims[0] == cols)
+                              : (dims.size() == 2 && dims[0] == rows && dims[1] == cols);
+  if (ds.getTypeClass() != H5T_FLOAT || !ok) {
+    throw InputError(path, fmt::format("{}: dataset {} has the wrong type or shape (expected "
+                                       "float [{}][{}])",
+                                       member, name, rows, cols));
+  }
+  const hsize_t r = std::max<hsize_t>(rows, 1);
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> m(r, cols);
+  ds.read(m.data(), H5::PredType::NATIVE_DOUBLE);
+  if (!m.allFinite()) throw InputError(path, member + ": non-finite weight in " + name);
+  return m;
+}
+
+hsize_t Columns(const H5::H5File& f, const std::string& name) {
+  if (!f.nameExists(name)) return 0;
+  const H5::DataSpace space = f.openDataSet(name).getSpace();
+  if (space.getSimpleExtentNdims() != 2) return 0;
+  hsize_t dims[2];
+  space.getSimpleExtentDims(dims);
+  return dims[1];
+}
+
+}  // namespace
+
+std::vector<std::string> ListNbrdfMaterials(const fs::path& zip) {
+  ZipPtr z = OpenZip(zip);
+  return Materials(zip, z.get());
+}
+
+NbrdfNetwork ReadNbrdf(const fs::path& zip, const std::string& material) {
+  ZipPtr z = OpenZip(zip);
+  const std::string member = kMemberDir + material + kMemberExt;
+  if (zip_name_locate(z.get(), member.c_str(), 0) < 0) {
+    const auto names = Materials(zip, z.get());
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    throw InputError(zip, fmt::format("no material '{}' (the archive has {}: {})", material,
+                                      names.size(), list));
+  }
+  std::vector<char> image = ReadMember(zip, z.get(), member);
+
+  H5::Exception::dontPrint();
+  NbrdfNetwork net;
+  net.material = material;
+  net.source = zip.string() + ":" + member;
+  try {
+    // HDF5 core driver on a copy of the in-memory image, no backing store: nothing touches disk.
+    H5::FileAccPropList fapl;
+    H5Pset_fapl_core(fapl.getId(), 1 << 16, /*backing_store=*/0);
+    H5Pset_file_image(fapl.getId(), image.data(), image.size());
+    // The core driver refuses a name that exists on disk; "<zip>/<member>" never does (the zip
+    // is a file, not a folder).
+    H5::H5File f((zip / member).string(), H5F_ACC_RDONLY, H5::FileCreatPropList::DEFAULT, fapl);
+    const std::string l1 = "dense_1/dense_1/", l2 = "dense_2/dense_2/", l3 = "dense_3/dense_3/";
+    const hsize_t h1 = Columns(f, l1 + "kernel:0"), h2 = Columns(f, l2 + "kernel:0");
+    net.k1 = ReadWeights(zip, member, f, l1 + "kernel:0", 6, h1);
+    net.b1 = ReadWeights(zip, member, f, l1 + "bias:0", 0, h1);
+    net.k2 = ReadWeights(zip, member, f, l2 + "kernel:0", h1, h2);
+    net.b2 = ReadWeights(zip, member, f, l2 + "bias:0", 0, h2);
+    net.k3 = ReadWeights(zip, member, f, l3 + "kernel:0", h2, 3);
+    net.b3 = ReadWeights(zip, member, f, l3 + "bias:0", 0, 3);
+    if (h1 == 0 || h2 == 0) throw InputError(zip, member + ": empty hidden layer");
+  } catch (const H5::Exception& e) {
+    throw InputError(zip, member + ": HDF5: " + e.getFuncName() + ": " + e.getDetailMsg());
+  }
+  return net;
+}
+
+std::array<double, 3> EvalNbrdf(const NbrdfNetwork& net, const HalfDiffAngles& a) {
+  Eigen::RowVectorXd x(6);
+  x << std::sin(a.theta_h), 0.0, std::cos(a.theta_h), std::sin(a.theta_d) * std::cos(a.phi_d),
+      std::sin(a.theta_d) * std::sin(a.phi_d), std::cos(a.theta_d);
+  const Eigen::RowVectorXd h1 = (x * net.k1 + net.b1).cwiseMax(0.0);
+  const Eigen::RowVectorXd h2 = (h1 * net.k2 + net.b2).cwiseMax(0.0);
+  const Eigen::RowVectorXd y = h2 * net.k3 + net.b3;
+  return {std::expm1(y[0]), std::expm1(y[1]), std::expm1(y[2])};
+}
+
+NbrdfTabulation TabulateNbrdf(const NbrdfNetwork& net, const Grid& grid, int threads) {
+  NbrdfTabulation out;
+  out.table = Table::Empty(grid);
+  Table& t = out.table;
+  const int nd = grid.n_theta_d, np = grid.n_phi_d;
+  const Eigen::Index rows = static_cast<Eigen::Index>(nd) * np;
+
+  // The difference-vector part of x is the same in every theta_h slice: fold it into the first
+  // layer once. P = [sin td cos pd, sin td sin pd, cos td] K1[3:6] + b1, one row per (id, ip).
+  Eigen::MatrixXd dvec(rows, 3);
+  Eigen::VectorXd cos_pd(rows), sin_td_row(rows), cos_td_row(rows);
+  for (int id = 0; id < nd; ++id) {
+    const double td = grid.ThetaDAt(id + 0.5);
+    for (int ip = 0; ip < np; ++ip) {
+      const double pd = grid.PhiDAt(ip + 0.5);
+      const Eigen::Index r = static_cast<Eigen::Index>(id) * np + ip;
+      dvec.row(r) << std::sin(td) * std::cos(pd), std::sin(td) * std::sin(pd), std::cos(td);
+      cos_pd[r] = std::cos(pd);
+      sin_td_row[r] = std::sin(td);
+      cos_td_row[r] = std::cos(td);
+    }
+  }
+  const Eigen::MatrixXd p = (dvec * net.k1.bottomRows(3)).rowwise() + net.b1;
+
+  struct Counts {
+    std::size_t below = 0, clamped_values = 0, clamped_cells = 0;
+    bool non_finite = false;
+    std::size_t non_finite_cell = 0;
+  };
+  auto slice = [&](int ih, Counts& cnt) {
+    const double th = grid.ThetaHAt(ih + 0.5);
+    const double sh = std::sin(th), ch = std::cos(th);
+    // x = (sin th, 0, cos th, d): the half-vector part adds one row vector to P.
+    const Eigen::RowVectorXd hpart = sh * net.k1.row(0) + ch * net.k1.row(2);
+    const Eigen::MatrixXd h1 = (p.rowwise() + hpart).cwiseMax(0.0);
+    const Eigen::MatrixXd h2 = ((h1 * net.k2).rowwise() + net.b2).cwiseMax(0.0);
+    const Eigen::MatrixXd y = (h2 * net.k3).rowwise() + net.b3;
+    const std::size_t base = grid.Index(ih, 0, 0);
+    for (Eigen::Index r = 0; r < rows; ++r) {
+      const std::size_t idx = base + static_cast<std::size_t>(r);
+      // Directions at the cell centre with phi_h = 0 (geometry.h FromHalfDiff):
+      // wi.z = cos th cos td - sin th sin td cos pd, wo.z = cos th cos td + sin th sin td cos pd.
+      const double a = ch * cos_td_row[r], b = sh * sin_td_row[r] * cos_pd[r];
+      if (!(a - b > 0 && a + b > 0)) {
+        ++cnt.below;
+        continue;  // masked (valid stays 0, value 0)
+      }
+      bool clamped = false;
+      for (int c = 0; c < 3; ++c) {
+        double f = std::expm1(y(r, c));
+        if (!std::isfinite(f) && !cnt.non_finite) {
+          cnt.non_finite = true;
+          cnt.non_finite_cell = idx;
+        }
+        if (f < 0) {
+          f = 0;  // README: clamp negative outputs to 0 (counted)
+          ++cnt.clamped_values;
+          clamped = true;
+        }
+        t.rgb[3 * idx + c] = f;
+      }
+      cnt.clamped_cells += clamped;
+      t.valid[idx] = 1;
+    }
+  };
+
+  const int n_threads = std::clamp(threads, 1, grid.n_theta_h);
+  std::vector<Counts> counts(n_threads);
+  if (n_threads == 1) {
+    for (int ih = 0; ih < grid.n_theta_h; ++ih) slice(ih, counts[0]);
+  } else {
+    std::vector<std::thread> pool;
+    for (int k = 0; k < n_threads; ++k) {
+      pool.emplace_back([&, k] {
+        for (int ih = k; ih < grid.n_theta_h; ih += n_threads) slice(ih, counts[k]);
+      });
+    }
+    for (auto& th : pool) th.join();
+  }
+  for (const Counts& c : counts) {
+    if (c.non_finite) {
+      throw InputError(net.source,
+                       fmt::format("network output is not finite at cell {}", c.non_finite_cell));
+    }
+    out.below_horizon += c.below;
+    out.clamped_values += c.clamped_values;
+    out.clamped_cells += c.clamped_cells;
+  }
+  t.provenance.source = net.source;
+  t.provenance.generator = "nbrdf";
+  t.provenance.model = "nbrdf";
+  nlohmann::ordered_json params;
+  params["material"] = net.material;
+  params["clamped_values"] = out.clamped_values;
+  t.provenance.parameters_json = params.dump();
+  return out;
+}
+
+}  // namespace brdfit
