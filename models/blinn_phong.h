@@ -14,7 +14,7 @@ namespace brdfit {
 // the (n + 8) / (8 pi) normalization of Sloan & Hoffman / Akenine-Moeller et al., "Real-Time
 // Rendering" 3rd ed. eq. 7.49, as printed in seed 001:
 //   f_r = ks (n + 8) / (8 pi) cos^n th_h        [1/sr, without the cosine]
-// cos^n th_h = exp(n/2 log1p(-sin^2 th_h)): accurate for sharp lobes at th_h -> 0.
+// cos^n th_h = exp(n log cos th_h) with log cos from log1p(-sin^2 th_h) near th_h = 0 (PowCos).
 // Seeds: 001 (normalized; "commonly used" un-normalized form), 004 Sphere(6) (un-normalized
 // (H.N)^n, preview only). The normalization is approximate: the albedo exceeds ks at grazing
 // incidence for sharp lobes (its implicit G = cos_i cos_o, seed 001), so NOT energy conserving.
@@ -35,7 +35,7 @@ struct BlinnPhong {
   template <class T>
   static void Eval(const T* p, const Geometry& g, T rgb[3]) {
     const T& n = p[3];
-    const T spec = (n + 8.0) / (8.0 * kPi) * PowCosFromSin2(g.sin2_h, n);
+    const T spec = (n + 8.0) / (8.0 * kPi) * PowCos(g.cos_h, g.sin2_h, n);
     for (int c = 0; c < 3; ++c) rgb[c] = p[c] * spec;
   }
 };

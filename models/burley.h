@@ -52,8 +52,8 @@ struct BurleyDiffuse {
     const T bias = frostbite ? 0.5 * r : T(0.5);
     const T factor = frostbite ? 1.0 + (1.0 / 1.51 - 1.0) * r : T(1.0);
     const T fd90 = bias + 2.0 * (g.cos_d * g.cos_d) * r;
-    const T fl = 1.0 + (fd90 - 1.0) * Pow5(1.0 - g.cos_i);
-    const T fv = 1.0 + (fd90 - 1.0) * Pow5(1.0 - g.cos_o);
+    const T fl = 1.0 + (fd90 - 1.0) * Pow5(OneMinusCos(g.wi));
+    const T fv = 1.0 + (fd90 - 1.0) * Pow5(OneMinusCos(g.wo));
     const T shape = fl * fv * factor * kInvPi;
     for (int c = 0; c < 3; ++c) rgb[c] = p[c] * shape;
   }

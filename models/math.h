@@ -28,23 +28,27 @@ inline double Tan2Theta(const Vec3& v) {
   return Sin2Theta(v) / (v.z * v.z);
 }
 
-// x^n for a data-side base x in [0, 1] and a parameter-side exponent n >= 1:
-// exp(n log x). x == 0 returns 0 (log would be -inf and the Jet derivative NaN; the true
-// value and its n-derivative are 0 there for n >= 1).
-template <class T>
-T PowData(double x, const T& n) {
-  using std::exp;
-  if (x <= 0.0) return T(0.0);
-  return exp(n * std::log(x));
+// 1 - cos(theta) of a unit direction from its components: sin^2 / (1 + cos), no cancellation
+// near the pole (Schlick's (1 - c)^5 with F0 = 0 would otherwise lose all digits there).
+inline double OneMinusCos(const Vec3& v) {
+  return Sin2Theta(v) / (1.0 + v.z);
 }
 
-// cos(theta)^n from sin^2(theta): exp(n/2 * log1p(-sin2)). log1p keeps the exponent accurate
-// near theta = 0, where cos^n of a sharp lobe (n ~ 1e5) is most sensitive.
+// 1 - cos(theta_d) = 1 - wi.h = |wi - h|^2 / 2 (both unit): accurate at retro-reflection.
+inline double OneMinusCosD(const Geometry& g) {
+  const Vec3 d = g.wi - g.h;
+  return 0.5 * Dot(d, d);
+}
+
+// cos(theta)^n for theta in [0, pi/2], n >= 1, from cos and sin^2 (both from components):
+// exp(n log cos). log cos = log1p(-sin^2)/2 near theta = 0, where cos^n of a sharp lobe
+// (n ~ 1e5) is most sensitive to rounding in cos; log(cos) directly when cos is small.
 template <class T>
-T PowCosFromSin2(double sin2, const T& n) {
+T PowCos(double cos, double sin2, const T& n) {
   using std::exp;
-  if (sin2 >= 1.0) return T(0.0);  // cos = 0: the lobe vanishes (n >= 1)
-  return exp(0.5 * n * std::log1p(-sin2));
+  if (cos <= 0.0) return T(0.0);  // the lobe vanishes (n >= 1); log would be -inf
+  const double log_cos = sin2 < 0.5 ? 0.5 * std::log1p(-sin2) : std::log(cos);
+  return exp(n * log_cos);
 }
 
 // x^n for a parameter-dependent base x and exponent n >= 1. x <= 0 returns 0: the lobe is

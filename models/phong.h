@@ -35,16 +35,14 @@ struct Phong {
 
   template <class T>
   static void Eval(const T* p, const Geometry& g, T rgb[3]) {
-    using std::exp;
     const T& n = p[3];
-    if (g.cos_r <= 0.0) {  // the lobe is clipped to max(0, cos alpha_r)^n = 0
-      for (int c = 0; c < 3; ++c) rgb[c] = T(0.0);
-      return;
-    }
-    // 1 - cos alpha_r = |wo - r|^2 / 2 with r = reflect(wi) = (-wi.x, -wi.y, wi.z): no
-    // cancellation near the mirror direction, where n up to 1e5 amplifies rounding errors.
+    // cos alpha_r = wo . r, r = reflect(wi) = (-wi.x, -wi.y, wi.z), from components; and
+    // sin^2 alpha_r = |wo - r|^2 (1 - |wo - r|^2 / 4), free of cancellation near the mirror
+    // direction, where n up to 1e5 amplifies rounding errors.
+    const double cos_r = g.wi.z * g.wo.z - (g.wi.x * g.wo.x + g.wi.y * g.wo.y);
     const double d2 = Sq(g.wo.x + g.wi.x) + Sq(g.wo.y + g.wi.y) + Sq(g.wo.z - g.wi.z);
-    const T spec = (n + 2.0) / (2.0 * kPi) * exp(n * std::log1p(-0.5 * d2));
+    const double sin2_r = d2 * (1.0 - 0.25 * d2);
+    const T spec = (n + 2.0) / (2.0 * kPi) * PowCos(cos_r, sin2_r, n);
     for (int c = 0; c < 3; ++c) rgb[c] = p[c] * spec;
   }
 };

@@ -44,9 +44,10 @@ struct Ue4Brdf {
     const T dg = DGgx(alpha, g.cos_h, g.sin2_h) *
                  SchlickSmith<SchlickK::kUe4>::template G<GgxNdf>(alpha, g) /
                  (4.0 * g.cos_i * g.cos_o);
+    const double omc = OneMinusCosD(g);
     for (int c = 0; c < 3; ++c) {
       const T f0 = 0.04 * (1.0 - m) + p[c] * m;
-      const T f = FSchlick(f0, g.cos_d);
+      const T f = FSchlickOneMinusCos(f0, omc);
       T diffuse = (1.0 - m) * p[c] * kInvPi;
       if constexpr (kSeed002DiffuseFresnel) diffuse = diffuse * (1.0 - f);
       rgb[c] = diffuse + dg * f;

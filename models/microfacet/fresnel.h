@@ -4,13 +4,15 @@
 // Free functions (F...) implement the formulas; policy types (...Fresnel) publish the extra
 // parameters a lobe gains by choosing them and evaluate F from the lobe's parameter block:
 //   static constexpr std::array<ParamSpec, K> kParams;
-//   template <class T> static T F(const T* fresnel_params, double c);
+//   template <class T> static T F(const T* fresnel_params, const Geometry& g);
+// Schlick's (1 - c)^5 is evaluated from 1 - c = OneMinusCosD(g), accurate at retro-reflection.
 #pragma once
 
 #include <array>
 #include <cmath>
 #include <string_view>
 
+#include "models/geometry.h"
 #include "models/math.h"
 #include "models/param.h"
 
@@ -21,6 +23,11 @@ namespace brdfit {
 template <class T>
 T FSchlick(const T& f0, double c) {
   return f0 + (1.0 - f0) * Pow5(1.0 - c);
+}
+// The same from 1 - c (no cancellation for c -> 1).
+template <class T>
+T FSchlickOneMinusCos(const T& f0, double one_minus_c) {
+  return f0 + (1.0 - f0) * Pow5(one_minus_c);
 }
 
 // Schlick with a grazing value F90 (Lagarde & de Rousiers 2014, "Moving Frostbite to PBR",
@@ -97,7 +104,7 @@ struct NoFresnel {
   static constexpr std::string_view kName = "folded into weight";
   static constexpr std::array<ParamSpec, 0> kParams = {};
   template <class T>
-  static T F(const T* /*p*/, double /*c*/) {
+  static T F(const T* /*p*/, const Geometry& /*g*/) {
     return T(1.0);
   }
 };
@@ -108,8 +115,8 @@ struct SchlickFresnel {
       {"f0", "1", 0.0, 1.0, 0.04, false, "Fresnel reflectance at normal incidence (Schlick)"},
   }};
   template <class T>
-  static T F(const T* p, double c) {
-    return FSchlick(p[0], c);
+  static T F(const T* p, const Geometry& g) {
+    return FSchlickOneMinusCos(p[0], OneMinusCosD(g));
   }
 };
 
@@ -119,8 +126,8 @@ struct FarCry3Fresnel {
       {"f0", "1", 0.0, 1.0, 0.04, false, "Fresnel reflectance at normal incidence"},
   }};
   template <class T>
-  static T F(const T* p, double c) {
-    return FFarCry3(p[0], c);
+  static T F(const T* p, const Geometry& g) {
+    return FFarCry3(p[0], g.cos_d);
   }
 };
 
@@ -130,8 +137,8 @@ struct DielectricFresnel {
       {"ior", "1", 1.01, 4.0, 1.5, false, "relative index of refraction eta (exact Fresnel)"},
   }};
   template <class T>
-  static T F(const T* p, double c) {
-    return FDielectric(p[0], c);
+  static T F(const T* p, const Geometry& g) {
+    return FDielectric(p[0], g.cos_d);
   }
 };
 

@@ -59,7 +59,7 @@ struct Microfacet {
   static T Shape(const T* p, const Geometry& g) {
     const T& alpha = p[3];
     constexpr double kScale = Form == MicrofacetForm::kWalter ? 4.0 : kPi;
-    return Ndf::D(alpha, g) * Masking::template G<Ndf>(alpha, g) * Fresnel::F(p + 4, g.cos_d) /
+    return Ndf::D(alpha, g) * Masking::template G<Ndf>(alpha, g) * Fresnel::F(p + 4, g) /
            (kScale * g.cos_i * g.cos_o);
   }
 

@@ -81,8 +81,8 @@ T LambdaBeckmann(const T& alpha, double tan2) {
 // Seed 001's normalized Blinn-Phong BRDF uses (n + 8)/(8 pi) instead: that is the BRDF
 // normalization including an implicit G and the 1/(4 cos cos) (models/blinn_phong.h).
 template <class T>
-T DBlinnPhong(const T& n, double sin2_h) {
-  return (n + 2.0) / (2.0 * kPi) * PowCosFromSin2(sin2_h, n);
+T DBlinnPhong(const T& n, double cos_h, double sin2_h) {
+  return (n + 2.0) / (2.0 * kPi) * PowCos(cos_h, sin2_h, n);
 }
 
 // --- Policy types ------------------------------------------------------------------------------

@@ -1,0 +1,224 @@
+// Independent oracles: every model written again in its paper's own form, from polar angles
+// (theta_i, phi_i, theta_o, phi_o) and the half/difference angles derived from them with
+// atan2 — not the vector forms of models/. Parameter vectors use the models' order
+// (`brdfit models`). f_r in 1/sr, without the cosine.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+
+namespace brdfit::oracle {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct Angles {
+  double ti, pi, to, po;  // polar and azimuthal angles of wi and wo (radians)
+};
+
+struct V3 {
+  double x, y, z;
+};
+inline V3 Dir(double t, double p) {
+  return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
+}
+inline double Dot(const V3& a, const V3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+// Half-vector polar angle theta_h and azimuth phi_h, and the difference angle theta_d
+// (angle between wi and h), all through atan2 so that they are accurate near 0.
+struct HalfAngles {
+  double th, ph, td;
+};
+inline HalfAngles Half(const Angles& a) {
+  const V3 i = Dir(a.ti, a.pi), o = Dir(a.to, a.po);
+  V3 h = {i.x + o.x, i.y + o.y, i.z + o.z};
+  const double len = std::sqrt(Dot(h, h));
+  h = {h.x / len, h.y / len, h.z / len};
+  const V3 c = {i.y * h.z - i.z * h.y, i.z * h.x - i.x * h.z, i.x * h.y - i.y * h.x};
+  return {std::atan2(std::hypot(h.x, h.y), h.z), std::atan2(h.y, h.x),
+          std::atan2(std::sqrt(Dot(c, c)), Dot(i, h))};
+}
+
+// ---- terms -----------------------------------------------------------------------------------
+
+// Walter et al. 2007 eq. 33.
+inline double DGgx(double alpha, double th) {
+  const double c = std::cos(th), t = std::tan(th), a2 = alpha * alpha;
+  return a2 / (kPi * std::pow(c, 4) * (a2 + t * t) * (a2 + t * t));
+}
+// Walter et al. 2007 eq. 34.
+inline double G1Ggx(double alpha, double theta) {
+  const double t = std::tan(theta);
+  return 2.0 / (1.0 + std::sqrt(1.0 + alpha * alpha * t * t));
+}
+// Heitz 2014 §5.3, GGX Lambda, direct form.
+inline double LambdaGgx(double alpha, double theta) {
+  const double t = std::tan(theta);
+  return 0.5 * (-1.0 + std::sqrt(1.0 + alpha * alpha * t * t));
+}
+// Walter et al. 2007 eq. 25.
+inline double DBeckmann(double alpha, double th) {
+  const double c = std::cos(th), t = std::tan(th);
+  return std::exp(-(t * t) / (alpha * alpha)) / (kPi * alpha * alpha * std::pow(c, 4));
+}
+// Walter et al. 2007 §5.1, exact Smith G1 for Beckmann: a = 1 / (alpha tan theta),
+// G1 = 2 / (1 + erf(a) + exp(-a^2) / (a sqrt(pi))).
+inline double G1Beckmann(double alpha, double theta) {
+  if (theta == 0.0) return 1.0;
+  const double a = 1.0 / (alpha * std::tan(theta));
+  return 2.0 / (1.0 + std::erf(a) + std::exp(-a * a) / (a * std::sqrt(kPi)));
+}
+// Schlick 1994, from the angle: 1 - cos(t) = 2 sin^2(t / 2).
+inline double OneMinusCos(double t) {
+  return 2.0 * std::pow(std::sin(0.5 * t), 2);
+}
+inline double FSchlick(double f0, double t) {
+  return f0 + (1.0 - f0) * std::pow(OneMinusCos(t), 5);
+}
+
+// Seed 000 eqs. 32-34 with Snell's law (eq. 38): light in medium 1 (eta1 = 1) hits medium 2.
+inline double FDielectricSnell(double eta, double theta1) {
+  const double theta2 = std::asin(std::sin(theta1) / eta);
+  const double c1 = std::cos(theta1), c2 = std::cos(theta2);
+  const double r_par = (eta * c1 - c2) / (eta * c1 + c2);
+  const double r_perp = (c1 - eta * c2) / (c1 + eta * c2);
+  return 0.5 * (r_par * r_par + r_perp * r_perp);
+}
+// Fresnel equations with a complex index n = eta + i k (Born & Wolf §14.2), std::complex.
+inline double FConductorComplex(double eta, double k, double theta) {
+  const std::complex<double> n(eta, k);
+  const double c = std::cos(theta), s = std::sin(theta);
+  const std::complex<double> root = std::sqrt(n * n - s * s);
+  const std::complex<double> rs = (c - root) / (c + root);
+  const std::complex<double> rp = (n * n * c - root) / (n * n * c + root);
+  return 0.5 * (std::norm(rs) + std::norm(rp));
+}
+
+// ---- models ----------------------------------------------------------------------------------
+
+inline void Lambert(const double* p, const Angles&, double rgb[3]) {
+  for (int c = 0; c < 3; ++c) rgb[c] = p[c] / kPi;
+}
+
+// Oren & Nayar 1994 eq. 30, in angles.
+inline void OrenNayar(const double* p, const Angles& a, double rgb[3]) {
+  const double s2 = p[3] * p[3];
+  const double A = 1.0 - 0.5 * s2 / (s2 + 0.33), B = 0.45 * s2 / (s2 + 0.09);
+  const double alpha = std::max(a.ti, a.to), beta = std::min(a.ti, a.to);
+  const double v = A + B * std::max(0.0, std::cos(a.po - a.pi)) * std::sin(alpha) * std::tan(beta);
+  for (int c = 0; c < 3; ++c) rgb[c] = p[c] / kPi * v;
+}
+
+// Lagarde & de Rousiers 2014 Listing 1 (Fr_DisneyDiffuse) with linearRoughness = sqrt(alpha).
+inline void BurleyFrostbite(const double* p, const Angles& a, double rgb[3]) {
+  const double lr = std::sqrt(p[3]);
+  auto lerp = [](double x, double y, double t) { return x + (y - x) * t; };
+  const double ldoth = std::cos(Half(a).td);
+  const double energy_bias = lerp(0.0, 0.5, lr);
+  const double energy_factor = lerp(1.0, 1.0 / 1.51, lr);
+  const double fd90 = energy_bias + 2.0 * ldoth * ldoth * lr;
+  auto fresnel = [](double f0, double f90, double t) {
+    return f0 + (f90 - f0) * std::pow(OneMinusCos(t), 5);
+  };
+  const double fl = fresnel(1.0, fd90, a.ti);
+  const double fv = fresnel(1.0, fd90, a.to);
+  for (int c = 0; c < 3; ++c) rgb[c] = p[c] * fl * fv * energy_factor / kPi;
+}
+
+// Lewis 1994 normalized Phong, mirror direction in angles: (theta_i, phi_i + pi).
+inline void Phong(const double* p, const Angles& a, double rgb[3]) {
+  const double n = p[3];
+  const double cos_r = std::cos(a.ti) * std::cos(a.to) +
+                       std::sin(a.ti) * std::sin(a.to) * std::cos(a.po - a.pi - kPi);
+  const double v = (n + 2) / (2 * kPi) * std::pow(std::max(0.0, cos_r), n);
+  for (int c = 0; c < 3; ++c) rgb[c] = p[c] * v;
+}
+
+// Seed 001 normalized Blinn-Phong.
+inline void BlinnPhong(const double* p, const Angles& a, double rgb[3]) {
+  const double n = p[3];
+  const double v = (n + 8) / (8 * kPi) * std::pow(std::cos(Half(a).th), n);
+  for (int c = 0; c < 3; ++c) rgb[c] = p[c] * v;
+}
+
+// Ward 1992 eq. 4 (duer = false) and Duer 2006 (duer = true).
+inline void Ward(const double* p, const Angles& a, double rgb[3], bool duer) {
+  const double alpha = p[3], t = std::tan(Half(a).th);
+  const double cc = std::cos(a.ti) * std::cos(a.to);
+  const double v =
+      std::exp(-t * t / (alpha * alpha)) / (4 * kPi * alpha * alpha * (duer ? cc : std::sqrt(cc)));
+  for (int c = 0; c < 3; ++c) rgb[c] = p[c] * v;
+}
+
+// Ward 1992 eq. 5, anisotropic, with phi_h.
+inline void WardAniso(const double* p, const Angles& a, double rgb[3]) {
+  const HalfAngles h = Half(a);
+  const double ax = p[3], ay = p[4], t = std::tan(h.th);
+  const double e = t * t * (std::pow(std::cos(h.ph) / ax, 2) + std::pow(std::sin(h.ph) / ay, 2));
+  const double v = std::exp(-e) / (4 * kPi * ax * ay * std::sqrt(std::cos(a.ti) * std::cos(a.to)));
+  for (int c = 0; c < 3; ++c) rgb[c] = p[c] * v;
+}
+
+// Walter 2007 eq. 20 with D eq. 33 and separable G1 eq. 34 (hc = false) or Heitz 2014 eq. 99
+// height-correlated G (hc = true).
+inline void Ggx(const double* p, const Angles& a, double rgb[3], bool hc) {
+  const double alpha = p[3];
+  const double th = Half(a).th;
+  const double g = hc ? 1.0 / (1.0 + LambdaGgx(alpha, a.ti) + LambdaGgx(alpha, a.to))
+                      : G1Ggx(alpha, a.ti) * G1Ggx(alpha, a.to);
+  const double v = DGgx(alpha, th) * g / (4 * std::cos(a.ti) * std::cos(a.to));
+  for (int c = 0; c < 3; ++c) rgb[c] = p[c] * v;
+}
+
+// Walter 2007 eq. 20 with D eq. 25 and exact separable Smith G.
+inline void Beckmann(const double* p, const Angles& a, double rgb[3]) {
+  const double alpha = p[3];
+  const double v = DBeckmann(alpha, Half(a).th) * G1Beckmann(alpha, a.ti) *
+                   G1Beckmann(alpha, a.to) / (4 * std::cos(a.ti) * std::cos(a.to));
+  for (int c = 0; c < 3; ++c) rgb[c] = p[c] * v;
+}
+
+// Ngan et al. 2005 Cook-Torrance: ks F D G / (pi cos_i cos_o), V-groove G in half angles.
+inline void CookTorrance(const double* p, const Angles& a, double rgb[3]) {
+  const double alpha = p[3], f0 = p[4];
+  const HalfAngles h = Half(a);
+  const double ch = std::cos(h.th), cd = std::cos(h.td);
+  const double g = std::min({1.0, 2 * ch * std::cos(a.to) / cd, 2 * ch * std::cos(a.ti) / cd});
+  const double v =
+      FSchlick(f0, h.td) * DBeckmann(alpha, h.th) * g / (kPi * std::cos(a.ti) * std::cos(a.to));
+  for (int c = 0; c < 3; ++c) rgb[c] = p[c] * v;
+}
+
+// Lafortune et al. 1997 in the original C-matrix form, C_x = C_y = cxy C_z with
+// C_z = (rho (n + 2) / (2 pi))^(1/n) per channel.
+inline void Lafortune(const double* p, const Angles& a, double rgb[3]) {
+  const double cxy = p[3], n = p[4];
+  const V3 u = Dir(a.ti, a.pi), v = Dir(a.to, a.po);
+  for (int c = 0; c < 3; ++c) {
+    const double cz = std::pow(p[c] * (n + 2) / (2 * kPi), 1.0 / n);
+    const double cx = cxy * cz, cy = cxy * cz;
+    const double x = cx * u.x * v.x + cy * u.y * v.y + cz * u.z * v.z;
+    rgb[c] = x > 0 ? std::pow(x, n) : 0.0;
+  }
+}
+
+// Seed 002 §1.1-1.4 / Karis 2013 in the seed's printed form (GGX with (n.h)^2 (a^2 - 1) + 1,
+// k = (r + 1)^2 / 8 with roughness r = sqrt(alpha), F0 = mix(0.04, base, m)).
+inline void Ue4(const double* p, const Angles& a, double rgb[3]) {
+  const double m = p[3], r = std::sqrt(p[4]), r4 = r * r * r * r;
+  const HalfAngles h = Half(a);
+  const double nh = std::cos(h.th), nl = std::cos(a.ti), nv = std::cos(a.to);
+  const double denom = nh * nh * (r4 - 1.0) + 1.0;
+  const double d = r4 / (kPi * denom * denom);
+  const double k = (r + 1) * (r + 1) * 0.125;
+  const double g = nl / (nl * (1 - k) + k) * nv / (nv * (1 - k) + k);
+  for (int c = 0; c < 3; ++c) {
+    const double f0 = 0.04 + (p[c] - 0.04) * m;
+    const double f = FSchlick(f0, h.td);
+    rgb[c] = p[c] / kPi * (1 - m) + d * g * f / (4 * nl * nv);
+  }
+}
+
+}  // namespace brdfit::oracle
