@@ -19,8 +19,11 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr std::array<const char*, 3> kChannelNames = {"R", "G", "B"};
-// Largest grid a file may declare (guards allocations against corrupt shapes): 2^31 cells.
-constexpr std::size_t kMaxCells = std::size_t{1} << 31;
+// Largest grid a file may declare (guards allocations against corrupt shapes): 2^26 cells,
+// 46x MERL's grid, 1.7 GB in memory. A hostile file can declare any shape in a few bytes
+// (chunked datasets with nothing written, or filters such as scale-offset that store a
+// constant chunk in a header), so this cap is what bounds the allocation.
+constexpr std::size_t kMaxCells = std::size_t{1} << 26;
 
 void QuietHdf5() {
   static const bool once = [] {
@@ -183,10 +186,22 @@ class Reader {
       Fail("dataset /valid must have shape [n_theta_h][n_theta_d][n_phi_d] matching /values");
     }
     for (int k = 0; k < 3; ++k) {
-      if (vdims[k] < 1 || vdims[k] > kMaxCells) Fail("dataset /values has an empty axis");
+      if (vdims[k] < 1) Fail("dataset /values has an empty axis");
     }
-    if (vdims[0] * vdims[1] * vdims[2] > kMaxCells) {
-      Fail(fmt::format("grid {}x{}x{} is too large", vdims[0], vdims[1], vdims[2]));
+    // Overflow-safe: the product of three hsize_t can wrap to a small number
+    // (fuzz/regressions/hdf5_table/crafted-product-overflow.h5).
+    if (vdims[0] > kMaxCells || vdims[1] > kMaxCells / vdims[0] ||
+        vdims[2] > kMaxCells / (vdims[0] * vdims[1])) {
+      Fail(fmt::format("grid {}x{}x{} is too large (at most {} cells)", vdims[0], vdims[1],
+                       vdims[2], kMaxCells));
+    }
+    // A declared shape with no stored data reads back as fill values: a few kB of file could
+    // make us allocate the cap (fuzz/regressions/hdf5_table/crafted-unwritten-values.h5).
+    for (const auto& [ds, name] : {std::pair{&values, "values"}, std::pair{&valid, "valid"}}) {
+      H5D_space_status_t status;
+      if (H5Dget_space_status(ds->getId(), &status) < 0 || status != H5D_SPACE_STATUS_ALLOCATED) {
+        Fail(fmt::format("dataset /{} declares data that the file does not store", name));
+      }
     }
 
     Grid g;
