@@ -6,7 +6,7 @@ JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
 DEMO_OUT   ?= demo-out
 
-.PHONY: all deps configure build demo test test-asan bench format clean
+.PHONY: all deps configure build demo test test-asan fuzz-smoke bench format clean
 
 all: build
 
@@ -33,6 +33,13 @@ test-asan: deps
 	cmake --build $(BUILD_ASAN) -j $(JOBS)
 	cd $(BUILD_ASAN) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ctest --output-on-failure -j $(JOBS)
+
+# libFuzzer smoke run (about a minute in all, after replaying every committed fuzz input):
+# clang + libclang-rt are installed by setup-deps.sh with BRDFIT_WITH_CLANG=1. docs/reliability.md.
+BUILD_FUZZ ?= build-fuzz
+fuzz-smoke:
+	BRDFIT_WITH_CLANG=1 ./scripts/setup-deps.sh
+	BUILD_FUZZ=$(BUILD_FUZZ) JOBS=$(JOBS) ./scripts/fuzz.sh smoke
 
 bench: build
 	for b in $(BUILD)/bench/bench_*; do $$b; done

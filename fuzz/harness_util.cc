@@ -1,0 +1,58 @@
+#include "fuzz/harness_util.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <system_error>
+
+namespace brdfit::fuzz {
+
+namespace fs = std::filesystem;
+
+namespace {
+fs::path MakeScratchDir() {
+  fs::path parent;
+  if (const char* env = std::getenv("BRDFIT_FUZZ_TMP"); env && *env) {
+    parent = env;
+  } else if (std::error_code ec; fs::is_directory("/dev/shm", ec)) {
+    parent = "/dev/shm";
+  } else {
+    parent = fs::temp_directory_path();
+  }
+  fs::path dir = parent / ("brdfit-fuzz-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+struct ScratchOwner {
+  fs::path dir = MakeScratchDir();
+  ~ScratchOwner() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+};
+}  // namespace
+
+const fs::path& ScratchDir() {
+  static const ScratchOwner owner;
+  return owner.dir;
+}
+
+std::size_t OpenFdCount() {
+  std::size_t n = 0;
+  std::error_code ec;
+  for (fs::directory_iterator it("/proc/self/fd", ec), end; !ec && it != end; it.increment(ec)) ++n;
+  return n;
+}
+
+fs::path WriteScratch(std::string_view name, const void* data, std::size_t size) {
+  const fs::path path = ScratchDir() / std::string(name);
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) throw std::runtime_error("cannot create scratch file " + path.string());
+  const bool ok = size == 0 || std::fwrite(data, 1, size, f) == size;
+  if (std::fclose(f) != 0 || !ok) throw std::runtime_error("cannot write " + path.string());
+  return path;
+}
+
+}  // namespace brdfit::fuzz

@@ -1,0 +1,201 @@
+// Writes the seed corpora fuzz/corpus/<reader>/ with brdfit's own writers (no third-party
+// data): small valid files plus a few near-misses, so the fuzzer starts past the format checks.
+// Also writes hand-crafted hostile files to fuzz/regressions/<reader>/crafted-* (inputs a
+// fuzzer is unlikely to build: tiny files declaring huge shapes).
+//   fuzz_make_seeds <repo>/fuzz
+// Deterministic: the same sources give the same files.
+#include <hdf5.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "io/hdf5_table.h"
+#include "io/merl.h"
+#include "io/table.h"
+
+namespace fs = std::filesystem;
+using namespace brdfit;
+
+namespace {
+
+void WriteBytes(const fs::path& p, const std::string& bytes) {
+  std::ofstream out(p, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+std::string Raw(const void* p, std::size_t n) { return std::string(static_cast<const char*>(p), n); }
+
+std::string MerlHeader(std::int32_t a = 90, std::int32_t b = 90, std::int32_t c = 180) {
+  const std::int32_t d[3] = {a, b, c};
+  return Raw(d, sizeof(d));
+}
+
+std::string Doubles(const std::vector<double>& v) { return Raw(v.data(), v.size() * sizeof(double)); }
+
+// fuzz_merl input: mode byte (bit 0: expanded, bit 1: round trip), see fuzz/fuzz_merl.cc.
+void MerlSeeds(const fs::path& dir) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  WriteBytes(dir / "raw-header-only", std::string(1, '\0') + MerlHeader());
+  WriteBytes(dir / "raw-bad-dims", std::string(1, '\0') + MerlHeader(91, 90, 180) + Doubles({1, 2}));
+  WriteBytes(dir / "raw-empty", std::string(1, '\0'));
+  WriteBytes(dir / "expanded-valid", std::string(1, '\3') + MerlHeader() + '\0' + Doubles({0.5, 1.0, 2.0}));
+  WriteBytes(dir / "expanded-masked", std::string(1, '\3') + MerlHeader() + '\0' + Doubles({0.5, -1.0, 3.0}));
+  WriteBytes(dir / "expanded-zero", std::string(1, '\1') + MerlHeader() + '\0');
+  WriteBytes(dir / "expanded-nan", std::string(1, '\1') + MerlHeader() + '\0' + Doubles({1.0, nan}));
+  WriteBytes(dir / "expanded-inf", std::string(1, '\1') + MerlHeader() + '\0' + Doubles({-inf, 1.0}));
+  WriteBytes(dir / "expanded-tiny", std::string(1, '\3') + MerlHeader() + '\0' + Doubles({5e-324, -0.0, 1e300}));
+  WriteBytes(dir / "expanded-short", std::string(1, '\1') + MerlHeader() + '\xf7' + Doubles({1.0}));
+  WriteBytes(dir / "expanded-long", std::string(1, '\1') + MerlHeader() + '\xf9' + Doubles({1.0}));
+}
+
+Table SmallTable(int nh, int nd, int np, ThetaHMapping m) {
+  Grid g;
+  g.n_theta_h = nh;
+  g.n_theta_d = nd;
+  g.n_phi_d = np;
+  g.theta_h_mapping = m;
+  Table t = Table::Empty(g);
+  for (std::size_t i = 0; i < g.NumCells(); ++i) {
+    t.valid[i] = i % 3 != 1;
+    for (int c = 0; c < 3; ++c) t.rgb[3 * i + c] = 0.1 * (c + 1) + 0.01 * static_cast<double>(i);
+  }
+  t.provenance.source = "fuzz seed";
+  t.provenance.generator = "fuzz_make_seeds";
+  t.provenance.model = "lambert";
+  t.provenance.parameters_json = R"({"kd":[0.1,0.2,0.3]})";
+  t.provenance.seed = 7;
+  t.provenance.noise = 0.01;
+  t.provenance.missing_fraction = 0.25;
+  return t;
+}
+
+void Hdf5Seeds(const fs::path& dir) {
+  WriteHdf5Table(SmallTable(2, 3, 4, ThetaHMapping::kSqrt), dir / "sqrt-2x3x4.h5");
+  WriteHdf5Table(SmallTable(3, 2, 2, ThetaHMapping::kLinear), dir / "linear-3x2x2.h5");
+  Table one = SmallTable(1, 1, 1, ThetaHMapping::kSqrt);
+  one.valid[0] = 1;
+  WriteHdf5Table(one, dir / "single-cell.h5");
+  Table holes = SmallTable(2, 2, 2, ThetaHMapping::kLinear);
+  for (std::size_t i = 0; i < holes.valid.size(); i += 2) {
+    holes.valid[i] = 0;
+    holes.rgb[3 * i] = std::numeric_limits<double>::quiet_NaN();  // allowed in masked cells
+  }
+  WriteHdf5Table(holes, dir / "nan-in-masked.h5");
+}
+
+// ---- hand-crafted hostile HDF5 tables (C API: shapes the brdfit writer cannot produce) ----
+
+void StrAttr(hid_t obj, const char* name, const std::string& v) {
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, v.size() + 1);
+  const hid_t space = H5Screate(H5S_SCALAR);
+  const hid_t a = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(a, type, v.c_str());
+  H5Aclose(a);
+  H5Sclose(space);
+  H5Tclose(type);
+}
+
+template <class T>
+void ScalarAttr(hid_t obj, const char* name, hid_t file_type, hid_t mem_type, T v) {
+  const hid_t space = H5Screate(H5S_SCALAR);
+  const hid_t a = H5Acreate2(obj, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(a, mem_type, &v);
+  H5Aclose(a);
+  H5Sclose(space);
+}
+
+// A chunked dataset of the given shape with no chunk ever written: it costs a few hundred bytes
+// in the file whatever its declared size (reads return the fill value).
+void UnwrittenDataset(hid_t f, const char* name, hid_t type, const std::vector<hsize_t>& dims) {
+  const hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
+  const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  std::vector<hsize_t> chunk(dims.size(), 1);
+  chunk.back() = dims.back();
+  H5Pset_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data());
+  H5Pset_obj_track_times(dcpl, 0);
+  H5Dclose(H5Dcreate2(f, name, type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT));
+  H5Pclose(dcpl);
+  H5Sclose(space);
+}
+
+// Axis datasets holding the true bin centres for the declared grid (so every check before the
+// table allocation passes).
+void Axes(hid_t f, const Grid& g) {
+  const hid_t axes = H5Gcreate2(f, "axes", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  auto axis = [&](const char* name, int n, const char* mapping, auto at) {
+    std::vector<double> c(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) c[i] = at(i + 0.5);
+    const hsize_t dims[1] = {c.size()};
+    const hid_t space = H5Screate_simple(1, dims, nullptr);
+    const hid_t ds =
+        H5Dcreate2(axes, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, c.data());
+    StrAttr(ds, "mapping", mapping);
+    H5Dclose(ds);
+    H5Sclose(space);
+  };
+  axis("theta_h", g.n_theta_h, ToString(g.theta_h_mapping), [&](double u) { return g.ThetaHAt(u); });
+  axis("theta_d", g.n_theta_d, "linear", [&](double u) { return g.ThetaDAt(u); });
+  axis("phi_d", g.n_phi_d, "linear", [&](double u) { return g.PhiDAt(u); });
+  H5Gclose(axes);
+}
+
+// A brdfit-table v1 file whose /values and /valid declare `dims` but store nothing.
+void HugeDeclaredTable(const fs::path& path, const std::vector<hsize_t>& dims, bool with_axes) {
+  const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  StrAttr(f, "format", kHdf5TableFormat);
+  ScalarAttr(f, "format_version", H5T_STD_I32LE, H5T_NATIVE_INT32, std::int32_t{1});
+  std::vector<hsize_t> vdims = dims;
+  vdims.push_back(3);
+  UnwrittenDataset(f, "values", H5T_IEEE_F64LE, vdims);
+  UnwrittenDataset(f, "valid", H5T_STD_U8LE, dims);
+  if (with_axes) {
+    Grid g;
+    g.n_theta_h = static_cast<int>(dims[0]);
+    g.n_theta_d = static_cast<int>(dims[1]);
+    g.n_phi_d = static_cast<int>(dims[2]);
+    Axes(f, g);
+  }
+  H5Fclose(f);
+}
+
+void Hdf5Crafted(const fs::path& dir) {
+  // 2^30 cells (a 32 GB table in memory) declared by a few kB of file.
+  HugeDeclaredTable(dir / "crafted-huge-declared-grid.h5", {1024, 1024, 1024}, true);
+  // 2^26 cells (within the cap, 1.7 GB in memory) declared but never written.
+  HugeDeclaredTable(dir / "crafted-unwritten-values.h5", {512, 512, 256}, true);
+  // One axis of 2^31 bins: does not fit the grid's int.
+  HugeDeclaredTable(dir / "crafted-axis-2pow31.h5", {hsize_t{1} << 31, 1, 1}, false);
+  // Axis lengths whose product overflows 64 bits.
+  HugeDeclaredTable(dir / "crafted-product-overflow.h5",
+                    {hsize_t{1} << 31, hsize_t{1} << 31, hsize_t{1} << 31}, false);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::cerr << "usage: fuzz_make_seeds <repo>/fuzz\n";
+    return 2;
+  }
+  const fs::path corpus = fs::path(argv[1]) / "corpus";
+  const fs::path regressions = fs::path(argv[1]) / "regressions";
+  for (const char* d : {"merl", "hdf5_table"}) {
+    fs::create_directories(corpus / d);
+    fs::create_directories(regressions / d);
+  }
+  MerlSeeds(corpus / "merl");
+  Hdf5Seeds(corpus / "hdf5_table");
+  Hdf5Crafted(regressions / "hdf5_table");
+  std::cout << "seeds written to " << corpus << ", crafted inputs to " << regressions << "\n";
+  return 0;
+}

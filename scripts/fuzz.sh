@@ -1,0 +1,136 @@
+#!/usr/bin/env bash
+# libFuzzer harnesses for every reader (fuzz/fuzz_<reader>.cc; docs/reliability.md).
+#
+#   scripts/fuzz.sh build                 configure + build the harnesses (clang, ASan + UBSan)
+#   scripts/fuzz.sh run HARNESS SECONDS   fuzz one harness (one process) for SECONDS
+#   scripts/fuzz.sh all SECONDS           every harness in turn, SECONDS each
+#   scripts/fuzz.sh smoke                 CI: replay seeds + regressions, then ~1 minute of
+#                                         fuzzing in all; fails on any finding
+#   scripts/fuzz.sh list                  harness names
+#   scripts/fuzz.sh seeds                 regenerate fuzz/corpus/ (brdfit's writers) and
+#                                         fuzz/regressions/*/crafted-*
+#
+# Build folder: $BUILD_FUZZ (default build-fuzz). The evolving corpus lives in
+# $BUILD_FUZZ/fuzz/corpus/<harness> (seeded from fuzz/corpus/<harness>), crashing inputs in
+# $BUILD_FUZZ/fuzz/artifacts/<harness>/, logs with libFuzzer's final stats in
+# $BUILD_FUZZ/fuzz/logs/. Copy a crashing input to fuzz/regressions/<harness>/ once fixed: the
+# normal test suite replays it (tests/reliability).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+BUILD_FUZZ=${BUILD_FUZZ:-build-fuzz}
+JOBS=${JOBS:-2}
+OUT=$BUILD_FUZZ/fuzz
+
+SAN="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined"
+SAN+=" -fno-omit-frame-pointer"
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:symbolize=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+
+harnesses() {
+  for f in fuzz/fuzz_*.cc; do
+    local h=${f#fuzz/fuzz_}
+    echo "${h%.cc}"
+  done
+}
+
+build() {
+  BRDFIT_WITH_CLANG=1 ./scripts/setup-deps.sh
+  if [[ ! -f $BUILD_FUZZ/build.ninja ]]; then
+    CC=clang CXX=clang++ cmake -S . -B "$BUILD_FUZZ" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+      -DBRDFIT_FUZZ=ON -DBRDFIT_BUILD_TESTS=OFF -DBRDFIT_BUILD_BENCH=OFF \
+      -DCMAKE_C_FLAGS="$SAN" -DCMAKE_CXX_FLAGS="$SAN"
+  fi
+  local targets=()
+  for h in $(harnesses); do targets+=("fuzz_$h"); done
+  cmake --build "$BUILD_FUZZ" -j "$JOBS" --target "${targets[@]}" fuzz_make_seeds
+}
+
+# Per-harness libFuzzer flags: input size limit and per-input timeout.
+flags_for() {
+  case $1 in
+    merl) echo "-max_len=4096 -timeout=60" ;;
+    *) echo "-max_len=65536 -timeout=30" ;;
+  esac
+}
+
+common_flags() {
+  local h=$1
+  local f="-rss_limit_mb=2048 -malloc_limit_mb=1024 -print_final_stats=1"
+  f+=" -artifact_prefix=$OUT/artifacts/$h/ $(flags_for "$h")"
+  [[ -f fuzz/dict/$h.dict ]] && f+=" -dict=fuzz/dict/$h.dict"
+  echo "$f"
+}
+
+# Replays the committed seeds and regression inputs (no fuzzing): must all pass.
+replay() {
+  local h=$1 files=()
+  mapfile -t files < <(find "fuzz/corpus/$h" "fuzz/regressions/$h" -type f 2>/dev/null | sort)
+  ((${#files[@]})) || return 0
+  mkdir -p "$OUT/artifacts/$h"
+  # shellcheck disable=SC2046
+  "$OUT/fuzz_$h" $(common_flags "$h") -runs=1 "${files[@]}" >"$OUT/logs/$h-replay.log" 2>&1 || {
+    tail -n 40 "$OUT/logs/$h-replay.log"
+    echo "fuzz: replay of fuzz/{corpus,regressions}/$h FAILED" >&2
+    return 1
+  }
+  echo "fuzz: $h: replayed ${#files[@]} committed inputs"
+}
+
+run() {
+  local h=$1 secs=$2 extra=${3:-}
+  [[ -x $OUT/fuzz_$h ]] || { echo "fuzz: no harness $h (scripts/fuzz.sh list)" >&2; exit 2; }
+  mkdir -p "$OUT/corpus/$h" "$OUT/artifacts/$h" "$OUT/logs"
+  [[ -d fuzz/corpus/$h ]] && cp -n fuzz/corpus/"$h"/* "$OUT/corpus/$h/" 2>/dev/null || true
+  local log
+  log=$OUT/logs/$h-$(date +%Y%m%d-%H%M%S)-${secs}s.log
+  echo "fuzz: $h for ${secs}s (log $log)"
+  local rc=0
+  # One process: -jobs/-workers are left at their defaults (no fork mode).
+  # shellcheck disable=SC2046
+  "$OUT/fuzz_$h" $(common_flags "$h") $extra -max_total_time="$secs" "$OUT/corpus/$h" >"$log" 2>&1 ||
+    rc=$?
+  grep -E '^(stat::|Done [0-9]+ runs)' "$log" || true
+  if ((rc != 0)); then
+    grep -E 'ERROR|==[0-9]+==|SUMMARY|Test unit written|what\(\)' "$log" | head -n 20 || true
+    echo "fuzz: $h FOUND A PROBLEM (exit $rc); input in $OUT/artifacts/$h/" >&2
+  fi
+  return $rc
+}
+
+cmd=${1:-}
+case $cmd in
+  list) harnesses ;;
+  build) build ;;
+  seeds)
+    build
+    "$OUT/fuzz_make_seeds" "$ROOT/fuzz"
+    ;;
+  run)
+    [[ $# -eq 3 ]] || { echo "usage: $0 run HARNESS SECONDS" >&2; exit 2; }
+    build
+    run "$2" "$3"
+    ;;
+  all)
+    [[ $# -eq 2 ]] || { echo "usage: $0 all SECONDS" >&2; exit 2; }
+    build
+    status=0
+    for h in $(harnesses); do run "$h" "$2" || status=1; done
+    exit $status
+    ;;
+  smoke)
+    build
+    mkdir -p "$OUT/logs"
+    status=0
+    mapfile -t hs < <(harnesses)
+    for h in "${hs[@]}"; do replay "$h" || status=1; done
+    per=$(((60 + ${#hs[@]} - 1) / ${#hs[@]}))
+    # Fixed seed: the same commit explores the same inputs (modulo timing).
+    for h in "${hs[@]}"; do run "$h" "$per" -seed=1 || status=1; done
+    exit $status
+    ;;
+  *)
+    sed -n '2,17p' "$0" >&2
+    exit 2
+    ;;
+esac
