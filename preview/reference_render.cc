@@ -1,0 +1,104 @@
+#include "preview/reference_render.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "models/registry.h"
+#include "preview/lights.h"
+
+namespace brdfit::preview {
+
+Image RenderReference(const Scene& scene, const MaterialSet& materials, int width, int height,
+                      ReferenceExtras* extras) {
+  const Camera& cam = scene.camera;
+  // Camera basis in world space (gluLookAt): s right, u up, f forward.
+  const Vec3 f = Normalize(cam.target - cam.position);
+  const Vec3 s = Normalize(Cross(f, cam.up));
+  const Vec3 u = Cross(s, f);
+  const double th = std::tan(cam.fov_y / 2), aspect = static_cast<double>(width) / height;
+
+  struct Eval {
+    const ModelInfo* model = nullptr;
+    const ResolvedMaterial* mat = nullptr;
+  };
+  std::vector<Eval> evals;
+  for (const Object& o : scene.objects) {
+    const ResolvedMaterial& m = materials.at(o.material);
+    Eval e{nullptr, &m};
+    if (m.kind == MaterialKind::kAnalytic) e.model = FindModel(m.model);
+    if (m.kind == MaterialKind::kFactored) {
+      throw std::logic_error("the CPU reference does not render factored materials");
+    }
+    evals.push_back(e);
+  }
+
+  Image img(width, height);
+  if (extras) {
+    extras->cos_view.assign(static_cast<std::size_t>(width) * height, 0.0);
+    extras->hit.assign(static_cast<std::size_t>(width) * height, 0);
+  }
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const double nx = (2.0 * (x + 0.5) / width - 1.0) * th * aspect;
+      const double ny = (1.0 - 2.0 * (y + 0.5) / height) * th;
+      const Vec3 d = Normalize(nx * s + ny * u + f);
+      // Nearest sphere hit: |o + t d - c|^2 = r^2 with the stable root (Haines et al. 2019).
+      double best = std::numeric_limits<double>::infinity();
+      int hit = -1;
+      for (std::size_t k = 0; k < scene.objects.size(); ++k) {
+        const Object& o = scene.objects[k];
+        const Vec3 oc = o.centre - cam.position;
+        const double b = Dot(d, oc);
+        const Vec3 q = oc - b * d;
+        const double disc = o.radius * o.radius - Dot(q, q);
+        if (disc < 0 || b <= 0) continue;
+        const double t = (Dot(oc, oc) - o.radius * o.radius) / (b + std::sqrt(disc));
+        if (t > 0 && t < best) {
+          best = t;
+          hit = static_cast<int>(k);
+        }
+      }
+      if (hit < 0) continue;
+      const Object& o = scene.objects[static_cast<std::size_t>(hit)];
+      const Vec3 p = cam.position + best * d;
+      const Vec3 n = (1.0 / o.radius) * (p - o.centre);
+      const Vec3 v = -1.0 * d;
+      // Any tangent frame (isotropic models): Gram-Schmidt of the axis least aligned with n.
+      const Vec3 a = std::abs(n.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+      const Vec3 t1 = Normalize(a - Dot(a, n) * n);
+      const Vec3 t2 = Cross(n, t1);
+      auto local = [&](const Vec3& w) { return Vec3{Dot(w, t1), Dot(w, t2), Dot(w, n)}; };
+      const Vec3 wo = local(v);
+      float* out = img.At(x, y);
+      out[3] = 1.0f;
+      if (extras) {
+        extras->hit[static_cast<std::size_t>(y) * width + x] = 1;
+        extras->cos_view[static_cast<std::size_t>(y) * width + x] = wo.z;
+      }
+      if (wo.z <= 0) continue;
+      double rgb[3] = {0, 0, 0};
+      for (const Light& l : scene.lights) {
+        const Incident in = IncidentAt(l, p);
+        if (!in.visible) continue;
+        const Vec3 wi = local(in.direction);
+        if (wi.z <= 0) continue;
+        double fr[3] = {0, 0, 0};
+        const Eval& e = evals[static_cast<std::size_t>(hit)];
+        if (e.model) {
+          e.model->eval(e.mat->params.data(), MakeGeometry(wi, wo), fr);
+        } else if (auto val = e.mat->table->LookupTrilinear(wi, wo)) {
+          for (int c = 0; c < 3; ++c) fr[c] = (*val)[c];
+        }
+        const double e_scale = wi.z * (scene.punctual_pi ? kPi : 1.0);
+        rgb[0] += e_scale * in.colour.x * fr[0];
+        rgb[1] += e_scale * in.colour.y * fr[1];
+        rgb[2] += e_scale * in.colour.z * fr[2];
+      }
+      for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(rgb[c]);
+    }
+  }
+  return img;
+}
+
+}  // namespace brdfit::preview

@@ -1,0 +1,369 @@
+#include "preview/scene.h"
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "io/error.h"
+#include "models/registry.h"
+
+namespace brdfit::preview {
+
+const char* ToString(LightType t) {
+  switch (t) {
+    case LightType::kDirectional: return "directional";
+    case LightType::kPoint: return "point";
+    case LightType::kSpot: return "spot";
+  }
+  return "?";
+}
+
+const char* ToString(MaterialKind k) {
+  switch (k) {
+    case MaterialKind::kAnalytic: return "analytic";
+    case MaterialKind::kMeasured: return "measured";
+    case MaterialKind::kFactored: return "factored";
+  }
+  return "?";
+}
+
+const MaterialSpec* Scene::FindMaterial(const std::string& name) const {
+  for (const auto& m : materials) {
+    if (m.name == name) return &m;
+  }
+  return nullptr;
+}
+
+namespace {
+
+using Json = nlohmann::json;
+constexpr double kDeg = kPi / 180.0;
+
+// Reads one JSON object strictly: every key must be consumed, so typos are errors.
+class Reader {
+ public:
+  Reader(const Json& j, std::string where, const std::filesystem::path& file)
+      : j_(j), where_(std::move(where)), file_(file) {
+    if (!j.is_object()) Fail("must be a JSON object");
+  }
+  [[noreturn]] void Fail(const std::string& problem) const {
+    throw InputError(file_, where_ + ": " + problem);
+  }
+  bool Has(const std::string& k) const { return j_.contains(k); }
+  const Json& Raw(const std::string& k) {
+    used_.insert(k);
+    return j_.at(k);
+  }
+  double Number(const std::string& k, double def) {
+    if (!Has(k)) return def;
+    const Json& v = Raw(k);
+    if (!v.is_number()) Fail("'" + k + "' must be a number");
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) Fail("'" + k + "' must be finite");
+    return d;
+  }
+  double Positive(const std::string& k, double def) {
+    const double d = Number(k, def);
+    if (!(d > 0)) Fail("'" + k + "' must be > 0");
+    return d;
+  }
+  double NonNegative(const std::string& k, double def) {
+    const double d = Number(k, def);
+    if (d < 0) Fail("'" + k + "' must be >= 0");
+    return d;
+  }
+  int Int(const std::string& k, int def) {
+    if (!Has(k)) return def;
+    const Json& v = Raw(k);
+    if (!v.is_number_integer()) Fail("'" + k + "' must be an integer");
+    return v.get<int>();
+  }
+  bool Bool(const std::string& k, bool def) {
+    if (!Has(k)) return def;
+    const Json& v = Raw(k);
+    if (!v.is_boolean()) Fail("'" + k + "' must be true or false");
+    return v.get<bool>();
+  }
+  std::string String(const std::string& k, const std::string& def) {
+    if (!Has(k)) return def;
+    const Json& v = Raw(k);
+    if (!v.is_string()) Fail("'" + k + "' must be a string");
+    return v.get<std::string>();
+  }
+  std::string RequiredString(const std::string& k) {
+    if (!Has(k)) Fail("missing '" + k + "'");
+    return String(k, "");
+  }
+  Vec3 Vector(const std::string& k, const Vec3& def) {
+    if (!Has(k)) return def;
+    const Json& v = Raw(k);
+    if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() ||
+        !v[2].is_number()) {
+      Fail("'" + k + "' must be an array of 3 numbers");
+    }
+    const Vec3 r{v[0].get<double>(), v[1].get<double>(), v[2].get<double>()};
+    if (!std::isfinite(r.x) || !std::isfinite(r.y) || !std::isfinite(r.z)) {
+      Fail("'" + k + "' must be finite");
+    }
+    return r;
+  }
+  Vec3 Direction(const std::string& k, const Vec3& def) {
+    const Vec3 d = Vector(k, def);
+    if (!(Length(d) > 0)) Fail("'" + k + "' must be a non-zero vector");
+    return Normalize(d);
+  }
+  Vec3 Colour(const std::string& k) {
+    const Vec3 c = Vector(k, {1, 1, 1});
+    if (c.x < 0 || c.y < 0 || c.z < 0) Fail("'" + k + "' must be >= 0");
+    return c;
+  }
+  std::filesystem::path Path(const std::string& k) {
+    std::filesystem::path p = String(k, "");
+    if (p.empty()) return p;
+    return p.is_absolute() ? p : file_.parent_path() / p;
+  }
+  // Every key must have been read.
+  void Done() const {
+    for (auto it = j_.begin(); it != j_.end(); ++it) {
+      if (!used_.count(it.key())) Fail("unknown key '" + it.key() + "'");
+    }
+  }
+  const std::string& where() const { return where_; }
+
+ private:
+  const Json& j_;
+  std::string where_;
+  std::filesystem::path file_;
+  std::set<std::string> used_;
+};
+
+Camera ParseCamera(Reader r) {
+  Camera c;
+  c.position = r.Vector("position", c.position);
+  c.target = r.Vector("target", c.target);
+  c.up = r.Direction("up", c.up);
+  c.fov_y = r.Positive("fov_deg", 30.0) * kDeg;
+  c.near = r.Positive("near", c.near);
+  c.far = r.Positive("far", c.far);
+  r.Done();
+  if (c.fov_y >= kPi) r.Fail("'fov_deg' must be < 180");
+  if (c.far <= c.near) r.Fail("'far' must exceed 'near'");
+  if (!(Length(c.target - c.position) > 0)) r.Fail("'target' equals 'position'");
+  if (Length(Cross(c.target - c.position, c.up)) < 1e-9 * Length(c.target - c.position)) {
+    r.Fail("'up' is parallel to the viewing direction");
+  }
+  return c;
+}
+
+Light ParseLight(Reader r, int index) {
+  Light l;
+  l.name = r.String("name", "light" + std::to_string(index));
+  const std::string type = r.RequiredString("type");
+  l.colour = r.Colour("color");
+  l.intensity = r.NonNegative("intensity", 1.0);
+  if (type == "directional") {
+    l.type = LightType::kDirectional;
+    if (!r.Has("direction")) r.Fail("a directional light needs 'direction' (towards the light)");
+    l.direction = r.Direction("direction", l.direction);
+  } else if (type == "point" || type == "spot") {
+    l.type = type == "point" ? LightType::kPoint : LightType::kSpot;
+    if (!r.Has("position")) r.Fail("a " + type + " light needs 'position'");
+    l.position = r.Vector("position", l.position);
+    l.distance = r.NonNegative("distance", 0.0);
+    l.decay = r.NonNegative("decay", 0.0);
+    if (l.decay > 0 && l.distance == 0) {
+      r.Fail("'decay' > 0 needs 'distance' > 0 (seed 000 attenuates by (1 - d / distance)^decay)");
+    }
+    if (l.type == LightType::kSpot) {
+      l.target = r.Vector("target", l.target);
+      if (!(Length(l.target - l.position) > 0)) r.Fail("'target' equals 'position'");
+      l.angle = r.Positive("angle_deg", 30.0) * kDeg;
+      if (l.angle > kPi / 2) r.Fail("'angle_deg' must be <= 90 (Three.js)");
+      l.penumbra = r.NonNegative("penumbra", 0.0);
+      if (l.penumbra > 1) r.Fail("'penumbra' must be in [0, 1]");
+    }
+  } else {
+    r.Fail("unknown light type '" + type + "' (expected directional, point, spot)");
+  }
+  r.Done();
+  return l;
+}
+
+// Analytic parameters: defaults from the model's table, overridden by name.
+std::vector<double> ParseParams(Reader& r, const ModelInfo& model) {
+  std::vector<double> p = model.DefaultParams();
+  if (!r.Has("params")) return p;
+  const Json& j = r.Raw("params");
+  if (j.is_array()) {
+    if (j.size() != p.size()) {
+      r.Fail("'params' has " + std::to_string(j.size()) + " values, model '" + model.name +
+             "' has " + std::to_string(p.size()));
+    }
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (!j[i].is_number()) r.Fail("'params' must hold numbers");
+      p[i] = j[i].get<double>();
+    }
+  } else if (j.is_object()) {
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      std::size_t i = 0;
+      while (i < p.size() && model.param_names[i] != it.key()) ++i;
+      if (i == p.size()) {
+        std::string names;
+        for (const auto& n : model.param_names) names += (names.empty() ? "" : ", ") + n;
+        r.Fail("model '" + model.name + "' has no parameter '" + it.key() + "' (" + names + ")");
+      }
+      if (!it->is_number()) r.Fail("parameter '" + it.key() + "' must be a number");
+      p[i] = it->get<double>();
+    }
+  } else {
+    r.Fail("'params' must be an object {name: value} or an array");
+  }
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const ParamSpec& s = model.params[i];
+    if (!(p[i] >= s.lower && p[i] <= s.upper)) {
+      r.Fail("parameter '" + model.param_names[i] + "' = " + std::to_string(p[i]) +
+             " is outside [" + std::to_string(s.lower) + ", " + std::to_string(s.upper) + "]");
+    }
+  }
+  return p;
+}
+
+MaterialSpec ParseMaterial(Reader r, const std::string& name) {
+  MaterialSpec m;
+  m.name = name;
+  const std::string type = r.RequiredString("type");
+  if (type == "analytic") {
+    m.kind = MaterialKind::kAnalytic;
+    m.model = r.RequiredString("model");
+    const ModelInfo* model = FindModel(m.model);
+    if (!model) r.Fail("unknown model '" + m.model + "' (known: " + ModelNames() + ")");
+    m.fit_report = r.Path("fit_report");
+    m.fit_material = r.String("fit_material", "");
+    if (!m.fit_report.empty() && r.Has("params")) {
+      r.Fail("give either 'params' or 'fit_report', not both");
+    }
+    m.params = ParseParams(r, *model);
+  } else if (type == "metallic-roughness") {
+    // Seed 000's material (albedo, metallic, perceptual roughness r) as lambert+ggx at the
+    // edge where perceptual roughness enters (docs/conventions.md): alpha = r^2,
+    // kd = albedo (1 - m), ks = mix(0.04, albedo, m) (Fresnel at normal incidence folded
+    // into ks; seed 000 uses Schlick's F(v.h), see docs/scenes.md).
+    m.kind = MaterialKind::kAnalytic;
+    m.model = "lambert+ggx";
+    const Vec3 albedo = r.Colour("albedo");
+    const double metallic = r.NonNegative("metallic", 0.0);
+    const double roughness = r.Positive("roughness", 0.5);
+    if (metallic > 1) r.Fail("'metallic' must be in [0, 1]");
+    if (roughness > 1) r.Fail("'roughness' must be in (0, 1]");
+    const double a[3] = {albedo.x, albedo.y, albedo.z};
+    m.params.clear();
+    for (double c : a) m.params.push_back(c * (1 - metallic));
+    for (double c : a) m.params.push_back(0.04 * (1 - metallic) + c * metallic);
+    m.params.push_back(std::max(roughness * roughness, 1e-4));
+  } else if (type == "measured") {
+    m.kind = MaterialKind::kMeasured;
+    m.table = r.Path("table");
+    if (m.table.empty()) r.Fail("a measured material needs 'table'");
+  } else if (type == "factored") {
+    m.kind = MaterialKind::kFactored;
+    m.table = r.Path("table");
+    m.factor_prefix = r.Path("factors");
+    m.factor_resolution = r.Int("resolution", m.factor_resolution);
+    if (m.table.empty() && m.factor_prefix.empty()) {
+      r.Fail("a factored material needs 'factors' (file prefix) or 'table' (to factor)");
+    }
+  } else {
+    r.Fail("unknown material type '" + type +
+           "' (expected analytic, metallic-roughness, measured, factored)");
+  }
+  r.Done();
+  return m;
+}
+
+Object ParseObject(Reader r, int index) {
+  Object o;
+  o.name = r.String("name", "object" + std::to_string(index));
+  const std::string shape = r.String("shape", "sphere");
+  if (shape != "sphere") r.Fail("unknown shape '" + shape + "' (expected sphere)");
+  o.centre = r.Vector("centre", o.centre);
+  o.radius = r.Positive("radius", 1.0);
+  o.material = r.RequiredString("material");
+  r.Done();
+  return o;
+}
+
+}  // namespace
+
+Scene ParseScene(const std::string& text, const std::filesystem::path& source) {
+  Json j;
+  try {
+    j = Json::parse(text);
+  } catch (const Json::parse_error& e) {
+    throw InputError(source, std::string("invalid JSON: ") + e.what());
+  }
+  Scene s;
+  s.source = source;
+  Reader r(j, "scene", source);
+  if (r.Has("camera")) s.camera = ParseCamera(Reader(r.Raw("camera"), "camera", source));
+  if (r.Has("image")) {
+    Reader ir(r.Raw("image"), "image", source);
+    s.width = ir.Int("width", s.width);
+    s.height = ir.Int("height", s.height);
+    if (s.width < 1 || s.height < 1 || s.width > 8192 || s.height > 8192) {
+      ir.Fail("width and height must be in [1, 8192]");
+    }
+    s.background = ir.Vector("background", s.background);
+    ir.Done();
+  }
+  if (r.Has("display")) {
+    Reader dr(r.Raw("display"), "display", source);
+    try {
+      s.display.tone_map = ToneMapFromString(dr.String("tone_map", "linear"));
+      s.display.encoding = EncodingFromString(dr.String("encoding", "srgb"));
+    } catch (const InputError& e) {
+      dr.Fail(e.what());
+    }
+    s.display.exposure = dr.Positive("exposure", 1.0);
+    s.display.white_point = dr.Positive("white_point", 1.0);
+    dr.Done();
+  }
+  s.punctual_pi = r.Bool("punctual_pi", true);
+  if (r.Has("lights")) {
+    const Json& lights = r.Raw("lights");
+    if (!lights.is_array()) r.Fail("'lights' must be an array");
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+      s.lights.push_back(
+          ParseLight(Reader(lights[i], "lights[" + std::to_string(i) + "]", source), int(i)));
+    }
+  }
+  if (!r.Has("materials")) r.Fail("missing 'materials'");
+  const Json& mats = r.Raw("materials");
+  if (!mats.is_object()) r.Fail("'materials' must be an object {name: material}");
+  for (auto it = mats.begin(); it != mats.end(); ++it) {
+    s.materials.push_back(ParseMaterial(Reader(*it, "materials." + it.key(), source), it.key()));
+  }
+  if (!r.Has("objects")) r.Fail("missing 'objects'");
+  const Json& objs = r.Raw("objects");
+  if (!objs.is_array() || objs.empty()) r.Fail("'objects' must be a non-empty array");
+  for (std::size_t i = 0; i < objs.size(); ++i) {
+    Object o = ParseObject(Reader(objs[i], "objects[" + std::to_string(i) + "]", source), int(i));
+    if (!s.FindMaterial(o.material)) {
+      r.Fail("object '" + o.name + "' references unknown material '" + o.material + "'");
+    }
+    s.objects.push_back(std::move(o));
+  }
+  r.Done();
+  return s;
+}
+
+Scene LoadScene(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "cannot open scene file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ParseScene(ss.str(), path);
+}
+
+}  // namespace brdfit::preview

@@ -1,0 +1,89 @@
+// A preview scene (docs/scenes.md): camera, objects, lights with seed 000's semantics,
+// materials, display settings. World space, right-handed, y up by default. Lengths in
+// arbitrary scene units; angles in degrees in the file, radians here.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "models/geometry.h"
+#include "preview/tonemap.h"
+
+namespace brdfit::preview {
+
+struct Camera {
+  Vec3 position{0, 0, 4};
+  Vec3 target{0, 0, 0};
+  Vec3 up{0, 1, 0};
+  double fov_y = 30.0 * kPi / 180.0;  // vertical field of view, radians
+  double near = 0.1, far = 100.0;
+};
+
+enum class LightType { kDirectional, kPoint, kSpot };
+const char* ToString(LightType t);
+
+// Seed 000 (Three.js r8x) punctual lights. The shader receives colour * intensity; with
+// punctual_pi the irradiance is pi (n.l) colour intensity (seed 000 §6.5).
+struct Light {
+  std::string name;
+  LightType type = LightType::kDirectional;
+  Vec3 colour{1, 1, 1};
+  double intensity = 1.0;
+  Vec3 direction{0, 0, 1};  // directional: unit vector from the scene TOWARDS the light
+  Vec3 position{0, 0, 5};   // point, spot
+  Vec3 target{0, 0, 0};     // spot: the cone axis runs from position to target
+  double distance = 0.0;    // range; 0 = unlimited (seed 000 testLightInRange)
+  double decay = 0.0;       // exponent of (1 - d / distance); 0 = none
+  double angle = kPi / 6;   // spot: cone half-angle, radians (coneCos = cos(angle))
+  double penumbra = 0.0;    // spot: penumbraCos = cos(angle (1 - penumbra)), Three.js
+};
+
+enum class MaterialKind { kAnalytic, kMeasured, kFactored };
+const char* ToString(MaterialKind k);
+
+struct MaterialSpec {
+  std::string name;
+  MaterialKind kind = MaterialKind::kAnalytic;
+  // kAnalytic: registry model name and the full parameter vector (defaults filled in), or a
+  // fit report entry to take them from.
+  std::string model;
+  std::vector<double> params;
+  std::filesystem::path fit_report;  // optional: parameters from a report (io/fit_report.h)
+  std::string fit_material;          // entry of the report
+  // kMeasured: a table file. kFactored: the table to factor, or the factorization's files.
+  std::filesystem::path table;
+  std::filesystem::path factor_prefix;  // "<prefix>.p.exr", "<prefix>.q.exr"
+  int factor_resolution = 32;
+};
+
+enum class ObjectShape { kSphere };
+
+struct Object {
+  std::string name;
+  ObjectShape shape = ObjectShape::kSphere;
+  Vec3 centre{0, 0, 0};
+  double radius = 1.0;
+  std::string material;
+};
+
+struct Scene {
+  std::filesystem::path source;  // the scene file, for messages and relative paths
+  Camera camera;
+  std::vector<Light> lights;
+  std::vector<Object> objects;
+  std::vector<MaterialSpec> materials;
+  int width = 512, height = 512;
+  Vec3 background{0, 0, 0};  // linear radiance
+  bool punctual_pi = true;
+  DisplaySettings display;
+
+  const MaterialSpec* FindMaterial(const std::string& name) const;
+};
+
+// Parses and validates a scene file; relative paths resolve against the file's folder.
+// Throws InputError naming the file and the problem.
+Scene LoadScene(const std::filesystem::path& path);
+Scene ParseScene(const std::string& json_text, const std::filesystem::path& source);
+
+}  // namespace brdfit::preview

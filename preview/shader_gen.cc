@@ -1,0 +1,104 @@
+#include "preview/shader_gen.h"
+
+#include <set>
+
+#include "preview/glsl_models.h"
+#include "preview/glsl_sources.h"
+
+namespace brdfit::preview {
+namespace {
+
+constexpr const char* kVersion = "#version 330 core\n";
+
+std::string Define(const std::string& name, int value) {
+  return "#define " + name + " " + std::to_string(value) + "\n";
+}
+
+// Appends an embedded file after the files it names in "// brdfit-requires: <path>" lines,
+// each file once.
+void Include(const std::string& file, std::set<std::string>* included, std::string* src) {
+  if (!included->insert(file).second) return;
+  const std::string_view text = GlslSource(file);
+  const std::string_view tag = "// brdfit-requires: ";
+  for (std::size_t pos = text.find(tag); pos != std::string_view::npos;
+       pos = text.find(tag, pos + 1)) {
+    const std::size_t start = pos + tag.size();
+    const std::size_t end = text.find('\n', start);
+    std::string dep(text.substr(start, end - start));
+    while (!dep.empty() && (dep.back() == ' ' || dep.back() == '\r')) dep.pop_back();
+    Include(dep, included, src);
+  }
+  *src += "// ---- " + file + "\n" + std::string(text) + "\n";
+}
+
+// EvalBrdf for an analytic model: each lobe's twin on its slice of uParams.
+std::string AnalyticEval(const std::string& model) {
+  const auto lobes = GlslLobes(model);
+  std::string src;
+  std::set<std::string> included;
+  for (const auto& lobe : lobes) Include(lobe.file, &included, &src);
+  const std::size_t n = lobes.back().offset + lobes.back().count;
+  src += "uniform float uParams[" + std::to_string(n) + "];\n";
+  src += "vec3 EvalBrdf(const in BrdfGeometry g) {\n  vec3 f = vec3(0.0);\n";
+  for (const auto& lobe : lobes) {
+    const std::string c = std::to_string(lobe.count);
+    src += "  {\n    float p[" + c + "] = float[" + c + "](";
+    for (std::size_t i = 0; i < lobe.count; ++i) {
+      src += (i ? ", " : "") + std::string("uParams[") + std::to_string(lobe.offset + i) + "]";
+    }
+    src += ");\n    f += " + lobe.function + "(p, g);\n  }\n";
+  }
+  src += "  return f;\n}\n";
+  return src;
+}
+
+}  // namespace
+
+std::string ShaderVariant::Key() const {
+  std::string k = std::string(ToString(material));
+  if (material == MaterialKind::kAnalytic) k += ":" + model;
+  if (material == MaterialKind::kMeasured) k += std::string(":") + ToString(theta_h_mapping);
+  k += " dir=" + std::to_string(num_directional) + " point=" + std::to_string(num_point) +
+       " spot=" + std::to_string(num_spot) + (punctual_pi ? " pi" : "");
+  return k;
+}
+
+std::string ShadeVertexSource() {
+  return kVersion + std::string(GlslSource("preview/glsl/sphere.vert"));
+}
+
+std::string FullscreenVertexSource() {
+  return kVersion + std::string(GlslSource("preview/glsl/fullscreen.vert"));
+}
+
+std::string ShadeFragmentSource(const ShaderVariant& v) {
+  std::string src = kVersion;
+  src += Define("NUM_DIR_LIGHTS", v.num_directional) + Define("NUM_POINT_LIGHTS", v.num_point) +
+         Define("NUM_SPOT_LIGHTS", v.num_spot) + Define("PUNCTUAL_PI", v.punctual_pi ? 1 : 0) +
+         Define("OBJECT_SPHERE", 1);
+  src += "// ---- preview/glsl/common.glsl\n" + std::string(GlslSource("preview/glsl/common.glsl"));
+  switch (v.material) {
+    case MaterialKind::kAnalytic:
+      src += AnalyticEval(v.model);
+      break;
+    case MaterialKind::kMeasured:
+      src += Define("TABLE_SQRT_THETA_H", v.theta_h_mapping == ThetaHMapping::kSqrt ? 1 : 0);
+      src += "// ---- preview/glsl/measured.glsl\n" +
+             std::string(GlslSource("preview/glsl/measured.glsl"));
+      break;
+    case MaterialKind::kFactored:
+      src += "// ---- preview/glsl/factored.glsl\n" +
+             std::string(GlslSource("preview/glsl/factored.glsl"));
+      break;
+  }
+  src += "// ---- preview/glsl/shade.frag\n" + std::string(GlslSource("preview/glsl/shade.frag"));
+  return src;
+}
+
+std::string ToneMapFragmentSource(ToneMap t, Encoding e) {
+  return kVersion + Define("TONE_MAPPING", static_cast<int>(t)) +
+         Define("ENCODING", static_cast<int>(e)) +
+         std::string(GlslSource("preview/glsl/tonemap.frag"));
+}
+
+}  // namespace brdfit::preview

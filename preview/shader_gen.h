@@ -1,0 +1,28 @@
+// Generates the shading program for one (object, material, light set): only the model twins
+// and light types the scene uses are compiled in, with exact light counts as #defines
+// (seed 000 / Three.js style, digest §5.5).
+#pragma once
+
+#include <string>
+
+#include "io/table.h"
+#include "preview/scene.h"
+
+namespace brdfit::preview {
+
+struct ShaderVariant {
+  MaterialKind material = MaterialKind::kAnalytic;
+  std::string model;  // kAnalytic: registry name
+  ThetaHMapping theta_h_mapping = ThetaHMapping::kSqrt;  // kMeasured
+  int num_directional = 0, num_point = 0, num_spot = 0;
+  bool punctual_pi = true;
+
+  std::string Key() const;  // cache key, also printed by --explain
+};
+
+std::string ShadeVertexSource();  // sphere: a screen rectangle (glsl/sphere.vert)
+std::string ShadeFragmentSource(const ShaderVariant& v);
+std::string ToneMapFragmentSource(ToneMap t, Encoding e);
+std::string FullscreenVertexSource();
+
+}  // namespace brdfit::preview

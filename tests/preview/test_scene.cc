@@ -1,0 +1,121 @@
+// Scene files: defaults, seed 000 light semantics, strict validation with messages that name
+// the file and the problem.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "io/error.h"
+#include "preview/lights.h"
+#include "preview/scene.h"
+
+namespace brdfit::preview {
+namespace {
+
+const char* kMinimal = R"({
+  "materials": {"m": {"type": "analytic", "model": "lambert+ggx",
+                      "params": {"ggx.alpha": 0.3, "lambert.kd_r": 0.8}}},
+  "objects": [{"material": "m"}],
+  "lights": [{"type": "directional", "direction": [0, 0, 2]},
+             {"type": "spot", "position": [0, 0, 5], "target": [0, 0, 0], "angle_deg": 30,
+              "penumbra": 0.5, "distance": 10, "decay": 2, "intensity": 3}]
+})";
+
+TEST(Scene, ParsesWithDefaults) {
+  const Scene s = ParseScene(kMinimal, "mem.json");
+  EXPECT_EQ(s.width, 512);
+  EXPECT_TRUE(s.punctual_pi);
+  ASSERT_EQ(s.materials.size(), 1u);
+  const auto& p = s.materials[0].params;
+  ASSERT_EQ(p.size(), 7u);
+  EXPECT_DOUBLE_EQ(p[0], 0.8);  // lambert.kd_r
+  EXPECT_DOUBLE_EQ(p[1], 0.5);  // default
+  EXPECT_DOUBLE_EQ(p[6], 0.3);  // ggx.alpha
+  ASSERT_EQ(s.lights.size(), 2u);
+  EXPECT_DOUBLE_EQ(s.lights[0].direction.z, 1.0);  // normalized
+  EXPECT_NEAR(s.lights[1].angle, kPi / 6, 1e-15);
+}
+
+void ExpectError(const std::string& json, const std::string& fragment) {
+  try {
+    ParseScene(json, "bad.json");
+    FAIL() << "expected InputError containing '" << fragment << "'";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("bad.json"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(fragment), std::string::npos) << msg;
+  }
+}
+
+TEST(Scene, RejectsBadInput) {
+  ExpectError("{", "invalid JSON");
+  ExpectError(R"({"materials": {}, "objects": [{"material": "x"}]})", "unknown material 'x'");
+  ExpectError(R"({"materials": {"m": {"type": "analytic", "model": "nope"}},
+                  "objects": [{"material": "m"}]})", "unknown model 'nope'");
+  ExpectError(R"({"materials": {"m": {"type": "analytic", "model": "ggx",
+                  "params": {"alpha": 5}}}, "objects": [{"material": "m"}]})", "outside");
+  ExpectError(R"({"materials": {"m": {"type": "analytic", "model": "ggx",
+                  "params": {"beta": 5}}}, "objects": [{"material": "m"}]})", "no parameter 'beta'");
+  ExpectError(R"({"materials": {"m": {"type": "analytic", "model": "ggx"}},
+                  "objects": [{"material": "m", "radius": 1, "colour": 2}]})", "unknown key 'colour'");
+  ExpectError(R"({"materials": {"m": {"type": "analytic", "model": "ggx"}},
+                  "objects": [{"material": "m"}],
+                  "lights": [{"type": "point", "position": [0,0,1], "decay": 2}]})",
+              "needs 'distance'");
+  ExpectError(R"({"materials": {"m": {"type": "analytic", "model": "ggx"}},
+                  "objects": [{"material": "m"}],
+                  "lights": [{"type": "area"}]})", "unknown light type 'area'");
+}
+
+// Seed 000's falloff: colour * intensity * (1 - d / distance)^decay, zero outside the range;
+// the spot's smoothstep between cos(angle) and cos(angle (1 - penumbra)).
+TEST(Lights, SeedSemantics) {
+  Light point;
+  point.type = LightType::kPoint;
+  point.position = {0, 0, 4};
+  point.distance = 8;
+  point.decay = 2;
+  point.intensity = 2;
+  Incident in = IncidentAt(point, {0, 0, 0});
+  EXPECT_TRUE(in.visible);
+  EXPECT_DOUBLE_EQ(in.colour.x, 2 * 0.25);  // (1 - 4/8)^2
+  EXPECT_FALSE(IncidentAt(point, {0, 0, -4.5}).visible);  // d = 8.5 > distance
+
+  Light spot;
+  spot.type = LightType::kSpot;
+  spot.position = {0, 0, 1};
+  spot.target = {0, 0, 0};
+  spot.angle = kPi / 4;
+  spot.penumbra = 0.5;
+  // On the axis: full intensity; just inside the cone edge: smoothstep near 0; outside: none.
+  EXPECT_DOUBLE_EQ(IncidentAt(spot, {0, 0, 0}).colour.x, 1.0);
+  const double edge = std::tan(kPi / 4 - 1e-3);
+  const Incident e = IncidentAt(spot, {edge, 0, 0});
+  EXPECT_TRUE(e.visible);
+  EXPECT_LT(e.colour.x, 1e-4);
+  EXPECT_FALSE(IncidentAt(spot, {1.1, 0, 0}).visible);
+  // Halfway in cosine between the two edges: smoothstep(0.5) = 0.5.
+  const double c0 = std::cos(kPi / 4), c1 = std::cos(kPi / 8), cm = 0.5 * (c0 + c1);
+  EXPECT_NEAR(IncidentAt(spot, {std::tan(std::acos(cm)), 0, 0}).colour.x, 0.5, 1e-12);
+}
+
+TEST(Lights, CullingBySphereBounds) {
+  Light point;
+  point.type = LightType::kPoint;
+  point.position = {0, 0, 10};
+  point.distance = 5;
+  std::string why;
+  EXPECT_FALSE(LightReachesSphere(point, {0, 0, 0}, 1.0, &why));
+  EXPECT_NE(why.find("out of range"), std::string::npos);
+  EXPECT_TRUE(LightReachesSphere(point, {0, 0, 0}, 5.5, &why));
+  Light spot;
+  spot.type = LightType::kSpot;
+  spot.position = {0, 0, 10};
+  spot.target = {0, 0, 0};
+  spot.angle = 10 * kPi / 180;
+  EXPECT_TRUE(LightReachesSphere(spot, {0, 0, 0}, 1.0, &why));
+  EXPECT_FALSE(LightReachesSphere(spot, {5, 0, 0}, 1.0, &why));  // 26.6 deg off axis
+  EXPECT_NE(why.find("outside the cone"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace brdfit::preview
