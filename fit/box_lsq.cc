@@ -1,0 +1,95 @@
+#include "fit/box_lsq.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace brdfit {
+
+namespace {
+
+double Objective(const Eigen::MatrixXd& N, const Eigen::VectorXd& b, const Eigen::VectorXd& x) {
+  return x.dot(N * x) - 2.0 * b.dot(x);
+}
+
+Eigen::VectorXd Enumerate(const Eigen::MatrixXd& N, const Eigen::VectorXd& b,
+                          const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) {
+  const int k = static_cast<int>(b.size());
+  int combos = 1;
+  for (int i = 0; i < k; ++i) combos *= 3;
+  Eigen::VectorXd best = lo.cwiseMax(Eigen::VectorXd::Zero(k)).cwiseMin(hi);
+  for (int i = 0; i < k; ++i) {
+    if (!std::isfinite(best[i])) best[i] = 0.0;
+  }
+  double best_q = Objective(N, b, best);
+  std::vector<int> state(k);
+  for (int code = 0; code < combos; ++code) {
+    int c = code;
+    bool skip = false;
+    std::vector<int> free_idx;
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(k);
+    for (int i = 0; i < k; ++i) {
+      state[i] = c % 3;  // 0 free, 1 at lower, 2 at upper
+      c /= 3;
+      if (state[i] == 0) {
+        free_idx.push_back(i);
+      } else {
+        const double v = state[i] == 1 ? lo[i] : hi[i];
+        if (!std::isfinite(v)) skip = true;
+        x[i] = v;
+      }
+    }
+    if (skip) continue;
+    const int nf = static_cast<int>(free_idx.size());
+    if (nf > 0) {
+      Eigen::MatrixXd nff(nf, nf);
+      Eigen::VectorXd rhs(nf);
+      for (int a = 0; a < nf; ++a) {
+        rhs[a] = b[free_idx[a]];
+        for (int i = 0; i < k; ++i) {
+          if (state[i] != 0) rhs[a] -= N(free_idx[a], i) * x[i];
+        }
+        for (int bb = 0; bb < nf; ++bb) nff(a, bb) = N(free_idx[a], free_idx[bb]);
+      }
+      const Eigen::VectorXd xf = nff.completeOrthogonalDecomposition().solve(rhs);
+      for (int a = 0; a < nf; ++a) x[free_idx[a]] = xf[a];
+    }
+    bool feasible = true;
+    for (int i = 0; i < k; ++i) {
+      if (!std::isfinite(x[i]) || x[i] < lo[i] || x[i] > hi[i]) feasible = false;
+    }
+    if (!feasible) continue;
+    const double q = Objective(N, b, x);
+    if (q < best_q) {
+      best_q = q;
+      best = x;
+    }
+  }
+  return best;
+}
+
+Eigen::VectorXd GaussSeidel(const Eigen::MatrixXd& N, const Eigen::VectorXd& b,
+                            const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) {
+  const int k = static_cast<int>(b.size());
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(k).cwiseMax(lo).cwiseMin(hi);
+  for (int sweep = 0; sweep < 200; ++sweep) {
+    for (int i = 0; i < k; ++i) {
+      if (!(N(i, i) > 0)) continue;
+      const double r = b[i] - N.row(i).dot(x) + N(i, i) * x[i];
+      x[i] = std::clamp(r / N(i, i), lo[i], hi[i]);
+    }
+  }
+  return x;
+}
+
+}  // namespace
+
+Eigen::VectorXd BoxLeastSquares(const Eigen::MatrixXd& N, const Eigen::VectorXd& b,
+                                const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) {
+  if (b.size() == 0) return Eigen::VectorXd();
+  return b.size() <= 5 ? Enumerate(N, b, lo, hi) : GaussSeidel(N, b, lo, hi);
+}
+
+}  // namespace brdfit

@@ -1,0 +1,223 @@
+// The fit of one model: initializer, Levenberg-Marquardt stages, result and metrics
+// (pipeline described in fit/fitter.h).
+#include <ceres/problem.h>
+#include <ceres/solver.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "fit/grid_init.h"
+#include "fit/metrics.h"
+#include "fit/model_ops.h"
+
+namespace brdfit::internal {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double MsSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// Blocks per problem: enough for Ceres' threads and short accumulations, few enough that the
+// per-block eigen-decompositions stay negligible.
+std::size_t NumBlocks(std::size_t samples) {
+  return std::clamp<std::size_t>(samples / 256, 1, 64);
+}
+
+void AddBlocks(const ModelOps& ops, const Samples& s, const LossData& l,
+               const ceres::LossFunction* robust, double* x, ceres::Problem* problem) {
+  const std::size_t ns = s.NumSamples(), nb = NumBlocks(ns);
+  for (std::size_t b = 0; b < nb; ++b) {
+    const std::size_t begin = ns * b / nb, end = ns * (b + 1) / nb;
+    if (begin == end) continue;
+    problem->AddResidualBlock(ops.make_block(s, l, ops.layout, robust, begin, end), nullptr, x);
+  }
+}
+
+struct LmRun {
+  ceres::Solver::Summary summary;
+  bool finite = false;
+};
+
+LmRun RunLm(const ModelOps& ops, const Samples& s, const LossData& l,
+            const ceres::LossFunction* robust, const FitOptions& opt, double* x) {
+  const ParamLayout& layout = ops.layout;
+  ceres::Problem problem;
+  AddBlocks(ops, s, l, robust, x, &problem);
+  for (std::size_t i = 0; i < layout.size(); ++i) {
+    problem.SetParameterLowerBound(x, static_cast<int>(i), layout.lower_opt[i]);
+    problem.SetParameterUpperBound(x, static_cast<int>(i), layout.upper_opt[i]);
+  }
+  ceres::Solver::Options so;
+  so.minimizer_type = ceres::TRUST_REGION;
+  so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.num_threads = std::max(opt.threads, 1);
+  so.max_num_iterations = std::max(opt.max_iterations, 0);
+  so.function_tolerance = opt.function_tolerance;
+  so.parameter_tolerance = opt.parameter_tolerance;
+  so.gradient_tolerance = opt.gradient_tolerance;
+  so.logging_type = ceres::SILENT;
+  so.minimizer_progress_to_stdout = false;
+  LmRun run;
+  ceres::Solve(so, &problem, &run.summary);
+  // Ceres #988: CONVERGENCE can come with an infinite cost. Check everything.
+  run.finite = std::isfinite(run.summary.final_cost);
+  for (std::size_t i = 0; i < layout.size(); ++i) run.finite = run.finite && std::isfinite(x[i]);
+  return run;
+}
+
+int Iterations(const ceres::Solver::Summary& s) {
+  // summary.iterations[0] is the evaluation at the starting point.
+  return std::max<int>(static_cast<int>(s.iterations.size()) - 1, 0);
+}
+
+}  // namespace
+
+FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& loss,
+                     const Samples& metric, const FitOptions& opt) {
+  const ParamLayout& layout = ops.layout;
+  const std::size_t P = layout.size();
+  FitResult r;
+  r.model = ops.name;
+  r.param_names = ops.param_names;
+  r.params.assign(P, 0.0);
+  r.at_bound.assign(P, false);
+  r.fit_samples = fit.NumSamples();
+  r.fit_cells = fit.NumObservations();
+  r.metrics.weighting = ToString(metric.options.weighting);
+  r.metrics.cutoff_deg = metric.options.cutoff_deg;
+  if (fit.NumSamples() == 0 || !(fit.total_weight > 0)) {
+    r.status = FitStatus::kFailed;
+    r.message = "no usable cells: every cell is invalid, non-finite or beyond the cut-off";
+    return r;
+  }
+  const std::unique_ptr<ceres::LossFunction> robust = MakeRobustLoss(opt);
+
+  // 1. Initializer on a stratified subset.
+  auto t0 = Clock::now();
+  const Samples init_set = Subsample(fit, opt.init_samples, opt.seed);
+  const LossData init_loss = PrepareLoss(init_set, opt);
+  GridInitializer grid(init_set, init_loss, layout, ops.eval, robust.get());
+  const std::vector<InitCandidate> starts = grid.Run(std::max(opt.multistart, 1));
+  r.times.init = MsSince(t0);
+  if (!starts.empty() && std::isfinite(starts.front().cost)) r.init_cost = starts.front().cost;
+
+  // 2. LM from each start; on a coarse subset first when the fit set is large.
+  t0 = Clock::now();
+  const bool coarse = opt.coarse_samples > 0 && fit.NumSamples() > 4 * opt.coarse_samples;
+  Samples coarse_set;
+  LossData coarse_loss;
+  if (coarse) {
+    coarse_set = Subsample(fit, opt.coarse_samples, opt.seed + 1);
+    coarse_loss = PrepareLoss(coarse_set, opt);
+  }
+  bool have_best = false;
+  double best_cost = 0;
+  std::vector<double> best_x;
+  ceres::Solver::Summary best_summary;
+  std::string last_failure;
+  for (const InitCandidate& start : starts) {
+    std::vector<double> x(P);
+    bool finite_start = true;
+    for (std::size_t i = 0; i < P; ++i) {
+      x[i] = std::clamp(layout.ToOpt(i, start.params[i]), layout.lower_opt[i], layout.upper_opt[i]);
+      finite_start = finite_start && std::isfinite(x[i]);
+    }
+    if (!finite_start) {
+      last_failure = "initializer produced non-finite parameters";
+      continue;
+    }
+    ++r.starts;
+    if (coarse) {
+      std::vector<double> xc = x;
+      const LmRun run = RunLm(ops, coarse_set, coarse_loss, robust.get(), opt, xc.data());
+      r.iterations += Iterations(run.summary);
+      if (run.finite) x = xc;  // else continue from the grid point
+    }
+    const LmRun run = RunLm(ops, fit, loss, robust.get(), opt, x.data());
+    r.iterations += Iterations(run.summary);
+    const bool usable = run.finite && run.summary.termination_type != ceres::FAILURE &&
+                        run.summary.termination_type != ceres::USER_FAILURE;
+    if (!usable) {
+      last_failure = run.finite ? run.summary.message : "non-finite cost or parameters";
+      continue;
+    }
+    if (!have_best || run.summary.final_cost < best_cost) {
+      have_best = true;
+      best_cost = run.summary.final_cost;
+      best_x = x;
+      best_summary = run.summary;
+    }
+  }
+  r.times.solve = MsSince(t0);
+
+  if (!have_best) {
+    r.status = FitStatus::kFailed;
+    r.message = "solver failed: " + last_failure;
+    if (!starts.empty()) {
+      for (std::size_t i = 0; i < P; ++i) {
+        const double v = starts.front().params[i];
+        r.params[i] = std::isfinite(v) ? v : 0.0;
+      }
+    }
+    return r;
+  }
+  r.termination = ceres::TerminationTypeToString(best_summary.termination_type);
+  r.final_cost = 2.0 * best_cost;  // Ceres reports 1/2 sum r^2
+  for (std::size_t i = 0; i < P; ++i) {
+    r.params[i] = layout.FromOpt(i, best_x[i]);
+    const double span = layout.upper_opt[i] - layout.lower_opt[i];
+    r.at_bound[i] = best_x[i] <= layout.lower_opt[i] + 1e-9 * span ||
+                    best_x[i] >= layout.upper_opt[i] - 1e-9 * span;
+  }
+  r.status = best_summary.termination_type == ceres::CONVERGENCE ? FitStatus::kConverged
+                                                                 : FitStatus::kNoConvergence;
+  if (r.status == FitStatus::kNoConvergence) r.message = best_summary.message;
+
+  // 3. Metrics on the metric set.
+  t0 = Clock::now();
+  std::vector<double> pred(3 * metric.NumSamples());
+  for (std::size_t s = 0; s < metric.NumSamples(); ++s) {
+    ops.eval(r.params.data(), metric.geometry[s], &pred[3 * s]);
+  }
+  const std::vector<double> per_obs = ExpandToObservations(metric, pred);
+  r.metrics = ComputeMetrics(metric, per_obs);
+  r.times.metrics = MsSince(t0);
+  if (!r.metrics.ok) {
+    r.status = FitStatus::kFailed;
+    r.message = "metrics: " + r.metrics.problem;
+  }
+  return r;
+}
+
+NormalEquations NormalEquationsWithOps(const ModelOps& ops, const Samples& s, const LossData& l,
+                                       const FitOptions& opt, const std::vector<double>& params) {
+  const std::size_t P = ops.layout.size();
+  const std::unique_ptr<ceres::LossFunction> robust = MakeRobustLoss(opt);
+  std::vector<double> x(P);
+  for (std::size_t i = 0; i < P; ++i) x[i] = ops.layout.ToOpt(i, params[i]);
+  ceres::Problem problem;
+  AddBlocks(ops, s, l, robust.get(), x.data(), &problem);
+  double cost = 0;
+  std::vector<double> gradient;
+  ceres::CRSMatrix jac;
+  problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, &gradient, &jac);
+  NormalEquations ne;
+  ne.cost = 2.0 * cost;
+  ne.gradient = gradient;
+  ne.jtj.assign(P * P, 0.0);
+  for (int row = 0; row < jac.num_rows; ++row) {
+    for (int a = jac.rows[row]; a < jac.rows[row + 1]; ++a) {
+      for (int b = jac.rows[row]; b < jac.rows[row + 1]; ++b) {
+        ne.jtj[jac.cols[a] * P + jac.cols[b]] += jac.values[a] * jac.values[b];
+      }
+    }
+  }
+  return ne;
+}
+
+}  // namespace brdfit::internal

@@ -1,0 +1,96 @@
+#include "fit/fitter.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "fit/model_ops.h"
+#include "io/error.h"
+
+namespace brdfit {
+
+namespace {
+
+const std::vector<internal::ModelOps>& Fitters() {
+  static const std::vector<internal::ModelOps> fitters = [] {
+    std::vector<internal::ModelOps> out;
+    internal::RegisterModels0(out);
+    internal::RegisterModels1(out);
+    internal::RegisterModels2(out);
+    std::sort(out.begin(), out.end(),
+              [](const auto& a, const auto& b) { return a.catalog_index < b.catalog_index; });
+    return out;
+  }();
+  return fitters;
+}
+
+const internal::ModelOps& Find(std::string_view model) {
+  for (const auto& f : Fitters()) {
+    if (f.name == model) return f;
+  }
+  std::string names;
+  for (const auto& f : Fitters()) names += (names.empty() ? "" : ", ") + f.name;
+  throw InputError("unknown model '" + std::string(model) + "' (known: " + names + ")");
+}
+
+}  // namespace
+
+PreparedTable PrepareTable(const Table& table, const SampleOptions& sample_options,
+                           const FitOptions& fit_options) {
+  PreparedTable t;
+  t.fit = PrepareSamples(table, sample_options);
+  t.loss = PrepareLoss(t.fit, fit_options);
+  if (sample_options.budget.kind != Budget::Kind::kFull) {
+    SampleOptions full = sample_options;
+    full.budget = Budget{};
+    t.metric_own = PrepareSamples(table, full);
+    t.has_own_metric = true;
+  }
+  return t;
+}
+
+FitResult FitPrepared(std::string_view model, const PreparedTable& table,
+                      const FitOptions& options) {
+  return internal::FitWithOps(Find(model), table.fit, table.loss, table.metric(), options);
+}
+
+FitResult FitTable(std::string_view model, const Table& table, const SampleOptions& sample_options,
+                   const FitOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const PreparedTable prepared = PrepareTable(table, sample_options, options);
+  const double prepare_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  FitResult r = FitPrepared(model, prepared, options);
+  r.times.prepare = prepare_ms;
+  return r;
+}
+
+std::vector<std::string> FittableModels() {
+  std::vector<std::string> names;
+  for (const auto& f : Fitters()) names.push_back(f.name);
+  return names;
+}
+
+bool IsFittable(std::string_view model) {
+  return std::any_of(Fitters().begin(), Fitters().end(),
+                     [&](const auto& f) { return f.name == model; });
+}
+
+NormalEquations EvaluateNormalEquations(std::string_view model, const Samples& samples,
+                                        const LossData& loss, const FitOptions& options,
+                                        const std::vector<double>& params) {
+  return internal::NormalEquationsWithOps(Find(model), samples, loss, options, params);
+}
+
+const char* ToString(FitStatus s) {
+  switch (s) {
+    case FitStatus::kConverged:
+      return "converged";
+    case FitStatus::kNoConvergence:
+      return "no_convergence";
+    case FitStatus::kFailed:
+      return "failed";
+  }
+  return "failed";
+}
+
+}  // namespace brdfit

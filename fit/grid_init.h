@@ -1,0 +1,67 @@
+// The initializer: a grid over the shape parameters; at each grid point the linear colour
+// weights are solved by box-constrained weighted least squares (variable projection, Golub &
+// Pereyra 1973; reference.md §5: "solve the linear weights at fixed alpha"). The best grid
+// points are refined by a compass search over the shape parameters (same inner solve).
+//
+// The weighted least squares is the loss linearized at the data: e ~ d (f - m) with
+// d = inv T'(m c) c, so each cell/channel weighs omega d^2 with target m. Every grid point is
+// scored with the true loss (robust function included). The best points get two Gauss-Newton
+// refinements of their weights (relinearized at the current prediction) and are rescored.
+// Assumes what ParamRole promises: channel c of the model is jointly linear in the channel-c
+// weights of all lobes, with no constant term (tested for every catalog model).
+#pragma once
+
+#include <ceres/loss_function.h>
+
+#include <vector>
+
+#include "fit/loss.h"
+#include "fit/param_layout.h"
+#include "fit/samples.h"
+
+namespace brdfit::internal {
+
+struct InitCandidate {
+  std::vector<double> params;  // parameter space (not log)
+  double cost = 0;
+};
+
+// f_r of a model at a geometry, double precision (models/param.h: M::Eval<double>).
+using EvalFn = void (*)(const double* params, const Geometry& g, double rgb[3]);
+
+// Grid values of one shape parameter: geometric for log_scale parameters, else uniform,
+// endpoints included.
+std::vector<double> ShapeGridValues(const ParamSpec& s, int n);
+
+// Points per shape dimension: 48 in 1-D (ratio 1.22 between alphas over [1e-4, 1]), 14 in
+// 2-D, 7 in 3-D, then about 1000^(1/d) with at least 3.
+int ShapeGridSize(std::size_t dims);
+
+class GridInitializer {
+ public:
+  GridInitializer(const Samples& s, const LossData& l, const ParamLayout& layout, EvalFn eval,
+                  const ceres::LossFunction* robust);
+
+  // The best `keep` candidates, best first (costs may be NaN only if every point failed).
+  std::vector<InitCandidate> Run(int keep);
+
+ private:
+  InitCandidate EvaluatePoint(std::vector<double> p);
+  void PatternSearch(InitCandidate* c, const std::vector<double>& spacing);
+  double Slope(double x) const;
+  void ComputeBasis(const std::vector<double>& p);
+  double Predict(const std::vector<double>& p, std::size_t s, int ch) const;
+  void SolveWeights(const std::vector<double>& w, const std::vector<double>& y,
+                    std::vector<double>* p) const;
+  void Relinearize(std::vector<double>* p);
+  double Score(const std::vector<double>& p) const;
+
+  const Samples& s_;
+  const LossData& l_;
+  const ParamLayout& layout_;
+  EvalFn eval_;
+  const ceres::LossFunction* robust_;
+  std::vector<double> w_data_, y_data_, basis_;
+};
+
+}  // namespace brdfit::internal

@@ -1,0 +1,90 @@
+#include "fit/loss.h"
+
+#include <ceres/loss_function.h>
+
+#include <cmath>
+
+#include "io/error.h"
+
+namespace brdfit {
+
+const char* ToString(LossKind k) {
+  switch (k) {
+    case LossKind::kLog:
+      return "log";
+    case LossKind::kCbrt:
+      return "cbrt";
+    case LossKind::kRel:
+      return "rel";
+    case LossKind::kL2:
+      return "l2";
+  }
+  return "log";
+}
+
+LossKind LossKindFromString(const std::string& s) {
+  if (s == "log") return LossKind::kLog;
+  if (s == "cbrt") return LossKind::kCbrt;
+  if (s == "rel") return LossKind::kRel;
+  if (s == "l2") return LossKind::kL2;
+  throw InputError("unknown loss '" + s + "' (expected log, cbrt, rel or l2)");
+}
+
+const char* ToString(RobustKind k) {
+  switch (k) {
+    case RobustKind::kNone:
+      return "none";
+    case RobustKind::kHuber:
+      return "huber";
+    case RobustKind::kCauchy:
+      return "cauchy";
+  }
+  return "none";
+}
+
+RobustKind RobustKindFromString(const std::string& s) {
+  if (s == "none") return RobustKind::kNone;
+  if (s == "huber") return RobustKind::kHuber;
+  if (s == "cauchy") return RobustKind::kCauchy;
+  throw InputError("unknown robust loss '" + s + "' (expected none, huber or cauchy)");
+}
+
+LossData PrepareLoss(const Samples& samples, const FitOptions& options) {
+  LossData d;
+  d.kind = options.loss;
+  const std::size_t n = samples.NumObservations();
+  d.mult.resize(n);
+  d.sqrt_w.resize(n);
+  d.target.resize(3 * n);
+  d.inv.resize(3 * n);
+  const double norm = samples.total_weight > 0 ? 1.0 / (3.0 * samples.total_weight) : 0.0;
+  for (std::size_t o = 0; o < n; ++o) {
+    // The relative loss is scale-free: the cosine would cancel, so it is not applied.
+    const double c = (options.cosine && options.loss != LossKind::kRel) ? samples.cos_i[o] : 1.0;
+    d.mult[o] = c;
+    d.sqrt_w[o] = std::sqrt(samples.weight[o] * norm);
+    for (int ch = 0; ch < 3; ++ch) {
+      const double m = samples.value[3 * o + ch];
+      d.target[3 * o + ch] = LossTransform(options.loss, m * c);
+      d.inv[3 * o + ch] = options.loss == LossKind::kRel ? 1.0 / (std::abs(m) + kRelEpsilon) : 1.0;
+    }
+  }
+  return d;
+}
+
+std::unique_ptr<ceres::LossFunction> MakeRobustLoss(const FitOptions& options) {
+  if (!(options.robust_scale > 0) || !std::isfinite(options.robust_scale)) {
+    throw InputError("robust scale must be positive and finite");
+  }
+  switch (options.robust) {
+    case RobustKind::kNone:
+      return nullptr;
+    case RobustKind::kHuber:
+      return std::make_unique<ceres::HuberLoss>(options.robust_scale);
+    case RobustKind::kCauchy:
+      return std::make_unique<ceres::CauchyLoss>(options.robust_scale);
+  }
+  return nullptr;
+}
+
+}  // namespace brdfit

@@ -1,0 +1,82 @@
+// Loss terms of a fit, per observation (cell) and channel:
+//
+//   e = inv * (T(f * c) - T(m * c)),   cost = sum over cells and channels of  omega * rho(e^2)
+//
+// f: model value, m: measured value (1/sr), c = cos theta_i (or 1), T the loss transform,
+// inv a per-cell scale (relative loss only), omega = weight / (3 * total weight) so that the
+// cost is a weighted mean over cells and channels, rho the robust function (identity if none).
+// With the log loss, cosine on, no robust loss and the full sample set, the cost is exactly
+// log_rmse^2 of fit/metrics.h.
+#pragma once
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "fit/options.h"
+#include "fit/samples.h"
+
+namespace ceres {
+class LossFunction;
+}
+
+namespace brdfit {
+
+// Below this |x| the cube root is replaced by an odd C1 cubic (reference.md §5, Ceres #594:
+// cbrt has an infinite derivative at 0 and pow(x, 1/3) is NaN for x < 0 on Jets).
+inline constexpr double kCbrtGuard = 1e-5;
+// Offset of the relative loss (1/sr): (f - m) / (|m| + eps), after Sun et al. 2018 (eps 1e-3).
+inline constexpr double kRelEpsilon = 1e-3;
+// Below this argument ln(1 + x) continues as its tangent, so f c <= -1 stays finite.
+inline constexpr double kLogGuard = -0.5;
+
+// cbrt(x) for |x| >= g; for |x| < g, a x + b x^3 with a = 4/3 g^(-2/3), b = -1/3 g^(-8/3):
+// the same value and slope at |x| = g, odd, slope 4/3 g^(-2/3) at 0.
+template <class T>
+T GuardedCbrt(const T& x) {
+  using std::cbrt;
+  if (x >= kCbrtGuard) return cbrt(x);
+  if (x <= -kCbrtGuard) return -cbrt(-x);
+  const double g23 = std::cbrt(kCbrtGuard * kCbrtGuard);
+  const double a = 4.0 / (3.0 * g23);
+  const double b = -1.0 / (3.0 * g23 * kCbrtGuard * kCbrtGuard);
+  return x * (a + b * (x * x));
+}
+
+// ln(1 + x), continued linearly below kLogGuard.
+template <class T>
+T GuardedLog1p(const T& x) {
+  using std::log1p;
+  if (x >= kLogGuard) return log1p(x);
+  return std::log1p(kLogGuard) + (x - kLogGuard) / (1.0 + kLogGuard);
+}
+
+template <class T>
+T LossTransform(LossKind kind, const T& x) {
+  switch (kind) {
+    case LossKind::kLog:
+      return GuardedLog1p(x);
+    case LossKind::kCbrt:
+      return GuardedCbrt(x);
+    case LossKind::kRel:
+    case LossKind::kL2:
+      break;
+  }
+  return x;
+}
+
+// Per-observation constants of the loss, prepared once per (samples, options).
+struct LossData {
+  LossKind kind = LossKind::kLog;
+  std::vector<double> mult;    // per observation: c (cos theta_i, or 1)
+  std::vector<double> sqrt_w;  // per observation: sqrt(omega)
+  std::vector<double> target;  // 3 per observation: T(m c)
+  std::vector<double> inv;     // 3 per observation: 1 / (|m| + eps) for kRel, else 1
+};
+
+LossData PrepareLoss(const Samples& samples, const FitOptions& options);
+
+// The robust function for the options, nullptr for RobustKind::kNone.
+std::unique_ptr<ceres::LossFunction> MakeRobustLoss(const FitOptions& options);
+
+}  // namespace brdfit

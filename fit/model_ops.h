@@ -1,0 +1,47 @@
+// What the (non-template) fit engine needs to know about a catalog model: its names, parameter
+// layout, a double evaluator and a factory for its autodiff residual blocks. The only
+// per-model template code is the residual block (fit/block_cost.h), instantiated in
+// fit/problem_instances_*.cc.
+#pragma once
+
+#include <ceres/cost_function.h>
+#include <ceres/loss_function.h>
+
+#include <string>
+#include <vector>
+
+#include "fit/fitter.h"
+#include "fit/grid_init.h"
+#include "fit/loss.h"
+#include "fit/param_layout.h"
+#include "fit/samples.h"
+
+namespace brdfit::internal {
+
+using MakeBlockFn = ceres::CostFunction* (*)(const Samples&, const LossData&, const ParamLayout&,
+                                             const ceres::LossFunction*, std::size_t begin,
+                                             std::size_t end);
+
+struct ModelOps {
+  std::size_t catalog_index = 0;
+  std::string name;
+  std::vector<std::string> param_names;
+  ParamLayout layout;
+  EvalFn eval = nullptr;
+  MakeBlockFn make_block = nullptr;
+};
+
+// Each fit/problem_instances_K.cc registers the catalog models with index % kShards == K.
+inline constexpr std::size_t kShards = 3;
+void RegisterModels0(std::vector<ModelOps>& out);
+void RegisterModels1(std::vector<ModelOps>& out);
+void RegisterModels2(std::vector<ModelOps>& out);
+
+// The engine (fit/fit_engine.cc).
+FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& loss,
+                     const Samples& metric, const FitOptions& options);
+NormalEquations NormalEquationsWithOps(const ModelOps& ops, const Samples& samples,
+                                       const LossData& loss, const FitOptions& options,
+                                       const std::vector<double>& params);
+
+}  // namespace brdfit::internal

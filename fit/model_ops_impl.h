@@ -1,0 +1,44 @@
+// Per-model template glue: included only by fit/problem_instances_*.cc.
+#pragma once
+
+#include <tuple>
+#include <utility>
+
+#include "fit/block_cost.h"
+#include "fit/model_ops.h"
+#include "models/catalog.h"
+#include "models/registry.h"
+
+namespace brdfit::internal {
+
+template <class M>
+ceres::CostFunction* MakeBlock(const Samples& s, const LossData& l, const ParamLayout& layout,
+                               const ceres::LossFunction* robust, std::size_t begin,
+                               std::size_t end) {
+  return new BlockCost<M>(s, l, layout, robust, begin, end);
+}
+
+template <class M>
+void EvalDouble(const double* p, const Geometry& g, double rgb[3]) {
+  M::Eval(p, g, rgb);
+}
+
+// Registers the catalog models whose index is Shard modulo kShards.
+template <std::size_t Shard>
+void RegisterShard(std::vector<ModelOps>& out) {
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    (
+        [&] {
+          if constexpr (I % kShards == Shard) {
+            using M = std::tuple_element_t<I, ModelCatalog>;
+            const ModelInfo info = MakeModelInfo<M>();
+            out.push_back({I, info.name, info.param_names, ParamLayout::Of(M::kParams),
+                           &EvalDouble<M>, &MakeBlock<M>});
+          }
+        }(),
+        ...);
+  }
+  (std::make_index_sequence<std::tuple_size_v<ModelCatalog>>{});
+}
+
+}  // namespace brdfit::internal

@@ -1,0 +1,48 @@
+// Options of one fit: loss, robustness, initializer and solver settings. Sample selection
+// (cut-off, weighting, budget) lives in SampleOptions (fit/samples.h).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace brdfit {
+
+// The data term of a residual, per cell and channel (f: model, m: measured, c = cos theta_i,
+// or 1 with cosine = false). Definitions in fit/loss.h.
+enum class LossKind {
+  kLog,   // ln(1 + f c) - ln(1 + m c)          Löw et al. 2012, E2 (the default)
+  kCbrt,  // cbrt(f c) - cbrt(m c), guarded       Fores, Ferwerda, Gu 2012
+  kRel,   // (f - m) / (|m| + eps)                relative error
+  kL2,    // f c - m c                            cosine-weighted L2 (Ngan et al. 2005)
+};
+const char* ToString(LossKind k);
+LossKind LossKindFromString(const std::string& s);  // throws InputError
+
+// Robust loss on each residual (ceres::HuberLoss / ceres::CauchyLoss with scale robust_scale,
+// in the units of the loss's data term, e.g. log units for kLog).
+enum class RobustKind { kNone, kHuber, kCauchy };
+const char* ToString(RobustKind k);
+RobustKind RobustKindFromString(const std::string& s);  // throws InputError
+
+struct FitOptions {
+  LossKind loss = LossKind::kLog;
+  bool cosine = true;  // multiply f and m by cos theta_i inside the loss
+  RobustKind robust = RobustKind::kNone;
+  double robust_scale = 0.1;
+  int multistart = 1;               // LM runs from the best distinct initializer candidates
+  int max_iterations = 100;         // per LM run
+  int threads = 1;                  // Ceres threads per fit (parallelism is normally over fits)
+  std::size_t init_samples = 2048;  // samples the initializer's grid is scored on
+  // Coarse-to-fine: when the fit set has more than 4x this many samples, LM first runs on a
+  // stratified subset of this size, then continues on the full set (0 disables).
+  std::size_t coarse_samples = 8192;
+  std::uint64_t seed = 1;  // subsets of the initializer and the coarse stage
+  double function_tolerance = 1e-12;
+  double parameter_tolerance = 1e-12;
+  double gradient_tolerance = 1e-16;
+
+  bool operator==(const FitOptions&) const = default;
+};
+
+}  // namespace brdfit
