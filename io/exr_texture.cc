@@ -1,0 +1,103 @@
+#include "io/exr_texture.h"
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfTestFile.h>
+#include <fmt/core.h>
+
+#include <exception>
+
+#include "io/atomic_file.h"
+#include "io/error.h"
+#include "io/input_file.h"
+
+namespace brdfit {
+namespace {
+
+constexpr const char* kChannels[3] = {"R", "G", "B"};
+constexpr int kMaxSide = 1 << 15;  // refuse absurd headers before allocating
+
+}  // namespace
+
+void WriteRgbExr(const std::filesystem::path& path, const RgbImage& image,
+                 const ExrAttributes& attributes) {
+  if (image.width <= 0 || image.height <= 0 || image.width > kMaxSide || image.height > kMaxSide ||
+      image.rgb.size() != 3 * static_cast<std::size_t>(image.width) * image.height) {
+    throw InputError(path, fmt::format("cannot write a {} x {} image from {} floats", image.width,
+                                       image.height, image.rgb.size()));
+  }
+  Imf::Header header(image.width, image.height);
+  header.compression() = Imf::ZIP_COMPRESSION;  // lossless
+  for (const char* c : kChannels) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+  for (const auto& [name, value] : attributes) {
+    if (name.empty() || header.find(name) != header.end()) {
+      throw InputError(path, "EXR attribute name '" + name + "' is empty or reserved");
+    }
+    header.insert(name, Imf::StringAttribute(value));
+  }
+  WriteFileAtomically(path, [&](const std::filesystem::path& tmp) {
+    try {
+      Imf::OutputFile file(tmp.c_str(), header);
+      Imf::FrameBuffer fb;
+      // The slices only read from the buffer; OpenEXR's Slice takes a non-const pointer.
+      char* base = reinterpret_cast<char*>(const_cast<float*>(image.rgb.data()));
+      const std::size_t xs = 3 * sizeof(float);
+      const std::size_t ys = xs * image.width;
+      for (int c = 0; c < 3; ++c) {
+        fb.insert(kChannels[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
+      }
+      file.setFrameBuffer(fb);
+      file.writePixels(image.height);
+    } catch (const std::exception& e) {
+      throw OutputError(path, std::string("writing OpenEXR failed: ") + e.what());
+    }
+  });
+}
+
+RgbImage ReadRgbExr(const std::filesystem::path& path, ExrAttributes* attributes) {
+  CheckInputFile(path);
+  if (!Imf::isOpenExrFile(path.c_str())) throw InputError(path, "not an OpenEXR file");
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imf::Header& header = file.header();
+    const Imath::Box2i dw = header.dataWindow();
+    const long long w = static_cast<long long>(dw.max.x) - dw.min.x + 1;
+    const long long h = static_cast<long long>(dw.max.y) - dw.min.y + 1;
+    if (w <= 0 || h <= 0 || w > kMaxSide || h > kMaxSide) {
+      throw InputError(path, fmt::format("unsupported data window {} x {}", w, h));
+    }
+    for (const char* c : kChannels) {
+      if (!header.channels().findChannel(c)) {
+        throw InputError(path, std::string("missing channel ") + c + " (expected R, G, B)");
+      }
+    }
+    RgbImage image = RgbImage::Filled(static_cast<int>(w), static_cast<int>(h), 0.0f);
+    Imf::FrameBuffer fb;
+    const std::size_t xs = 3 * sizeof(float);
+    for (int c = 0; c < 3; ++c) {
+      fb.insert(kChannels[c],
+                Imf::Slice::Make(Imf::FLOAT, image.rgb.data() + c, dw, xs, xs * image.width));
+    }
+    file.setFrameBuffer(fb);
+    file.readPixels(dw.min.y, dw.max.y);
+    if (attributes) {
+      attributes->clear();
+      for (auto it = header.begin(); it != header.end(); ++it) {
+        if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) {
+          (*attributes)[it.name()] = s->value();
+        }
+      }
+    }
+    return image;
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(path, std::string("damaged or unreadable OpenEXR file: ") + e.what());
+  }
+}
+
+}  // namespace brdfit

@@ -1,0 +1,118 @@
+// Factorization files: EXR pair + JSON sidecar written, read back, evaluated identically.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "fit/factor_export.h"
+#include "io/error.h"
+#include "tests/factor/factor_test_util.h"
+
+namespace brdfit {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path TempDir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() /
+                     ("brdfit_test_factor_io_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+Factorization Small(FactorParam param) {
+  FactorOptions o;
+  o.param = param;
+  o.resolution = 16;
+  const Table t = param == FactorParam::kMcCool
+                      ? testing::McCoolProductTable(testing::SmallGrid())
+                      : testing::HalfDiffProductTable(testing::SmallGrid());
+  return Factor(t, o);
+}
+
+TEST(FactorIo, SaveLoadEvaluatesIdentically) {
+  const fs::path dir = TempDir("roundtrip");
+  for (FactorParam param : {FactorParam::kMcCool, FactorParam::kHalfDiff}) {
+    const Factorization r = Small(param);
+    const FactorPaths paths =
+        SaveFactorization(r, dir, ToString(param), {{"source", {{"file", "x.binary"}}}});
+    EXPECT_TRUE(fs::exists(paths.p));
+    EXPECT_TRUE(fs::exists(paths.q));
+    nlohmann::json sidecar;
+    const FactoredBrdf back = LoadFactoredBrdf(paths.json, &sidecar);
+    EXPECT_EQ(back.param(), param);
+    EXPECT_EQ(back.p(), r.brdf.p());  // float32 textures, bit for bit
+    EXPECT_EQ(back.q(), r.brdf.q());
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int k = 0; k < 200; ++k) {
+      const Vec3 wi = FromSpherical(u(rng) * 1.5, u(rng) * 6.28);
+      const Vec3 wo = FromSpherical(u(rng) * 1.5, u(rng) * 6.28);
+      EXPECT_EQ(back.Eval(wi, wo), r.brdf.Eval(wi, wo));
+    }
+    EXPECT_EQ(sidecar["format"], kFactorFormat);
+    EXPECT_EQ(sidecar["parameterization"], ToString(param));
+    EXPECT_EQ(sidecar["formula"], GetFactorParamSpec(param).formula);
+    EXPECT_EQ(sidecar["source"]["file"], "x.binary");
+    EXPECT_EQ(sidecar["textures"]["p"]["file"], paths.p.filename().string());
+    EXPECT_EQ(sidecar["textures"]["q"]["units"], GetFactorParamSpec(param).q.units);
+    EXPECT_EQ(sidecar["solver"]["resolution"], 16);
+
+    // Each EXR describes itself.
+    ExrAttributes a;
+    ReadRgbExr(paths.q, &a);
+    EXPECT_EQ(a.at("brdfit:parameterization"), ToString(param));
+    EXPECT_EQ(a.at("brdfit:factor"), "q");
+    EXPECT_EQ(a.at("brdfit:formula"), GetFactorParamSpec(param).formula);
+    EXPECT_EQ(a.at("brdfit:map"), ToString(GetFactorParamSpec(param).q.map));
+    EXPECT_FALSE(a.at("brdfit:map_formula").empty());
+    EXPECT_FALSE(a.at("brdfit:units").empty());
+    EXPECT_FALSE(a.at("brdfit:gauge").empty());
+  }
+  fs::remove_all(dir);
+}
+
+void ExpectInputError(const fs::path& json, const fs::path& named, const std::string& what) {
+  try {
+    LoadFactoredBrdf(json);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    SCOPED_TRACE(e.what());
+    EXPECT_NE(std::string(e.what()).find(named.string()), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+  }
+}
+
+TEST(FactorIo, InconsistentFilesAreInputErrors) {
+  const fs::path dir = TempDir("bad");
+  const FactorPaths paths = SaveFactorization(Small(FactorParam::kMcCool), dir, "m");
+  const FactorPaths hd = SaveFactorization(Small(FactorParam::kHalfDiff), dir, "h");
+
+  // p and q swapped on disk.
+  fs::rename(paths.p, dir / "tmp.exr");
+  fs::rename(paths.q, paths.p);
+  fs::rename(dir / "tmp.exr", paths.q);
+  ExpectInputError(paths.json, paths.p, "brdfit:factor");
+
+  // A q texture of another parameterization.
+  fs::copy_file(hd.q, paths.q, fs::copy_options::overwrite_existing);
+  fs::copy_file(hd.p, paths.p, fs::copy_options::overwrite_existing);
+  ExpectInputError(paths.json, paths.p, "brdfit:parameterization");
+
+  // Missing texture.
+  SaveFactorization(Small(FactorParam::kMcCool), dir, "m");
+  fs::remove(paths.q);
+  ExpectInputError(paths.json, paths.q, "no such file");
+
+  // Not a sidecar.
+  std::ofstream(dir / "x.factor.json") << R"({"format": "brdfit-table"})";
+  ExpectInputError(dir / "x.factor.json", dir / "x.factor.json", "format");
+  std::ofstream(dir / "y.factor.json") << "{ not json";
+  ExpectInputError(dir / "y.factor.json", dir / "y.factor.json", "JSON");
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace brdfit
