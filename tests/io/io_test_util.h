@@ -80,16 +80,26 @@ struct CliResult {
 
 inline std::string Quote(const std::string& s) {
   std::string q = "'";
-  for (char c : s) q += (c == '\'') ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
+  for (char c : s) {
+    if (c == '\'') {
+      q.append("'\\''");
+    } else {
+      q.push_back(c);
+    }
+  }
+  q.push_back('\'');
+  return q;
 }
 
 // Runs the brdfit executable with arguments; captures stdout and stderr.
 inline CliResult RunCli(const std::vector<std::string>& args, const fs::path& scratch) {
   std::string cmd = Quote(BRDFIT_EXE);
-  for (const auto& a : args) cmd += " " + Quote(a);
+  for (const auto& a : args) {
+    cmd.push_back(' ');
+    cmd.append(Quote(a));
+  }
   const fs::path out = scratch / "cli.stdout", err = scratch / "cli.stderr";
-  cmd += " >" + Quote(out.string()) + " 2>" + Quote(err.string());
+  cmd.append(" >").append(Quote(out.string())).append(" 2>").append(Quote(err.string()));
   const int status = std::system(cmd.c_str());
   CliResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -1,0 +1,126 @@
+// `brdfit info FILE [--json]`: format, grid and mapping, valid/invalid counts (below the
+// horizon vs holes), per-channel min/median/max and a directional-albedo estimate
+// (io/table_stats.h), plus the provenance a brdfit HDF5 table carries.
+#include <fmt/core.h>
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli/command.h"
+#include "io/table_io.h"
+#include "io/table_stats.h"
+
+namespace brdfit::cli {
+namespace {
+
+struct InfoOptions {
+  std::string path;
+  bool json = false;
+};
+
+const char* FormatName(TableFormat f) {
+  return f == TableFormat::kMerl ? "MERL binary" : "brdfit HDF5 table";
+}
+
+double Percent(std::size_t n, std::size_t of) {
+  return of ? 100.0 * static_cast<double>(n) / static_cast<double>(of) : 0.0;
+}
+
+nlohmann::ordered_json ProvenanceJson(const Provenance& p) {
+  nlohmann::ordered_json j;
+  j["source"] = p.source;
+  j["generator"] = p.generator;
+  j["model"] = p.model;
+  // Parameters are stored as JSON text: embed them as an object when they parse.
+  const auto params = nlohmann::ordered_json::parse(p.parameters_json, nullptr, false);
+  j["parameters"] = params.is_discarded() ? nlohmann::ordered_json(p.parameters_json) : params;
+  j["seed"] = p.seed;
+  j["noise"] = p.noise;
+  j["missing_fraction"] = p.missing_fraction;
+  return j;
+}
+
+void PrintText(const InfoOptions& o, const Table& t, const LoadReport& r, const TableStats& s) {
+  const Grid& g = t.grid;
+  const std::size_t above = s.cells - s.below_horizon;
+  fmt::print("file        {}\n", o.path);
+  fmt::print("format      {}\n", FormatName(r.format));
+  fmt::print("grid        {} x {} x {} (theta_h x theta_d x phi_d), theta_h mapping {}\n",
+             g.n_theta_h, g.n_theta_d, g.n_phi_d, ToString(g.theta_h_mapping));
+  fmt::print("cells       {}\n", s.cells);
+  fmt::print("valid       {} ({:.2f} %)\n", s.valid, Percent(s.valid, s.cells));
+  fmt::print("invalid     {} ({:.2f} %)", s.cells - s.valid, Percent(s.cells - s.valid, s.cells));
+  if (r.format == TableFormat::kMerl) fmt::print(", negative in the file: {}", r.negative_cells);
+  fmt::print("\n");
+  fmt::print("  below the horizon at the cell centre   {} ({:.2f} % of cells)\n", s.below_horizon,
+             Percent(s.below_horizon, s.cells));
+  fmt::print("  holes above the horizon                {} ({:.2f} % of {} above-horizon cells)\n",
+             s.masked_above_horizon, Percent(s.masked_above_horizon, above), above);
+  if (s.valid_below_horizon) {
+    fmt::print("  note: {} valid cells lie below the horizon at their centre\n",
+               s.valid_below_horizon);
+  }
+  const Provenance& p = t.provenance;
+  if (r.format == TableFormat::kHdf5) {
+    fmt::print("provenance  source {}, generator {}\n", p.source.empty() ? "-" : p.source,
+               p.generator.empty() ? "-" : p.generator);
+    if (!p.model.empty()) fmt::print("  model       {}\n", p.model);
+    if (!p.parameters_json.empty()) fmt::print("  parameters  {}\n", p.parameters_json);
+    fmt::print("  noise sigma {}, missing fraction {}, seed {}\n", p.noise, p.missing_fraction,
+               p.seed);
+  }
+  fmt::print("\nf_r (1/sr) over valid cells\n  {:<3} {:>12} {:>12} {:>12}\n", "", "min", "median",
+             "max");
+  const char* names[3] = {"R", "G", "B"};
+  for (int c = 0; c < 3; ++c) {
+    const ChannelSummary& cs = s.channels[c];
+    fmt::print("  {:<3} {:>12.5g} {:>12.5g} {:>12.5g}\n", names[c], cs.min, cs.median, cs.max);
+  }
+  fmt::print(
+      "\ndirectional albedo  int f_r cos(theta_o) dwo, quadrature over the half vector with "
+      "trilinear\nlookups; where coverage < 1 the value covers only that share of the "
+      "hemisphere\n  {:>7} {:>9} {:>9} {:>9} {:>9}\n",
+      "theta_i", "R", "G", "B", "coverage");
+  for (const AlbedoEstimate& a : s.albedo) {
+    fmt::print("  {:>5.0f}° {:>9.4f} {:>9.4f} {:>9.4f} {:>9.4f}\n", a.theta_i * 180 / kPi,
+               a.albedo[0], a.albedo[1], a.albedo[2], a.coverage);
+  }
+}
+
+int RunInfo(const InfoOptions& o) {
+  LoadReport report;
+  const Table t = LoadTable(o.path, &report);
+  const TableStats s = ComputeTableStats(t);
+  if (!o.json) {
+    PrintText(o, t, report, s);
+    return kExitOk;
+  }
+  nlohmann::ordered_json j;
+  j["file"] = o.path;
+  j["format"] = ToString(report.format);
+  j["grid"] = {{"n_theta_h", t.grid.n_theta_h},
+               {"n_theta_d", t.grid.n_theta_d},
+               {"n_phi_d", t.grid.n_phi_d},
+               {"theta_h_mapping", ToString(t.grid.theta_h_mapping)}};
+  j.update(TableStatsToJson(s));
+  if (report.format == TableFormat::kMerl) j["negative_in_file"] = report.negative_cells;
+  if (report.format == TableFormat::kHdf5) j["provenance"] = ProvenanceJson(t.provenance);
+  fmt::print("{}\n", j.dump(2));
+  return kExitOk;
+}
+
+Registrar reg{"info", "Describe a table: format, grid, valid cells, value ranges, albedo",
+              [](CLI::App& sub) {
+                auto opts = std::make_shared<InfoOptions>();
+                sub.add_option("file", opts->path, "MERL .binary or brdfit .h5 table")->required();
+                sub.add_flag("--json", opts->json, "machine-readable output");
+                sub.footer(
+                    "The format is detected from the content, not the name.\n"
+                    "Examples:\n  brdfit info gold-paint.binary\n  brdfit info t.h5 --json");
+                return [opts] { return RunInfo(*opts); };
+              }};
+
+}  // namespace
+}  // namespace brdfit::cli

@@ -1,0 +1,209 @@
+// The io commands through the executable: one-line errors with exit code 2 for each bad input,
+// synth -> info, determinism of the bytes, parameter-name errors.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <nlohmann/json.hpp>
+
+#include "io/merl.h"
+#include "io_test_util.h"
+
+namespace brdfit {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+using testing_io::CliResult;
+using testing_io::CountLines;
+using testing_io::RunCli;
+using testing_io::ScratchDir;
+
+// A valid MERL file (all zeros) as bytes, to be damaged by each test.
+std::vector<char> MerlBytes() {
+  std::vector<char> b(kMerlFileBytes, 0);
+  const std::int32_t dims[3] = {90, 90, 180};
+  std::memcpy(b.data(), dims, sizeof(dims));
+  return b;
+}
+
+// `brdfit info FILE` fails with exit code 2 and exactly one line naming the file and problem.
+void ExpectOneLineError(const ScratchDir& dir, const std::filesystem::path& file,
+                        const std::string& problem) {
+  const CliResult r = RunCli({"info", file.string()}, dir.path());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(CountLines(r.err), 1) << r.err;
+  EXPECT_THAT(r.err, StartsWith("brdfit: error: " + file.string() + ": "));
+  EXPECT_THAT(r.err, HasSubstr(problem));
+  EXPECT_EQ(r.out, "");
+}
+
+TEST(CliInfoErrors, WrongHeaderDimension) {
+  ScratchDir dir;
+  auto b = MerlBytes();
+  const std::int32_t bad = 91;
+  std::memcpy(b.data() + 4, &bad, 4);
+  testing_io::WriteBytes(dir / "dim.binary", b.data(), b.size());
+  ExpectOneLineError(dir, dir / "dim.binary",
+                     "header dimension 2 (theta_d bins) is 91, expected 90");
+}
+
+TEST(CliInfoErrors, WrongSize) {
+  ScratchDir dir;
+  auto b = MerlBytes();
+  b.push_back(0);
+  testing_io::WriteBytes(dir / "size.binary", b.data(), b.size());
+  ExpectOneLineError(dir, dir / "size.binary", "file is 34992013 bytes, expected 34992012");
+}
+
+TEST(CliInfoErrors, TruncatedBody) {
+  ScratchDir dir;
+  auto b = MerlBytes();
+  b.resize(b.size() / 2);
+  testing_io::WriteBytes(dir / "cut.binary", b.data(), b.size());
+  ExpectOneLineError(dir, dir / "cut.binary", "truncated: file is 17496006 bytes");
+}
+
+TEST(CliInfoErrors, NaNValue) {
+  ScratchDir dir;
+  auto b = MerlBytes();
+  const double nan = std::nan("");
+  std::memcpy(b.data() + 12 + 8 * 100, &nan, 8);
+  testing_io::WriteBytes(dir / "nan.binary", b.data(), b.size());
+  ExpectOneLineError(dir, dir / "nan.binary", "NaN at cell 100 (theta_h 0, theta_d 0, phi_d 100)");
+}
+
+TEST(CliInfoErrors, Directory) {
+  ScratchDir dir;
+  std::filesystem::create_directory(dir / "folder.binary");
+  ExpectOneLineError(dir, dir / "folder.binary", "is a directory");
+}
+
+TEST(CliInfoErrors, MissingPath) {
+  ScratchDir dir;
+  ExpectOneLineError(dir, dir / "absent.binary", "no such file");
+}
+
+TEST(CliInfoErrors, BrokenHdf5Table) {
+  ScratchDir dir;
+  const char sig[] = "\211HDF\r\n\032\nnot really";
+  testing_io::WriteBytes(dir / "broken.h5", sig, sizeof(sig));
+  const CliResult r = RunCli({"info", (dir / "broken.h5").string()}, dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(CountLines(r.err), 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr((dir / "broken.h5").string() + ": "));
+}
+
+nlohmann::json InfoJson(const ScratchDir& dir, const std::filesystem::path& file) {
+  const CliResult r = RunCli({"info", "--json", file.string()}, dir.path());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return nlohmann::json::parse(r.out);
+}
+
+TEST(CliSynth, InfoReportsTheRequestedHolesAndParameters) {
+  ScratchDir dir;
+  const auto out = dir / "t.h5";
+  const CliResult r = RunCli({"synth", "--model", "lambert+ggx", "--param", "ggx.alpha=0.2",
+                              "--param", "kd_r=0.3", "--grid", "30,30,60", "--missing", "0.3",
+                              "--noise", "0.05", "--seed", "7", "-o", out.string()},
+                             dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("wrote " + out.string()));
+  const nlohmann::json j = InfoJson(dir, out);
+  EXPECT_EQ(j["format"], "h5");
+  EXPECT_EQ(j["grid"]["n_theta_h"], 30);
+  EXPECT_EQ(j["grid"]["theta_h_mapping"], "sqrt");
+  const double above = j["cells"].get<double>() - j["below_horizon"].get<double>();
+  EXPECT_NEAR(j["missing_fraction_above_horizon"].get<double>(), 0.3, 0.5 / above);
+  EXPECT_EQ(j["provenance"]["missing_fraction"], 0.3);
+  EXPECT_EQ(j["provenance"]["noise"], 0.05);
+  EXPECT_EQ(j["provenance"]["seed"], 7);
+  EXPECT_EQ(j["provenance"]["model"], "lambert+ggx");
+  EXPECT_EQ(j["provenance"]["parameters"]["ggx.alpha"], 0.2);
+  EXPECT_EQ(j["provenance"]["parameters"]["lambert.kd_r"], 0.3);
+  EXPECT_EQ(j["directional_albedo"].size(), 4u);
+  // The text form says the same.
+  const CliResult text = RunCli({"info", out.string()}, dir.path());
+  EXPECT_THAT(text.out, HasSubstr("holes above the horizon"));
+  EXPECT_THAT(text.out, HasSubstr("(30.00 % of"));
+  EXPECT_THAT(text.out, HasSubstr("\"ggx.alpha\":0.2"));
+}
+
+TEST(CliSynth, SameSeedSameBytesInBothFormats) {
+  ScratchDir dir;
+  for (const std::string name : {"a.h5", "b.h5", "a.binary", "b.binary"}) {
+    std::vector<std::string> args = {"synth",
+                                     "--model",
+                                     "ggx",
+                                     "--noise",
+                                     "0.1",
+                                     "--missing",
+                                     "0.25",
+                                     "--seed",
+                                     "3",
+                                     "-o",
+                                     (dir / name).string()};
+    if (name.ends_with(".h5")) {
+      args.insert(args.end(), {"--grid", "20,20,40", "--mapping", "linear"});
+    }
+    ASSERT_EQ(RunCli(args, dir.path()).exit_code, 0) << name;
+  }
+  EXPECT_EQ(testing_io::ReadBytes(dir / "a.h5"), testing_io::ReadBytes(dir / "b.h5"));
+  EXPECT_EQ(testing_io::ReadBytes(dir / "a.binary"), testing_io::ReadBytes(dir / "b.binary"));
+  ASSERT_EQ(RunCli({"synth", "--model", "ggx", "--noise", "0.1", "--missing", "0.25", "--seed", "4",
+                    "--grid", "20,20,40", "--mapping", "linear", "-o", (dir / "c.h5").string()},
+                   dir.path())
+                .exit_code,
+            0);
+  EXPECT_NE(testing_io::ReadBytes(dir / "a.h5"), testing_io::ReadBytes(dir / "c.h5"));
+}
+
+TEST(CliSynth, BadParametersAndOptionsAreUsageErrors) {
+  ScratchDir dir;
+  const std::string out = (dir / "x.h5").string();
+  CliResult r =
+      RunCli({"synth", "--model", "lambert+ggx", "--param", "beta=1", "-o", out}, dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(CountLines(r.err), 1);
+  EXPECT_THAT(r.err, HasSubstr("unknown parameter 'beta' for model lambert+ggx; valid: "));
+  EXPECT_THAT(r.err, HasSubstr("ggx.alpha (alpha)"));
+  r = RunCli({"synth", "--model", "no-such-model", "-o", out}, dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("unknown model 'no-such-model'; known models: "));
+  r = RunCli({"synth", "--model", "ggx", "--grid", "45,45,90", "-o", (dir / "x.binary").string()},
+             dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("MERL files hold only the 90,90,180 grid"));
+  r = RunCli({"synth", "--model", "ggx", "--grid", "45,45", "-o", out}, dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  r = RunCli({"synth", "--model", "ggx", "--missing", "1.5", "-o", out}, dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  r = RunCli({"synth", "--model", "ggx", "-o", (dir / "x.txt").string()}, dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("cannot tell the format"));
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(CliSynth, NbrdfMaterialOnAnyGrid) {
+  const auto zip = std::filesystem::path(BRDFIT_SHARED_DATA) / "merl_nbrdf.zip";
+  if (!std::filesystem::exists(zip)) GTEST_SKIP() << zip.string() << " not found, skipping";
+  ScratchDir dir;
+  const auto out = dir / "n.h5";
+  const CliResult r = RunCli({"synth", "--nbrdf", "pink-felt", "--nbrdf-zip", zip.string(),
+                              "--grid", "16,16,32", "--missing", "0.1", "-o", out.string()},
+                             dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = InfoJson(dir, out);
+  EXPECT_EQ(j["provenance"]["generator"], "nbrdf");
+  EXPECT_EQ(j["provenance"]["parameters"]["material"], "pink-felt");
+  const CliResult list = RunCli({"synth", "--list-nbrdf", "--nbrdf-zip", zip.string()}, dir.path());
+  EXPECT_EQ(CountLines(list.out), 100);
+  const CliResult bad =
+      RunCli({"synth", "--nbrdf", "pink-felted", "--nbrdf-zip", zip.string(), "-o", out.string()},
+             dir.path());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.err, HasSubstr("no material 'pink-felted'"));
+}
+
+}  // namespace
+}  // namespace brdfit
