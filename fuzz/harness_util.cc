@@ -39,10 +39,15 @@ const fs::path& ScratchDir() {
   return owner.dir;
 }
 
-std::size_t OpenFdCount() {
+std::size_t OpenFdCount(const fs::path& dir) {
+  const std::string prefix = fs::weakly_canonical(dir).string() + "/";
   std::size_t n = 0;
   std::error_code ec;
-  for (fs::directory_iterator it("/proc/self/fd", ec), end; !ec && it != end; it.increment(ec)) ++n;
+  for (fs::directory_iterator it("/proc/self/fd", ec), end; !ec && it != end; it.increment(ec)) {
+    std::error_code ec2;
+    const fs::path target = fs::read_symlink(it->path(), ec2);
+    n += !ec2 && target.string().starts_with(prefix);
+  }
   return n;
 }
 

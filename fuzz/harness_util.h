@@ -42,9 +42,10 @@ const std::filesystem::path& ScratchDir();
 // Writes bytes to ScratchDir()/name (overwriting) and returns the path.
 std::filesystem::path WriteScratch(std::string_view name, const void* data, std::size_t size);
 
-// Number of open file descriptors of this process (/proc/self/fd), to check that a reader
-// closes what it opened, also when it rejects the input.
-std::size_t OpenFdCount();
+// Number of file descriptors of this process open on files under `dir` (/proc/self/fd), to
+// check that a reader closes what it opened, also when it rejects the input. (Counting all
+// descriptors would also see the sanitizers' symbolizer pipes.)
+std::size_t OpenFdCount(const std::filesystem::path& dir = ScratchDir());
 
 // Consumes bytes from the front of the input (FuzzedDataProvider-like, but available in the
 // normal build too). Reading past the end yields zeros.
@@ -76,6 +77,7 @@ class ByteReader {
 // The harnesses. Each returns 0 (libFuzzer's convention); findings throw or crash.
 int FuzzMerl(const std::uint8_t* data, std::size_t size);
 int FuzzHdf5Table(const std::uint8_t* data, std::size_t size);
+int FuzzNbrdf(const std::uint8_t* data, std::size_t size);
 
 }  // namespace brdfit::fuzz
 

@@ -5,6 +5,7 @@
 //   fuzz_make_seeds <repo>/fuzz
 // Deterministic: the same sources give the same files.
 #include <hdf5.h>
+#include <zip.h>
 
 #include <cmath>
 #include <cstdint>
@@ -93,6 +94,21 @@ void Hdf5Seeds(const fs::path& dir) {
 
 // ---- hand-crafted hostile HDF5 tables (C API: shapes the brdfit writer cannot produce) ----
 
+// Group creation without timestamps: the same sources give the same bytes.
+hid_t Group(hid_t parent, const char* name) {
+  const hid_t gcpl = H5Pcreate(H5P_GROUP_CREATE);
+  H5Pset_obj_track_times(gcpl, 0);
+  const hid_t g = H5Gcreate2(parent, name, H5P_DEFAULT, gcpl, H5P_DEFAULT);
+  H5Pclose(gcpl);
+  return g;
+}
+
+hid_t NoTimesDcpl() {
+  const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_obj_track_times(dcpl, 0);
+  return dcpl;
+}
+
 void StrAttr(hid_t obj, const char* name, const std::string& v) {
   const hid_t type = H5Tcopy(H5T_C_S1);
   H5Tset_size(type, v.size() + 1);
@@ -130,14 +146,15 @@ void UnwrittenDataset(hid_t f, const char* name, hid_t type, const std::vector<h
 // Axis datasets holding the true bin centres for the declared grid (so every check before the
 // table allocation passes).
 void Axes(hid_t f, const Grid& g) {
-  const hid_t axes = H5Gcreate2(f, "axes", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t axes = Group(f, "axes");
   auto axis = [&](const char* name, int n, const char* mapping, auto at) {
     std::vector<double> c(static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i) c[i] = at(i + 0.5);
     const hsize_t dims[1] = {c.size()};
     const hid_t space = H5Screate_simple(1, dims, nullptr);
-    const hid_t ds =
-        H5Dcreate2(axes, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    const hid_t dcpl = NoTimesDcpl();
+    const hid_t ds = H5Dcreate2(axes, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    H5Pclose(dcpl);
     H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, c.data());
     StrAttr(ds, "mapping", mapping);
     H5Dclose(ds);
@@ -168,7 +185,24 @@ void HugeDeclaredTable(const fs::path& path, const std::vector<hsize_t>& dims, b
   H5Fclose(f);
 }
 
+// A file whose root attribute "format" is an array of variable-length strings.
+void StringArrayAttr(const fs::path& path, hsize_t n) {
+  const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, H5T_VARIABLE);
+  const hid_t space = H5Screate_simple(1, &n, nullptr);
+  std::vector<const char*> v(n, "brdfit-table");
+  const hid_t a = H5Acreate2(f, "format", type, space, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(a, type, v.data());
+  H5Aclose(a);
+  H5Sclose(space);
+  H5Tclose(type);
+  H5Fclose(f);
+}
+
 void Hdf5Crafted(const fs::path& dir) {
+  // Reading it as one string made H5Aread store 64 pointers into one char* (stack overflow).
+  StringArrayAttr(dir / "crafted-vlen-string-array-attr.h5", 64);
   // 2^30 cells (a 32 GB table in memory) declared by a few kB of file.
   HugeDeclaredTable(dir / "crafted-huge-declared-grid.h5", {1024, 1024, 1024}, true);
   // 2^26 cells (within the cap, 1.7 GB in memory) declared but never written.
@@ -180,6 +214,84 @@ void Hdf5Crafted(const fs::path& dir) {
                     {hsize_t{1} << 31, hsize_t{1} << 31, hsize_t{1} << 31}, false);
 }
 
+// ---- NBRDF networks (layout of shared/data/README.md, weights made up here) ----------------
+
+std::string ReadAll(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+void Dense(hid_t f, int layer, hsize_t in, hsize_t out, float bias) {
+  const std::string g1 = "dense_" + std::to_string(layer);
+  const std::string g2 = g1 + "/" + g1;
+  H5Gclose(Group(f, g1.c_str()));
+  const hid_t g = Group(f, g2.c_str());
+  auto write = [&](const char* name, std::vector<hsize_t> dims) {
+    std::size_t n = 1;
+    for (hsize_t d : dims) n *= d;
+    std::vector<float> v(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      v[i] = dims.size() == 1 ? bias : 0.3f * std::sin(1.7f * static_cast<float>(i + layer));
+    }
+    const hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
+    const hid_t dcpl = NoTimesDcpl();
+    const hid_t ds = H5Dcreate2(g, name, H5T_IEEE_F32LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    H5Pclose(dcpl);
+    H5Dwrite(ds, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    H5Dclose(ds);
+    H5Sclose(space);
+  };
+  write("kernel:0", {in, out});
+  write("bias:0", {out});
+  H5Gclose(g);
+}
+
+// A 6 -> h -> h -> 3 network as the NBRDF .h5 files store it; returns the file's bytes.
+std::string NbrdfImage(const fs::path& tmp, hsize_t h, float out_bias) {
+  const hid_t f = H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  Dense(f, 1, 6, h, 0.1f);
+  Dense(f, 2, h, h, 0.05f);
+  Dense(f, 3, h, 3, out_bias);
+  H5Fclose(f);
+  std::string bytes = ReadAll(tmp);
+  fs::remove(tmp);
+  return bytes;
+}
+
+void Zip(const fs::path& path, const std::vector<std::pair<std::string, std::string>>& members) {
+  int err = 0;
+  zip_t* z = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
+  for (std::size_t i = 0; i < members.size(); ++i) {
+    const auto& [name, data] = members[i];
+    zip_source_t* src = zip_source_buffer(z, data.data(), data.size(), 0);
+    const zip_int64_t idx = zip_file_add(z, name.c_str(), src, ZIP_FL_OVERWRITE);
+    // Alternate stored and deflated members: both decoders get seeds.
+    const auto u = static_cast<zip_uint64_t>(idx);
+    zip_set_file_compression(z, u, i % 2 ? ZIP_CM_DEFLATE : ZIP_CM_STORE, 0);
+    zip_file_set_mtime(z, u, 1600000000, 0);  // fixed: deterministic bytes
+  }
+  zip_close(z);
+}
+
+// fuzz_nbrdf input: mode byte (bit 0: member image, clear: whole archive), fuzz/fuzz_nbrdf.cc.
+void NbrdfSeeds(const fs::path& dir) {
+  const fs::path tmp = dir / ".tmp.h5";
+  const std::string small = NbrdfImage(tmp, 4, -0.5f);
+  const std::string wide = NbrdfImage(tmp, 21, 0.0f);
+  const std::string overflow = NbrdfImage(tmp, 3, 800.0f);  // exp(y) overflows: InputError
+  WriteBytes(dir / "member-small", std::string(1, '\1') + small);
+  WriteBytes(dir / "member-21", std::string(1, '\1') + wide);
+  WriteBytes(dir / "member-overflow", std::string(1, '\1') + overflow);
+  const fs::path zip = dir / ".tmp.zip";
+  Zip(zip, {{"merl_nbrdf/alpha.h5", small},
+            {"merl_nbrdf/beta.h5", wide},
+            {"merl_nbrdf/alpha.json", R"({"class_name": "Sequential"})"}});
+  WriteBytes(dir / "archive-two", std::string(1, '\0') + ReadAll(zip));
+  Zip(zip, {{"merl_nbrdf/solo.h5", small}});
+  WriteBytes(dir / "archive-stored", std::string(1, '\0') + ReadAll(zip));
+  fs::remove(zip);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -189,13 +301,14 @@ int main(int argc, char** argv) {
   }
   const fs::path corpus = fs::path(argv[1]) / "corpus";
   const fs::path regressions = fs::path(argv[1]) / "regressions";
-  for (const char* d : {"merl", "hdf5_table"}) {
+  for (const char* d : {"merl", "hdf5_table", "nbrdf"}) {
     fs::create_directories(corpus / d);
     fs::create_directories(regressions / d);
   }
   MerlSeeds(corpus / "merl");
   Hdf5Seeds(corpus / "hdf5_table");
   Hdf5Crafted(regressions / "hdf5_table");
+  NbrdfSeeds(corpus / "nbrdf");
   std::cout << "seeds written to " << corpus << ", crafted inputs to " << regressions << "\n";
   return 0;
 }

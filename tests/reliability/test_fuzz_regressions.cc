@@ -30,6 +30,7 @@ struct Harnesses {
 constexpr Harnesses kHarnesses[] = {
     {"merl", FuzzMerl},
     {"hdf5_table", FuzzHdf5Table},
+    {"nbrdf", FuzzNbrdf},
 };
 
 struct Input {

@@ -1,0 +1,50 @@
+// The seed corpora (fuzz/corpus, written by fuzz/make_seeds.cc) must hold inputs the readers
+// accept: a fuzzer starting from rejected seeds spends its time on the first format check.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "fuzz/harness_util.h"
+#include "io/hdf5_table.h"
+#include "io/nbrdf.h"
+
+namespace brdfit {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kCorpus = fs::path(BRDFIT_SOURCE_DIR) / "fuzz" / "corpus";
+
+// A seed without its leading mode byte, as a file.
+fs::path WithoutModeByte(const fs::path& seed, const std::string& name) {
+  std::ifstream in(seed, std::ios::binary);
+  const std::string bytes(std::istreambuf_iterator<char>(in), {});
+  EXPECT_GE(bytes.size(), 1u) << seed;
+  return fuzz::WriteScratch(name, bytes.data() + 1, bytes.size() - 1);
+}
+
+TEST(FuzzSeeds, Hdf5TablesAreAccepted) {
+  for (const char* name : {"sqrt-2x3x4.h5", "linear-3x2x2.h5", "single-cell.h5",
+                           "nan-in-masked.h5"}) {
+    EXPECT_NO_THROW(ReadHdf5Table(kCorpus / "hdf5_table" / name)) << name;
+  }
+  EXPECT_EQ(ReadHdf5Table(kCorpus / "hdf5_table" / "sqrt-2x3x4.h5").grid.NumCells(), 24u);
+}
+
+TEST(FuzzSeeds, NbrdfArchiveIsAccepted) {
+  const fs::path zip = WithoutModeByte(kCorpus / "nbrdf" / "archive-two", "seed.zip");
+  EXPECT_EQ(ListNbrdfMaterials(zip), (std::vector<std::string>{"alpha", "beta"}));
+  const NbrdfNetwork a = ReadNbrdf(zip, "alpha");
+  EXPECT_EQ(a.k1.rows(), 6);
+  EXPECT_EQ(a.k1.cols(), 4);
+  const NbrdfNetwork b = ReadNbrdf(zip, "beta");  // the deflated member
+  EXPECT_EQ(b.k2.rows(), 21);
+  EXPECT_EQ(b.k3.cols(), 3);
+}
+
+}  // namespace
+}  // namespace brdfit
