@@ -1,0 +1,173 @@
+// `brdfit report RESULTS... -o report.html`: one self-contained HTML page from fit reports,
+// factorizations, bench CSVs, renders and tables (io/report_inputs.h, io/html_report.h), with
+// θh slices of every material whose table is at hand. Also the demo's last step (order 90).
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cli/command.h"
+#include "cli/demo.h"
+#include "cli/progress.h"
+#include "fit/factor_export.h"
+#include "fit/metrics.h"
+#include "io/error.h"
+#include "io/atomic_file.h"
+#include "io/html_report.h"
+#include "io/report_inputs.h"
+#include "io/report_slices.h"
+#include "io/table_io.h"
+
+namespace brdfit::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using report::Entry;
+
+struct ReportCliOptions {
+  std::vector<std::string> inputs;
+  std::string out = "report.html";
+  std::string title;
+  std::vector<double> theta_d = report::DefaultSliceThetaD();
+  double phi_d = 90;
+  bool no_slices = false;
+  std::string chart_js;
+  bool quiet = false;
+};
+
+// Slices of one material: its table against every fit (model + parameters) and factorization.
+void AddSlices(const report::ReportSources& src, const ReportCliOptions& o, report::Material* m) {
+  const auto t = src.tables.find(m->name);
+  if (t == src.tables.end()) {
+    m->notes.push_back("No θh slices: the table of this material was not given and the results "
+                       "do not name a readable one.");
+    return;
+  }
+  const Table table = LoadTable(t->second);
+  std::vector<report::NamedPredictor> predictors;
+  for (const Entry& e : m->entries) {
+    if (e.kind != Entry::Kind::kFit || e.Failed() || e.params.empty()) continue;
+    try {
+      std::string label = e.name;
+      if (std::count_if(m->entries.begin(), m->entries.end(),
+                        [&](const Entry& x) { return x.name == e.name; }) > 1) {
+        label += " (" + e.budget + ", " + e.loss + ")";
+      }
+      predictors.push_back({label, "fitted", report::ModelPredictor(e.name, e.params)});
+    } catch (const InputError& err) {
+      m->notes.push_back(fmt::format("{}: not drawn in the slices: {}", e.name, err.what()));
+    }
+  }
+  for (const auto& f : src.factors) {
+    if (f.material != m->name) continue;
+    auto brdf = std::make_shared<FactoredBrdf>(LoadFactoredBrdf(f.sidecar));
+    predictors.push_back(
+        {f.label, "factored", [brdf](const HalfDiffAngles& a) { return brdf->Eval(a); }});
+  }
+  m->slices = report::ComputeThetaHSlices(table, o.theta_d, o.phi_d, predictors);
+}
+
+void CheckOptions(const ReportCliOptions& o) {
+  for (const double td : o.theta_d) {
+    if (!(td >= 0 && td < 90)) throw InputError(fmt::format("--theta-d {} outside [0, 90)", td));
+  }
+  if (!(o.phi_d >= 0 && o.phi_d < 180)) {
+    throw InputError(fmt::format("--phi-d {} outside [0, 180)", o.phi_d));
+  }
+  if (fs::is_directory(o.out)) throw InputError(o.out, "is a folder; give the HTML file name");
+}
+
+int RunReport(const ReportCliOptions& o) {
+  CheckOptions(o);
+  const fs::path chart_js = o.chart_js.empty() ? report::ChartJsPath() : fs::path(o.chart_js);
+  const std::string js = report::ReadChartJs(chart_js);  // fail before any work
+  std::vector<fs::path> inputs(o.inputs.begin(), o.inputs.end());
+  report::ReportSources src = report::ReadReportInputs(inputs);
+  report::Report& r = src.report;
+  if (!o.title.empty()) r.title = o.title;
+  r.metric_definition = MetricsDefinition();
+  if (r.materials.empty() && r.bench.empty() && r.renders.empty()) {
+    throw InputError("nothing to report: no fit report, factorization, bench CSV, render or table "
+                     "among the inputs");
+  }
+  if (!o.no_slices) {
+    Progress bar(r.materials.size(), "slices", !o.quiet);
+    for (report::Material& m : r.materials) {
+      bar.Step(m.name);
+      try {
+        AddSlices(src, o, &m);
+      } catch (const InputError& e) {
+        m.notes.push_back(fmt::format("No θh slices: {}", e.what()));
+      }
+    }
+  }
+  const std::string html = report::RenderHtml(r, js);
+  WriteTextAtomically(o.out, html);
+  if (!o.quiet) {
+    std::size_t entries = 0;
+    for (const auto& m : r.materials) entries += m.entries.size();
+    fmt::print("wrote {} ({} materials, {} results, {} bench points, {} renders)\n",
+               fs::absolute(o.out).string(), r.materials.size(), entries, r.bench.size(),
+               r.renders.size());
+  }
+  return kExitOk;
+}
+
+Registrar reg{
+    "report", "One self-contained HTML page of metrics, Pareto plots, slices and renders",
+    [](CLI::App& sub) {
+      auto o = std::make_shared<ReportCliOptions>();
+      sub.add_option("results", o->inputs,
+                     "fit reports, .factor.json sidecars, bench .csv, .png renders, tables, or "
+                     "folders holding them")
+          ->required();
+      sub.add_option("-o,--out", o->out, "output HTML file")->capture_default_str();
+      sub.add_option("--title", o->title, "page title");
+      sub.add_option("--theta-d", o->theta_d,
+                     "theta_d of the slices in degrees (each snaps to its bin's centre)")
+          ->delimiter(',')
+          ->capture_default_str();
+      sub.add_option("--phi-d", o->phi_d, "phi_d of the slices in degrees")->capture_default_str();
+      sub.add_flag("--no-slices", o->no_slices, "skip the theta_h slices (no table is read)");
+      sub.add_option("--chart-js", o->chart_js,
+                     "Chart.js to inline (default $BRDFIT_CHART_JS or "
+                     "/usr/share/javascript/chart.js/chart.min.js)");
+      sub.add_flag("-q,--quiet", o->quiet, "no summary line, no progress bar");
+      sub.footer(
+          "The page needs no network: Chart.js (Debian's libjs-chart.js) and the renders are "
+          "inlined.\nSlices need each material's table: the one a result names, or give it.\n"
+          "Exit codes: 0 written, 2 bad input (a file missing, unreadable or of no known kind).\n"
+          "Examples:\n"
+          "  brdfit report fits.h5 -o report.html\n"
+          "  brdfit report fits.h5 factor/*.factor.json bench.csv compare.png -o report.html\n"
+          "  brdfit report demo-out/ demo-out/factor -o report.html --theta-d 0,20,45,70");
+      return [o] { return RunReport(*o); };
+    }};
+
+// Demo step 90: everything the demo wrote, in one page.
+int DemoReport(DemoContext& ctx) {
+  ReportCliOptions o;
+  for (const auto& p : ctx.outputs) {
+    const std::string name = p.filename().string();
+    const bool factor = name.size() > 12 && name.ends_with(".factor.json");
+    const bool known = factor || p.extension() == ".csv" || p.extension() == ".png";
+    if (known) o.inputs.push_back(p.string());
+  }
+  for (const auto& t : ctx.tables) o.inputs.push_back(t.string());
+  o.out = (ctx.out_dir / "report.html").string();
+  o.title = "brdfit demo report";
+  o.quiet = true;
+  const int code = RunReport(o);
+  if (code == kExitOk) {
+    ctx.outputs.push_back(o.out);
+    fmt::print("report: {}\n", fs::absolute(o.out).string());
+  }
+  return code;
+}
+
+DemoStepRegistrar demo_step{90, "report", DemoReport};
+
+}  // namespace
+}  // namespace brdfit::cli

@@ -1,0 +1,173 @@
+#include "io/report_inputs.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "io/bench_csv.h"
+#include "io/error.h"
+#include "io/table_io.h"
+
+namespace brdfit::report {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+bool EndsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+std::string Lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+json ReadJson(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot open");
+  const json j = json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) throw InputError(path, "not a JSON object");
+  return j;
+}
+
+enum class Kind { kFactor, kBench, kRender, kTable, kUnknown };
+
+Kind Classify(const fs::path& p) {
+  const std::string name = Lower(p.filename().string());
+  if (EndsWith(name, ".factor.json")) return Kind::kFactor;
+  if (EndsWith(name, ".csv")) return Kind::kBench;
+  if (EndsWith(name, ".png")) return Kind::kRender;
+  if (EndsWith(name, ".binary") || EndsWith(name, ".merl") || EndsWith(name, ".h5") ||
+      EndsWith(name, ".hdf5")) {
+    return Kind::kTable;
+  }
+  return Kind::kUnknown;
+}
+
+double Get(const json& j, const char* key, double fallback = 0) {
+  const auto it = j.find(key);
+  return it != j.end() && it->is_number() ? it->get<double>() : fallback;
+}
+
+}  // namespace
+
+std::string MaterialName(const fs::path& table) { return table.stem().string(); }
+
+Entry FactorEntry(const fs::path& sidecar, std::string* material, std::string* table) {
+  const json j = ReadJson(sidecar);
+  if (j.value("format", "") != "brdfit-factorization") {
+    throw InputError(sidecar, "not a brdfit factorization sidecar (no format "
+                              "\"brdfit-factorization\")");
+  }
+  Entry e;
+  e.kind = Entry::Kind::kFactor;
+  e.name = "factor:" + j.value("parameterization", std::string("?"));
+  e.loss = "log (linear)";
+  const json solver = j.value("solver", json::object());
+  e.budget = fmt::format("res {}", solver.value("resolution", 0));
+  e.status = "converged";
+  const json stats = j.value("stats", json::object());
+  const double seconds = Get(stats, "seconds"), system = Get(stats, "system_seconds");
+  e.time_ms = 1e3 * seconds;
+  e.times_ms = {{"system", 1e3 * system}, {"solve", 1e3 * (seconds - system)}};
+  if (stats.value("system_reused", false)) e.message = "factored system reused";
+  const json fm = j.value("metrics", json::object()).value("fit_metrics", json::object());
+  e.metrics.ok = fm.value("ok", false);
+  e.metrics.log_rmse = Get(fm, "log_rmse");
+  e.metrics.cbrt_rmse = Get(fm, "cbrt_rmse");
+  e.metrics.rel_l2 = Get(fm, "rel_l2");
+  e.metrics.cells = fm.value("cells", std::size_t{0});
+  e.metrics.weighting = fm.value("weighting", std::string());
+  e.metrics.cutoff_deg = Get(fm, "cutoff_deg");
+  if (!e.metrics.ok) {
+    e.status = "failed";
+    e.message = fm.value("problem", std::string("no metrics in the sidecar"));
+  }
+  const std::string file =
+      j.value("source", json::object()).value("file", std::string());
+  *table = file;
+  // The stem of the sidecar minus the ".factor" part, when the sidecar names no source.
+  *material = file.empty() ? MaterialName(fs::path(sidecar.stem()).stem()) : MaterialName(file);
+  return e;
+}
+
+namespace {
+
+void AddInput(const fs::path& p, bool explicit_input, ReportSources* out) {
+  const Kind kind = Classify(p);
+  Report& r = out->report;
+  switch (kind) {
+    case Kind::kFactor: {
+      std::string material, table;
+      Entry e = FactorEntry(p, &material, &table);
+      Material& m = r.GetOrAddMaterial(material);
+      if (m.source.empty()) m.source = table;
+      if (!table.empty() && !out->tables.count(material) && fs::is_regular_file(table)) {
+        out->tables[material] = table;
+      }
+      // Two factorizations with the same name and budget (e.g. --suffix runs): keep both apart.
+      for (const Entry& other : m.entries) {
+        if (other.Key() == e.Key()) e.name += " (" + p.filename().string() + ")";
+      }
+      out->factors.push_back({material, e.name, p});
+      m.entries.push_back(std::move(e));
+      break;
+    }
+    case Kind::kBench: {
+      auto points = ReadBenchCsv(p);
+      r.bench.insert(r.bench.end(), points.begin(), points.end());
+      break;
+    }
+    case Kind::kRender:
+      r.renders.push_back({p.stem().string(), p.string()});
+      break;
+    case Kind::kTable: {
+      try {
+        DetectTableFormat(p);
+      } catch (const InputError&) {
+        if (explicit_input) throw;
+        return;
+      }
+      out->tables[MaterialName(p)] = p;
+      Material& m = r.GetOrAddMaterial(MaterialName(p));
+      if (m.source.empty()) m.source = p.string();
+      break;
+    }
+    case Kind::kUnknown:
+      if (explicit_input) {
+        throw InputError(p, "not a known report input (fit report, .factor.json, bench .csv, "
+                            ".png render, table)");
+      }
+      break;
+  }
+}
+
+}  // namespace
+
+ReportSources ReadReportInputs(const std::vector<fs::path>& inputs) {
+  ReportSources out;
+  for (const fs::path& p : inputs) {
+    std::error_code ec;
+    if (fs::is_directory(p, ec)) {
+      std::vector<fs::path> files;
+      for (const auto& e : fs::directory_iterator(p)) {
+        if (e.is_regular_file()) files.push_back(e.path());
+      }
+      std::sort(files.begin(), files.end());
+      for (const auto& f : files) AddInput(f, false, &out);
+    } else if (fs::is_regular_file(p, ec)) {
+      AddInput(p, true, &out);
+    } else {
+      throw InputError(p, "no such file or folder");
+    }
+    out.report.inputs.push_back(p.string());
+  }
+  return out;
+}
+
+}  // namespace brdfit::report
