@@ -27,12 +27,14 @@ enum class BurleyVariant {
 //   F(c) = 1 + (F_D90 - 1)(1 - c)^5.                                         [1/sr, no cosine]
 // r is Frostbite's "linearRoughness", the perceptual roughness: r = sqrt(alpha) (the project's
 // parameter is alpha). Seed 004 passes alpha itself as linearRoughness (kSeed004 reproduces it).
-// Energy: see docs/models.md (Frostbite's renormalization keeps the albedo <= 1 — tested).
+// NOT energy conserving: Frostbite's renormalization (energyFactor = 1/1.51 at r = 1) is a fit;
+// with kd = 1 the directional albedo reaches 1.03 at 89.9 deg incidence and r = 1 (1.009 at
+// 89 deg); Burley 2012's original reaches about 1.2 (tests/models/test_physics.cc).
 //
 // Parameters: kd_r, kd_g, kd_b [0, 1] linear weights; alpha [1e-4, 1].
 template <BurleyVariant V>
 struct BurleyDiffuse {
-  static constexpr bool kEnergyConserving = V != BurleyVariant::kDisney;
+  static constexpr bool kEnergyConserving = false;
   static constexpr std::array<ParamSpec, 4> kParams = {{
       {"kd_r", "1", 0.0, 1.0, 0.5, false, "diffuse albedo (base colour), red", ParamRole::kWeightR},
       {"kd_g", "1", 0.0, 1.0, 0.5, false, "diffuse albedo (base colour), green",

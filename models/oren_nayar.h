@@ -19,15 +19,16 @@ namespace brdfit {
 // fixed, D19): cos(dph) sin(th_i) sin(th_o) = wi.x wo.x + wi.y wo.y and
 // sin(a) tan(b) = sin(th_i) sin(th_o) / cos(b) = sin(th_i) sin(th_o) / max(cos_i, cos_o), so
 //   f_r = kd / pi (A + B max(0, wi.x wo.x + wi.y wo.y) / max(cos_i, cos_o)).
-// sigma = 0 is Lambert. Energy: see docs/models.md (the qualitative model is not exactly
-// energy conserving; its albedo stays below 1 for kd = 1 — tested).
+// sigma = 0 is Lambert. NOT energy conserving: the qualitative model is a fit to the full
+// Oren-Nayar model, and with kd = 1 its directional albedo reaches 1.015 at 89.9 deg incidence
+// (sigma ~ 0.2; tests/models/test_physics.cc); below ~85 deg it stays <= 1.
 //
 // Parameters: kd_r, kd_g, kd_b [0, 1] linear weights; sigma [0, pi/2] rad.
 struct OrenNayar {
   static constexpr std::string_view kName = "oren-nayar";
   static constexpr std::string_view kDoc =
       "Oren-Nayar rough diffuse (1994, qualitative model eq. 30), sigma = facet slope std. dev.";
-  static constexpr bool kEnergyConserving = true;
+  static constexpr bool kEnergyConserving = false;
   static constexpr std::array<ParamSpec, 4> kParams = {{
       {"kd_r", "1", 0.0, 1.0, 0.5, false, "diffuse albedo, red", ParamRole::kWeightR},
       {"kd_g", "1", 0.0, 1.0, 0.5, false, "diffuse albedo, green", ParamRole::kWeightG},
