@@ -19,25 +19,52 @@ bool Less(double a, double b) {
 }
 }  // namespace
 
-// Grid values of one shape parameter: geometric for log_scale parameters, else uniform,
-// endpoints included.
-std::vector<double> ShapeGridValues(const ParamSpec& s, int n) {
-  std::vector<double> v(n);
-  for (int i = 0; i < n; ++i) {
-    const double t = n == 1 ? 0.5 : static_cast<double>(i) / (n - 1);
-    v[i] = s.log_scale ? std::exp(std::log(s.lower) + t * (std::log(s.upper) - std::log(s.lower)))
-                       : s.lower + t * (s.upper - s.lower);
+ShapeStarts MakeShapeStarts(const ParamLayout& layout, const std::vector<int>& dims_idx,
+                            bool coarse) {
+  const std::size_t dims = dims_idx.size();
+  ShapeStarts out;
+  auto at = [&](std::size_t d, double t) {  // t in [0, 1] -> parameter value
+    const int idx = dims_idx[d];
+    return layout.FromOpt(
+        idx, layout.lower_opt[idx] + t * (layout.upper_opt[idx] - layout.lower_opt[idx]));
+  };
+  if (dims == 0) {
+    out.points.assign(1, {});
+  } else if (dims <= 2) {
+    const int n = dims == 1 ? (coarse ? 24 : 48) : (coarse ? 8 : 14);
+    std::vector<int> odo(dims, 0);
+    while (true) {
+      std::vector<double> point(dims);
+      for (std::size_t d = 0; d < dims; ++d) {
+        point[d] = at(d, static_cast<double>(odo[d]) / (n - 1));
+      }
+      out.points.push_back(point);
+      std::size_t d = 0;
+      while (d < dims && ++odo[d] == n) odo[d++] = 0;
+      if (d == dims) break;
+    }
+    out.spacing.assign(dims, 1.0 / (n - 1));
+  } else {
+    // Halton 1960 points: every coordinate takes as many distinct values as there are points
+    // (a product grid of the same size would give each only n^(1/d)).
+    const int n = coarse ? 64 : 343;
+    constexpr int kPrimes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53};
+    for (int i = 1; i <= n; ++i) {
+      std::vector<double> point(dims);
+      for (std::size_t d = 0; d < dims; ++d) {
+        const int base = kPrimes[d % 16] + (d >= 16 ? 58 : 0);
+        double f = 1.0, t = 0.0;
+        for (int k = i; k > 0; k /= base) {
+          f /= base;
+          t += f * (k % base);
+        }
+        point[d] = at(d, t);
+      }
+      out.points.push_back(point);
+    }
+    out.spacing.assign(dims, std::pow(static_cast<double>(n), -1.0 / dims));
   }
-  return v;
-}
-
-// Points per shape dimension: 48 in 1-D (ratio 1.22 between alphas over [1e-4, 1]), 14 in
-// 2-D, 7 in 3-D, then about 1000^(1/d) with at least 3.
-int ShapeGridSize(std::size_t dims) {
-  if (dims <= 1) return 48;
-  if (dims == 2) return 14;
-  if (dims == 3) return 7;
-  return std::max(3, static_cast<int>(std::floor(std::pow(1000.0, 1.0 / dims))));
+  return out;
 }
 
 GridInitializer::GridInitializer(const Samples& s, const LossData& l, const ParamLayout& layout,
@@ -58,36 +85,37 @@ GridInitializer::GridInitializer(const Samples& s, const LossData& l, const Para
 }
 
 std::vector<InitCandidate> GridInitializer::Run(int keep) {
-  const std::size_t dims = layout_.shape.size();
-  const int per_dim = ShapeGridSize(dims);
-  std::vector<std::vector<double>> values;
-  for (int idx : layout_.shape) values.push_back(ShapeGridValues(layout_.specs[idx], per_dim));
-
+  // Outer search: the log-scale shape parameters (alpha, exponents: where the loss is
+  // multimodal). Inner: colour weights solved linearly and, if the model has linear-scale shape
+  // parameters (cxy, f0, metallic, ...), a short compass search over them from their defaults.
+  std::vector<int> outer, inner;
+  for (int idx : layout_.shape) (layout_.specs[idx].log_scale ? outer : inner).push_back(idx);
+  const ShapeStarts starts = MakeShapeStarts(layout_, outer, !inner.empty());
+  const std::vector<double> inner_step = Spacing(inner, std::vector<double>(inner.size(), 0.25));
   std::vector<double> p(layout_.size());
   for (std::size_t i = 0; i < p.size(); ++i) p[i] = layout_.specs[i].init;
   std::vector<InitCandidate> all;
-  std::vector<int> odo(dims, 0);
-  while (true) {
-    for (std::size_t d = 0; d < dims; ++d) p[layout_.shape[d]] = values[d][odo[d]];
-    all.push_back(EvaluatePoint(p));
-    std::size_t d = 0;
-    while (d < dims && ++odo[d] == per_dim) odo[d++] = 0;
-    if (d == dims) break;
+  for (const auto& point : starts.points) {
+    for (std::size_t d = 0; d < outer.size(); ++d) p[outer[d]] = point[d];
+    InitCandidate c = EvaluatePoint(p);
+    if (!inner.empty()) PatternSearch(&c, inner, inner_step, 3, 24);
+    all.push_back(std::move(c));
   }
   // Stable order: ties keep grid order, so results do not depend on the sort algorithm.
   std::stable_sort(all.begin(), all.end(), [](const InitCandidate& a, const InitCandidate& b) {
     return Less(a.cost, b.cost);
   });
-  // Refine the best few: pattern search over the shape parameters, then Gauss-Newton on the
+  // Refine the best few: compass search over every shape parameter, then Gauss-Newton on the
   // weights, then rescore.
   const std::size_t refine = std::min<std::size_t>(all.size(), std::max(keep, 1) + 1);
   all.resize(refine);
-  std::vector<double> spacing;
-  for (int idx : layout_.shape) {
-    spacing.push_back((layout_.upper_opt[idx] - layout_.lower_opt[idx]) / std::max(per_dim - 1, 1));
-  }
+  std::vector<double> fractions(starts.spacing);
+  fractions.resize(layout_.shape.size(), 0.125);  // inner dims after the outer ones
+  std::vector<int> dims = outer;
+  dims.insert(dims.end(), inner.begin(), inner.end());
+  const std::vector<double> step = Spacing(dims, fractions);
   for (auto& c : all) {
-    PatternSearch(&c, spacing);
+    PatternSearch(&c, dims, step, 6, 200);
     ComputeBasis(c.params);
     for (int it = 0; it < 2; ++it) Relinearize(&c.params);
     c.cost = Score(c.params);
@@ -97,6 +125,15 @@ std::vector<InitCandidate> GridInitializer::Run(int keep) {
   });
   all.resize(std::min<std::size_t>(all.size(), std::max(keep, 1)));
   return all;
+}
+
+std::vector<double> GridInitializer::Spacing(const std::vector<int>& dims,
+                                             const std::vector<double>& fractions) const {
+  std::vector<double> out;
+  for (std::size_t d = 0; d < dims.size(); ++d) {
+    out.push_back(fractions[d] * (layout_.upper_opt[dims[d]] - layout_.lower_opt[dims[d]]));
+  }
+  return out;
 }
 
 // d T(x) / dx of the loss transform, through a Jet (same guards as the loss).
@@ -109,18 +146,18 @@ InitCandidate GridInitializer::EvaluatePoint(std::vector<double> p) {
 
 // Compass search (Kolda, Lewis, Torczon 2003, "Optimization by Direct Search", SIAM Review
 // 45(3), §3): +-step along each shape coordinate (log for log_scale parameters), accept any
-// improvement, halve the steps when none; six halvings from the grid spacing.
-void GridInitializer::PatternSearch(InitCandidate* c, const std::vector<double>& spacing) {
-  constexpr int kLevels = 6;
-  constexpr int kMaxEvaluations = 200;
+// improvement, halve the steps when none.
+void GridInitializer::PatternSearch(InitCandidate* c, const std::vector<int>& dims,
+                                    const std::vector<double>& spacing, int levels,
+                                    int max_evaluations) {
   std::vector<double> step = spacing;
   int evaluations = 0;
-  for (int level = 0; level < kLevels && evaluations < kMaxEvaluations; ++level) {
+  for (int level = 0; level < levels && evaluations < max_evaluations; ++level) {
     bool improved = true;
-    while (improved && evaluations < kMaxEvaluations) {
+    while (improved && evaluations < max_evaluations) {
       improved = false;
-      for (std::size_t d = 0; d < layout_.shape.size(); ++d) {
-        const int idx = layout_.shape[d];
+      for (std::size_t d = 0; d < dims.size(); ++d) {
+        const int idx = dims[d];
         for (const double sign : {-1.0, 1.0}) {
           const double x0 = layout_.ToOpt(idx, c->params[idx]);
           const double x =
@@ -150,10 +187,14 @@ double GridInitializer::Slope(double x) const {
 void GridInitializer::ComputeBasis(const std::vector<double>& p_in) {
   const std::size_t K = layout_.lobes.size(), ns = s_.NumSamples();
   basis_.assign(ns * K * 3, 0.0);
+  offset_.assign(ns * 3, 0.0);
   std::vector<double> p = p_in;
   for (const auto& lobe : layout_.lobes) {
     for (int idx : lobe) p[idx] = 0.0;
   }
+  // The part that no colour weight scales (zero for Lambert and the lobes; all of ue4, whose
+  // base colour is a shape parameter).
+  for (std::size_t s = 0; s < ns; ++s) eval_(p.data(), s_.geometry[s], &offset_[3 * s]);
   for (std::size_t k = 0; k < K; ++k) {
     for (int idx : layout_.lobes[k]) p[idx] = 1.0;
     for (std::size_t s = 0; s < ns; ++s) {
@@ -167,7 +208,7 @@ void GridInitializer::ComputeBasis(const std::vector<double>& p_in) {
 
 double GridInitializer::Predict(const std::vector<double>& p, std::size_t s, int ch) const {
   const std::size_t K = layout_.lobes.size();
-  double f = 0;
+  double f = offset_[3 * s + ch];
   for (std::size_t k = 0; k < K; ++k) f += p[layout_.lobes[k][ch]] * basis_[(s * K + k) * 3 + ch];
   return f;
 }
@@ -186,7 +227,7 @@ void GridInitializer::SolveWeights(const std::vector<double>& w, const std::vect
       double ws = 0, wy = 0;
       for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
         ws += w[3 * o + ch];
-        wy += w[3 * o + ch] * y[3 * o + ch];
+        wy += w[3 * o + ch] * (y[3 * o + ch] - offset_[3 * s + ch]);
       }
       N.noalias() += ws * basis * basis.transpose();
       b.noalias() += wy * basis;

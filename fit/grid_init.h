@@ -1,14 +1,17 @@
 // The initializer: a grid over the shape parameters; at each grid point the linear colour
 // weights are solved by box-constrained weighted least squares (variable projection, Golub &
-// Pereyra 1973; reference.md §5: "solve the linear weights at fixed alpha"). The best grid
-// points are refined by a compass search over the shape parameters (same inner solve).
+// Pereyra 1973; reference.md §5: "solve the linear weights at fixed alpha"). The grid spans
+// the log-scale shape parameters (alpha, exponents); linear-scale ones (cxy, f0, metallic)
+// get a short compass search from their defaults at each grid point. The best points are
+// refined by a compass search over all shape parameters (same inner solve).
 //
 // The weighted least squares is the loss linearized at the data: e ~ d (f - m) with
 // d = inv T'(m c) c, so each cell/channel weighs omega d^2 with target m. Every grid point is
 // scored with the true loss (robust function included). The best points get two Gauss-Newton
 // refinements of their weights (relinearized at the current prediction) and are rescored.
 // Assumes what ParamRole promises: channel c of the model is jointly linear in the channel-c
-// weights of all lobes, with no constant term (tested for every catalog model).
+// weights of all lobes (tested for every catalog model); a part no weight scales (ue4) is
+// evaluated separately and kept as an offset.
 #pragma once
 
 #include <ceres/loss_function.h>
@@ -29,13 +32,16 @@ struct InitCandidate {
 // f_r of a model at a geometry, double precision (models/param.h: M::Eval<double>).
 using EvalFn = void (*)(const double* params, const Geometry& g, double rgb[3]);
 
-// Grid values of one shape parameter: geometric for log_scale parameters, else uniform,
-// endpoints included.
-std::vector<double> ShapeGridValues(const ParamSpec& s, int n);
-
-// Points per shape dimension: 48 in 1-D (ratio 1.22 between alphas over [1e-4, 1]), 14 in
-// 2-D, 7 in 3-D, then about 1000^(1/d) with at least 3.
-int ShapeGridSize(std::size_t dims);
+// Starting points over some shape parameters (indices dims; values in parameter space),
+// uniform in the optimization space (log for log_scale parameters) over the bounds: a product
+// grid in 1-D (48 points: alpha ratio 1.22 over [1e-4, 1]) and 2-D (14 x 14), Halton points
+// beyond (343); coarse: 24, 8 x 8, 64. spacing: typical distance between points per
+// dimension, as a fraction of the range.
+struct ShapeStarts {
+  std::vector<std::vector<double>> points;
+  std::vector<double> spacing;
+};
+ShapeStarts MakeShapeStarts(const ParamLayout& layout, const std::vector<int>& dims, bool coarse);
 
 class GridInitializer {
  public:
@@ -47,7 +53,10 @@ class GridInitializer {
 
  private:
   InitCandidate EvaluatePoint(std::vector<double> p);
-  void PatternSearch(InitCandidate* c, const std::vector<double>& spacing);
+  void PatternSearch(InitCandidate* c, const std::vector<int>& dims,
+                     const std::vector<double>& spacing, int levels, int max_evaluations);
+  std::vector<double> Spacing(const std::vector<int>& dims,
+                              const std::vector<double>& fractions) const;
   double Slope(double x) const;
   void ComputeBasis(const std::vector<double>& p);
   double Predict(const std::vector<double>& p, std::size_t s, int ch) const;
@@ -61,7 +70,7 @@ class GridInitializer {
   const ParamLayout& layout_;
   EvalFn eval_;
   const ceres::LossFunction* robust_;
-  std::vector<double> w_data_, y_data_, basis_;
+  std::vector<double> w_data_, y_data_, basis_, offset_;
 };
 
 }  // namespace brdfit::internal

@@ -37,6 +37,8 @@ inline Table SynthModel(const std::string& model, const std::vector<double>& par
 }
 
 // A small grid for unit tests (MERL's sqrt theta_h mapping, coarser bins).
-inline Grid SmallGrid() { return Grid{30, 30, 60, ThetaHMapping::kSqrt}; }
+inline Grid SmallGrid() {
+  return Grid{30, 30, 60, ThetaHMapping::kSqrt};
+}
 
 }  // namespace brdfit::testing

@@ -31,7 +31,9 @@ struct Case {
 
 // Phong-type exponent equivalent to a Beckmann/GGX alpha (Walter et al. 2007, eq. 30:
 // alpha_p = 2 alpha_b^-2 - 2).
-double PhongExponent(double alpha) { return 2.0 / (alpha * alpha) - 2.0; }
+double PhongExponent(double alpha) {
+  return 2.0 / (alpha * alpha) - 2.0;
+}
 
 Case CaseFor(const std::string& spec, double alpha) {
   const std::vector<std::string> diffuse = {"lambert.kd_r=0.21", "lambert.kd_g=0.13",
@@ -83,7 +85,8 @@ std::string Name(const ::testing::TestParamInfo<RecoveryParam>& info) {
 
 std::vector<RecoveryParam> AllCases() {
   std::vector<RecoveryParam> out;
-  for (const char* spec : {"ggx", "beckmann", "ward", "lafortune", "blinn-phong", "cook-torrance"}) {
+  for (const char* spec :
+       {"ggx", "beckmann", "ward", "lafortune", "blinn-phong", "cook-torrance"}) {
     for (int a = 0; a < 5; ++a) out.push_back({spec, a});
   }
   return out;
@@ -97,8 +100,8 @@ void ExpectRecovered(const FitResult& r, const std::vector<double>& truth, doubl
   for (std::size_t i = 0; i < truth.size(); ++i) {
     const double rel = std::abs(r.params[i] - truth[i]) / std::abs(truth[i]);
     worst = std::max(worst, rel);
-    EXPECT_LE(rel, tol) << what << " " << r.param_names[i] << " fitted " << r.params[i]
-                        << " true " << truth[i];
+    EXPECT_LE(rel, tol) << what << " " << r.param_names[i] << " fitted " << r.params[i] << " true "
+                        << truth[i];
   }
   ::testing::Test::RecordProperty("worst_relative_error", std::to_string(worst));
   std::printf("%s: worst relative parameter error %.3g, %d iterations, solve %.0f ms\n",

@@ -1,0 +1,153 @@
+// Metrics against an independent brute-force computation over the table's cells, and their
+// basic properties.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "fit/fitter.h"
+#include "fit/metrics.h"
+#include "fit/samples.h"
+#include "fit_test_util.h"
+#include "models/registry.h"
+
+namespace brdfit {
+namespace {
+
+using testing::Params;
+using testing::SmallGrid;
+using testing::SynthModel;
+
+// Simpson's rule on [a, b] with 64 intervals.
+template <class F>
+double Simpson(F f, double a, double b) {
+  const int n = 64;
+  const double h = (b - a) / n;
+  double s = f(a) + f(b);
+  for (int i = 1; i < n; ++i) s += f(a + i * h) * (i % 2 ? 4 : 2);
+  return s * h / 3;
+}
+
+struct Brute {
+  double log_rmse, cbrt_rmse, rel_l2;
+};
+
+// Straight from the definitions (fit/metrics.h): every valid cell of the table whose centre
+// directions are inside the cut-off, its own geometry (no mirror pairing), the cell measure by
+// numerical integration, plain std::log1p / std::cbrt.
+Brute BruteForce(const Table& t, const ModelInfo& m, const std::vector<double>& p, double cut) {
+  const Grid& g = t.grid;
+  double sw = 0, sl = 0, sc = 0, num = 0, den = 0;
+  for (std::size_t idx = 0; idx < g.NumCells(); ++idx) {
+    if (!t.valid[idx]) continue;
+    Vec3 wi, wo;
+    FromHalfDiff(g.CellCentre(idx), 0.0, &wi, &wo);
+    if (wi.z < std::cos(cut) || wo.z < std::cos(cut)) continue;
+    int ih, id, ip;
+    g.Unindex(idx, &ih, &id, &ip);
+    const double ih_int =
+        Simpson([](double x) { return std::sin(x); }, g.ThetaHAt(ih), g.ThetaHAt(ih + 1.0));
+    const double id_int = Simpson([](double x) { return std::sin(x) * std::cos(x); },
+                                  g.ThetaDAt(id), g.ThetaDAt(id + 1.0));
+    const double w = 2 * kPi * 4 * ih_int * id_int * kPi / g.n_phi_d;
+    double f[3];
+    m.eval(p.data(), MakeGeometry(wi, wo), f);
+    const double c = wi.z;
+    for (int ch = 0; ch < 3; ++ch) {
+      const double v = t.Value(idx)[ch];
+      sl += w * std::pow(std::log1p(f[ch] * c) - std::log1p(v * c), 2);
+      sc += w * std::pow(std::cbrt(f[ch] * c) - std::cbrt(v * c), 2);
+      num += w * c * c * (f[ch] - v) * (f[ch] - v);
+      den += w * c * c * v * v;
+    }
+    sw += 3 * w;
+  }
+  return {std::sqrt(sl / sw), std::sqrt(sc / sw), std::sqrt(num / den)};
+}
+
+std::vector<double> Predict(const Samples& s, const ModelInfo& m, const std::vector<double>& p) {
+  std::vector<double> per_sample(3 * s.NumSamples());
+  for (std::size_t k = 0; k < s.NumSamples(); ++k)
+    m.eval(p.data(), s.geometry[k], &per_sample[3 * k]);
+  return ExpandToObservations(s, per_sample);
+}
+
+TEST(Metrics, MatchIndependentBruteForce) {
+  const Grid g = SmallGrid();
+  const std::vector<double> truth = Params("lambert+ggx", {"ggx.alpha=0.08"});
+  const Table t = SynthModel("lambert+ggx", truth, g, 0.05, 0.2, 3);
+  const ModelInfo& m = *FindModel("lambert+ggx");
+  // A deliberately wrong model: other alpha and colours.
+  const std::vector<double> p =
+      Params("lambert+ggx", {"ggx.alpha=0.15", "lambert.kd_r=0.3", "ggx.ks_b=0.05"});
+  SampleOptions o;
+  o.cutoff_deg = 75;
+  const Samples s = PrepareSamples(t, o);
+  const FitMetrics fm = ComputeMetrics(s, Predict(s, m, p));
+  const Brute b = BruteForce(t, m, p, 75 * kPi / 180);
+  ASSERT_TRUE(fm.ok) << fm.problem;
+  EXPECT_NEAR(fm.log_rmse / b.log_rmse, 1.0, 1e-9);
+  EXPECT_NEAR(fm.cbrt_rmse / b.cbrt_rmse, 1.0, 1e-9);
+  EXPECT_NEAR(fm.rel_l2 / b.rel_l2, 1.0, 1e-9);
+  EXPECT_GT(fm.log_rmse, 0.01);
+  EXPECT_EQ(fm.weighting, "bin-measure");
+  EXPECT_EQ(fm.cutoff_deg, 75);
+  EXPECT_EQ(fm.cells, s.NumObservations());
+  // The worst cell is one of the samples, with its own values.
+  EXPECT_GT(fm.worst.log_error, fm.log_rmse);
+  EXPECT_TRUE(t.valid[fm.worst.cell]);
+  EXPECT_EQ(fm.worst.measured[0], t.Value(fm.worst.cell)[0]);
+}
+
+TEST(Metrics, PerfectAndScaledPredictions) {
+  const Table t = SynthModel("lambert+ggx", Params("lambert+ggx", {}), SmallGrid());
+  const Samples s = PrepareSamples(t, SampleOptions{});
+  std::vector<double> exact(s.value.begin(), s.value.end());
+  FitMetrics m = ComputeMetrics(s, exact);
+  EXPECT_TRUE(m.ok);
+  EXPECT_EQ(m.log_rmse, 0.0);
+  EXPECT_EQ(m.cbrt_rmse, 0.0);
+  EXPECT_EQ(m.rel_l2, 0.0);
+  for (double& v : exact) v *= 2;
+  m = ComputeMetrics(s, exact);
+  EXPECT_NEAR(m.rel_l2, 1.0, 1e-12);  // ||2m - m|| / ||m||
+  // cbrt(2 x) - cbrt(x) = (2^(1/3) - 1) cbrt(x).
+  double sum = 0;
+  for (std::size_t ob = 0; ob < s.NumObservations(); ++ob) {
+    for (int ch = 0; ch < 3; ++ch) {
+      sum += s.weight[ob] * std::pow(std::cbrt(s.value[3 * ob + ch] * s.cos_i[ob]), 2);
+    }
+  }
+  EXPECT_NEAR(m.cbrt_rmse / ((std::cbrt(2.0) - 1) * std::sqrt(sum / (3 * s.total_weight))), 1.0,
+              1e-12);
+}
+
+TEST(Metrics, NonFinitePredictionIsReportedNotPropagated) {
+  const Table t = SynthModel("lambert", Params("lambert", {}), SmallGrid());
+  const Samples s = PrepareSamples(t, SampleOptions{});
+  std::vector<double> pred(s.value.begin(), s.value.end());
+  pred[7] = std::numeric_limits<double>::quiet_NaN();
+  const FitMetrics m = ComputeMetrics(s, pred);
+  EXPECT_FALSE(m.ok);
+  EXPECT_FALSE(m.problem.empty());
+  EXPECT_TRUE(std::isfinite(m.log_rmse) && std::isfinite(m.cbrt_rmse) && std::isfinite(m.rel_l2));
+  EXPECT_THROW(ComputeMetrics(s, std::vector<double>(3)), std::invalid_argument);
+}
+
+TEST(Metrics, FitCostEqualsMetricForMatchingLoss) {
+  // With the full budget the fit samples are the metric samples: the log loss's cost is
+  // log_rmse^2 and the cube-root loss's cost is cbrt_rmse^2 (fit/loss.h).
+  const Table t =
+      SynthModel("lambert+ggx", Params("lambert+ggx", {"ggx.alpha=0.2"}), SmallGrid(), 0.1, 0.0, 5);
+  for (const LossKind loss : {LossKind::kLog, LossKind::kCbrt}) {
+    FitOptions fo;
+    fo.loss = loss;
+    const FitResult r = FitTable("lambert+ggx", t, SampleOptions{}, fo);
+    ASSERT_FALSE(r.Failed()) << r.message;
+    const double metric = loss == LossKind::kLog ? r.metrics.log_rmse : r.metrics.cbrt_rmse;
+    EXPECT_NEAR(r.final_cost / (metric * metric), 1.0, 1e-9) << ToString(loss);
+  }
+}
+
+}  // namespace
+}  // namespace brdfit
