@@ -23,6 +23,10 @@ namespace {
 
 constexpr const char* kMemberDir = "merl_nbrdf/";
 constexpr const char* kMemberExt = ".h5";
+// Bounds on what an archive may declare, checked before allocating (fuzz_nbrdf): the networks
+// of the distribution are 6-21-21-3 and their members ~5 kB.
+constexpr zip_uint64_t kMaxMemberBytes = zip_uint64_t{64} << 20;
+constexpr hsize_t kMaxHiddenUnits = 1024;
 
 struct ZipCloser {
   void operator()(zip_t* z) const { zip_discard(z); }  // read-only: nothing to write back
@@ -65,6 +69,10 @@ std::vector<char> ReadMember(const fs::path& path, zip_t* z, const std::string& 
   if (zip_stat(z, member.c_str(), 0, &st) != 0 || !(st.valid & ZIP_STAT_SIZE)) {
     throw InputError(path, "cannot stat member " + member);
   }
+  if (st.size > kMaxMemberBytes) {
+    throw InputError(path, fmt::format("member {} declares {} bytes (at most {})", member,
+                                       st.size, kMaxMemberBytes));
+  }
   std::unique_ptr<zip_file_t, decltype(&zip_fclose)> f(zip_fopen(z, member.c_str(), 0),
                                                        &zip_fclose);
   if (!f) throw InputError(path, "cannot open member " + member + ": " + zip_strerror(z));
@@ -88,7 +96,9 @@ Eigen::MatrixXd ReadWeights(const fs::path& path, const std::string& member, con
   space.getSimpleExtentDims(dims.data());
   const bool ok = (rows == 0) ? (dims.size() == 1 && dims[0] == cols)
                               : (dims.size() == 2 && dims[0] == rows && dims[1] == cols);
-  if (ds.getTypeClass() != H5T_FLOAT || !ok) {
+  // libhdf5 sizes its conversion buffer by the declared element size (fuzz_nbrdf: a float type
+  // of gigabytes per element made it calloc 2.4 GB).
+  if (ds.getTypeClass() != H5T_FLOAT || ds.getDataType().getSize() > 8 || !ok) {
     throw InputError(path, fmt::format("{}: dataset {} has the wrong type or shape (expected "
                                        "float [{}][{}])",
                                        member, name, rows, cols));
@@ -142,6 +152,10 @@ NbrdfNetwork ReadNbrdf(const fs::path& zip, const std::string& material) {
     H5::H5File f((zip / member).string(), H5F_ACC_RDONLY, H5::FileCreatPropList::DEFAULT, fapl);
     const std::string l1 = "dense_1/dense_1/", l2 = "dense_2/dense_2/", l3 = "dense_3/dense_3/";
     const hsize_t h1 = Columns(f, l1 + "kernel:0"), h2 = Columns(f, l2 + "kernel:0");
+    if (h1 > kMaxHiddenUnits || h2 > kMaxHiddenUnits) {
+      throw InputError(zip, fmt::format("{}: hidden layers of {} and {} units (at most {})", member,
+                                        h1, h2, kMaxHiddenUnits));
+    }
     net.k1 = ReadWeights(zip, member, f, l1 + "kernel:0", 6, h1);
     net.b1 = ReadWeights(zip, member, f, l1 + "bias:0", 0, h1);
     net.k2 = ReadWeights(zip, member, f, l2 + "kernel:0", h1, h2);
