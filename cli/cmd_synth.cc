@@ -3,11 +3,13 @@
 // same bytes. Also the demo's first step (order 10): a few built-in materials.
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli/command.h"
@@ -116,7 +118,9 @@ SynthResult SynthesizeFromModel(const ModelInfo& m, const std::vector<double>& p
 
 SynthResult SynthesizeFromNbrdf(const fs::path& zip, const std::string& material, const Grid& g,
                                 const SynthOptions& so) {
-  NbrdfTabulation tab = TabulateNbrdf(ReadNbrdf(zip, material), g);
+  // The table does not depend on the thread count (tested); use the cores there are.
+  const int threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
+  NbrdfTabulation tab = TabulateNbrdf(ReadNbrdf(zip, material), g, threads);
   SynthResult r;
   r.report.below_horizon = tab.below_horizon;
   r.clamped = tab.clamped_values;

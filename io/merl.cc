@@ -1,8 +1,13 @@
 #include "io/merl.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <bit>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -29,6 +34,27 @@ constexpr std::array<const char*, 3> kChannelNames = {"R", "G", "B"};
 struct FileCloser {
   void operator()(std::FILE* f) const { std::fclose(f); }
 };
+
+struct Fd {
+  int fd;
+  ~Fd() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+// pread until `bytes` are read; false at end of file.
+bool ReadAt(int fd, void* dst, std::size_t bytes, std::uintmax_t offset) {
+  auto* p = static_cast<char*>(dst);
+  while (bytes > 0) {
+    const ssize_t got = ::pread(fd, p, bytes, static_cast<off_t>(offset));
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) return false;
+    p += got;
+    bytes -= static_cast<std::size_t>(got);
+    offset += static_cast<std::uintmax_t>(got);
+  }
+  return true;
+}
 
 std::string CellName(const Grid& g, std::size_t idx) {
   int ih, id, ip;
@@ -59,12 +85,10 @@ Table ReadMerl(const fs::path& path, MerlReadReport* report) {
   if (size < kMerlHeaderBytes) {
     throw InputError(path, fmt::format("truncated header: file is {} bytes, {}", size, expected));
   }
-  std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
-  if (!f) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
+  const Fd fd{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
+  if (fd.fd < 0) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
   std::int32_t dims[3];
-  if (std::fread(dims, sizeof(std::int32_t), 3, f.get()) != 3) {
-    throw InputError(path, "truncated header");
-  }
+  if (!ReadAt(fd.fd, dims, sizeof(dims), 0)) throw InputError(path, "truncated header");
   for (int k = 0; k < 3; ++k) {
     if (dims[k] != kMerlDims[k]) {
       throw InputError(path, fmt::format("header dimension {} ({} bins) is {}, expected {}", k + 1,
@@ -78,28 +102,38 @@ Table ReadMerl(const fs::path& path, MerlReadReport* report) {
     throw InputError(path, fmt::format("file is {} bytes, {}", size, expected));
   }
 
+  // The body is channel-planar; the table interleaves RGB. Read the three planes block by block
+  // (cache-sized buffers) and interleave while scaling: one pass, no file-sized buffer.
   const Grid grid = Grid::Merl();
   const std::size_t n = grid.NumCells();
-  std::vector<double> raw(3 * n);
-  if (std::fread(raw.data(), sizeof(double), raw.size(), f.get()) != raw.size()) {
-    throw InputError(path, "truncated: body ended early while reading");
-  }
-
+  constexpr std::size_t kBlock = 16384;  // cells per block: 3 x 128 KiB
+  std::array<std::vector<double>, 3> plane;
+  for (auto& p : plane) p.resize(kBlock);
   Table t = Table::Empty(grid);
   std::size_t negative = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    bool is_negative = false;
+  for (std::size_t start = 0; start < n; start += kBlock) {
+    const std::size_t m = std::min(kBlock, n - start);
     for (int c = 0; c < 3; ++c) {
-      const double r = raw[c * n + i];
-      if (!std::isfinite(r)) {
-        throw InputError(path, fmt::format("{} at {}, channel {}", std::isnan(r) ? "NaN" : "Inf",
-                                           CellName(grid, i), kChannelNames[c]));
+      const std::uintmax_t offset = kMerlHeaderBytes + (c * n + start) * sizeof(double);
+      if (!ReadAt(fd.fd, plane[c].data(), m * sizeof(double), offset)) {
+        throw InputError(path, "truncated: body ended early while reading");
       }
-      is_negative |= r < 0;
-      t.rgb[3 * i + c] = r * kMerlChannelScale[c];  // channel scale applied once, here
     }
-    t.valid[i] = !is_negative;
-    negative += is_negative;
+    for (std::size_t j = 0; j < m; ++j) {
+      const std::size_t i = start + j;
+      const double r[3] = {plane[0][j], plane[1][j], plane[2][j]};
+      for (int c = 0; c < 3; ++c) {
+        if (!std::isfinite(r[c])) {
+          throw InputError(path,
+                           fmt::format("{} at {}, channel {}", std::isnan(r[c]) ? "NaN" : "Inf",
+                                       CellName(grid, i), kChannelNames[c]));
+        }
+        t.rgb[3 * i + c] = r[c] * kMerlChannelScale[c];  // channel scale applied once, here
+      }
+      const bool is_negative = r[0] < 0 || r[1] < 0 || r[2] < 0;
+      t.valid[i] = !is_negative;
+      negative += is_negative;
+    }
   }
   t.provenance.source = path.string();
   t.provenance.generator = "merl";
