@@ -201,6 +201,14 @@ constexpr const char* kBootstrap = R"js(
     for (var i = 3; i < px.length; i += 4) if (px[i] > 0) inked++;
     return points > 0 && inked > 0.002 * c.width * c.height;
   }
+  // Log axes: label 1, 2 and 5 times powers of ten, in exponent form far from 1.
+  function logTick(value) {
+    if (!(value > 0)) return '';
+    var e = Math.floor(Math.log10(value) + 1e-9), m = value / Math.pow(10, e);
+    m = Math.round(m * 1000) / 1000;
+    if (m !== 1 && m !== 2 && m !== 5) return '';
+    return (e < -3 || e > 4) ? m + 'e' + e : String(Number(value.toPrecision(3)));
+  }
   specs.forEach(function (s) {
     var id = s.getAttribute('data-chart');
     try {
@@ -208,6 +216,10 @@ constexpr const char* kBootstrap = R"js(
       cfg.options = cfg.options || {};
       cfg.options.plugins = cfg.options.plugins || {};
       cfg.options.plugins.tooltip = { callbacks: { label: tooltipLabel } };
+      Object.keys(cfg.options.scales || {}).forEach(function (k) {
+        var sc = cfg.options.scales[k];
+        if (sc.type === 'logarithmic') { sc.ticks = sc.ticks || {}; sc.ticks.callback = logTick; }
+      });
       var canvas = document.getElementById(id);
       var chart = new Chart(canvas, cfg);
       if (drewSomething(chart)) { rendered++; canvas.setAttribute('data-rendered', '1'); }
@@ -263,11 +275,12 @@ class Page {
   void Header() {
     body_ += "<header><h1>" + HtmlEscape(report_.title) + "</h1>\n";
     if (!report_.inputs.empty()) {
-      body_ += "<p class=\"muted\">From ";
+      body_ += fmt::format("<details><summary>Made from {} input{}</summary><p>",
+                           report_.inputs.size(), report_.inputs.size() == 1 ? "" : "s");
       for (std::size_t i = 0; i < report_.inputs.size(); ++i) {
         body_ += (i ? ", " : "") + ("<code>" + HtmlEscape(report_.inputs[i]) + "</code>");
       }
-      body_ += "</p>\n";
+      body_ += "</p></details>\n";
     }
     if (!report_.metric_definition.empty()) {
       body_ += "<p class=\"muted\"><b>Metrics.</b> " + HtmlEscape(report_.metric_definition) +
@@ -485,6 +498,7 @@ class Page {
   }
 
   void Renders() {
+    if (report_.renders.empty() && report_.materials.empty()) return;  // e.g. a bench page
     body_ += "<section id=\"renders\"><h2>Preview renders</h2>\n";
     if (report_.renders.empty()) {
       body_ += "<p class=\"note\">No renders were given (brdfit render writes them; pass the PNG "

@@ -133,8 +133,24 @@ json ParetoChart(const std::string& title, const std::vector<ParetoPoint>& point
                       {"pointRadius", 0},
                       {"pointStyle", "line"}});
   json options = BaseOptions(title);
-  options["scales"] = {{"x", Axis("logarithmic", "time to fit (ms, log scale)")},
+  options["scales"] = {{"x", Axis("logarithmic", "time (ms, log scale)")},
                        {"y", Axis("logarithmic", error_name + " (log scale; lower is better)")}};
+  // Log axes end at the extreme data values: pad them so that no marker sits on an edge.
+  double x0 = INFINITY, x1 = 0, y0 = INFINITY, y1 = 0;
+  for (const auto& p : points) {
+    if (!p.usable || !(p.time_ms > 0) || !(p.error > 0)) continue;
+    x0 = std::min(x0, p.time_ms), x1 = std::max(x1, p.time_ms);
+    y0 = std::min(y0, p.error), y1 = std::max(y1, p.error);
+  }
+  // A margin of 6 % of the decades spanned, at least a factor 1.5.
+  auto pad = [](double lo, double hi) { return std::pow(10.0, std::max(0.176, 0.06 * std::log10(hi / lo))); };
+  if (x1 > 0 && y1 > 0) {
+    const double px = pad(x0, x1), py = pad(y0, y1);
+    options["scales"]["x"]["min"] = x0 / px;
+    options["scales"]["x"]["max"] = x1 * px;
+    options["scales"]["y"]["min"] = y0 / py;
+    options["scales"]["y"]["max"] = y1 * py;
+  }
   return {{"type", "scatter"}, {"data", {{"datasets", datasets}}}, {"options", options}};
 }
 

@@ -1,0 +1,246 @@
+// `brdfit bench FILES... --models ... --budgets ... --losses ...`: the run time against error
+// benchmark on the user's own tables. Sweeps tables x losses x budgets x models, writes one CSV
+// row per fit (io/bench_csv.h) and an HTML page with the Pareto plots (io/html_report.h).
+// Also demo step 80 (two demo tables).
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cli/command.h"
+#include "cli/demo.h"
+#include "cli/progress.h"
+#include "fit/fitter.h"
+#include "fit/metrics.h"
+#include "io/atomic_file.h"
+#include "io/bench_csv.h"
+#include "io/error.h"
+#include "io/html_report.h"
+#include "io/input_file.h"
+#include "io/table_io.h"
+
+namespace brdfit::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+struct BenchCliOptions {
+  std::vector<std::string> files;
+  std::vector<std::string> models = {"lambert+ggx"};
+  std::vector<std::string> budgets = {"full", "stride:4", "stride:16"};
+  std::vector<std::string> losses = {"log"};
+  std::string out = "bench.csv";
+  std::string plot;  // default: the CSV's name with .html
+  double cutoff_deg = SampleOptions{}.cutoff_deg;
+  int repeat = 1;
+  int threads = 1;
+  bool quiet = false;
+};
+
+double MsSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+report::BenchPoint ToPoint(const std::string& material, const std::string& table,
+                           const std::string& loss, const std::string& budget,
+                           const FitResult& r, double prepare_ms) {
+  report::BenchPoint b;
+  b.material = material;
+  b.table = table;
+  b.model = r.model;
+  b.loss = loss;
+  b.budget = budget;
+  b.status = ToString(r.status);
+  b.message = r.message;
+  b.prepare_ms = prepare_ms;
+  b.init_ms = r.times.init;
+  b.solve_ms = r.times.solve;
+  b.time_ms = prepare_ms + r.times.init + r.times.solve;
+  b.fit_cells = r.fit_cells;
+  b.iterations = r.iterations;
+  b.metrics.ok = r.metrics.ok;
+  b.metrics.log_rmse = r.metrics.log_rmse;
+  b.metrics.cbrt_rmse = r.metrics.cbrt_rmse;
+  b.metrics.rel_l2 = r.metrics.rel_l2;
+  b.metrics.cells = r.metrics.cells;
+  b.metrics.weighting = r.metrics.weighting;
+  b.metrics.cutoff_deg = r.metrics.cutoff_deg;
+  return b;
+}
+
+struct Plan {
+  std::vector<Budget> budgets;
+  std::vector<LossKind> losses;
+};
+
+// Everything that can be checked before the first fit.
+Plan CheckOptions(const BenchCliOptions& o) {
+  Plan p;
+  if (o.models.empty() || o.budgets.empty() || o.losses.empty()) {
+    throw InputError("--models, --budgets and --losses each need at least one value");
+  }
+  for (const auto& m : o.models) {
+    if (!IsFittable(m)) {
+      std::string names;
+      for (const auto& n : FittableModels()) names += (names.empty() ? "" : ", ") + n;
+      throw InputError("unknown model '" + m + "'; fittable models: " + names);
+    }
+  }
+  for (const auto& b : o.budgets) p.budgets.push_back(Budget::Parse(b));
+  for (const auto& l : o.losses) p.losses.push_back(LossKindFromString(l));
+  if (o.repeat < 1 || o.repeat > 100) throw InputError("--repeat must be in [1, 100]");
+  if (o.threads < 1 || o.threads > 256) throw InputError("--threads must be in [1, 256]");
+  if (!(o.cutoff_deg > 0 && o.cutoff_deg <= 90)) {
+    throw InputError(fmt::format("--cutoff {} outside (0, 90]", o.cutoff_deg));
+  }
+  for (const auto& f : o.files) CheckInputFile(f);
+  return p;
+}
+
+fs::path PlotPath(const BenchCliOptions& o) {
+  if (!o.plot.empty()) return o.plot;
+  fs::path p = o.out;
+  return p.replace_extension(".html");
+}
+
+int RunBench(const BenchCliOptions& o, std::vector<fs::path>* written = nullptr) {
+  const Plan plan = CheckOptions(o);
+  const std::string chart_js = report::ReadChartJs();  // fail before any fit
+  const std::size_t fits_per_table = plan.budgets.size() * plan.losses.size() * o.models.size();
+  Progress bar(o.files.size() * fits_per_table, "bench", !o.quiet);
+  std::vector<report::BenchPoint> points;
+  int code = kExitOk;
+  FitOptions fo;
+  fo.threads = o.threads;
+  if (!o.quiet) {
+    fmt::print("{:<24} {:<16} {:<5} {:<11} {:<14} {:>10} {:>10} {:>10} {:>9}\n", "table", "model",
+               "loss", "budget", "status", "time ms", "log_rmse", "cbrt_rmse", "cells");
+  }
+  for (const std::string& file : o.files) {
+    const Table table = LoadTable(file);
+    const std::string material = fs::path(file).stem().string();
+    for (const LossKind loss : plan.losses) {
+      fo.loss = loss;
+      for (const Budget& budget : plan.budgets) {
+        SampleOptions so;
+        so.cutoff_deg = o.cutoff_deg;
+        so.budget = budget;
+        const auto t0 = Clock::now();
+        const PreparedTable prepared = PrepareTable(table, so, fo);
+        const double prepare_ms = MsSince(t0);
+        for (const std::string& model : o.models) {
+          bar.Step(fmt::format("{} {} {}", material, model, budget.ToString()));
+          // Repeats: the median time of each stage; metrics are those of the first run (the fit
+          // is deterministic).
+          FitResult first;
+          std::vector<double> init, solve;
+          for (int k = 0; k < o.repeat; ++k) {
+            FitResult r = FitPrepared(model, prepared, fo);
+            init.push_back(r.times.init);
+            solve.push_back(r.times.solve);
+            if (k == 0) first = std::move(r);
+          }
+          first.times.init = Median(init);
+          first.times.solve = Median(solve);
+          report::BenchPoint b =
+              ToPoint(material, file, ToString(loss), budget.ToString(), first, prepare_ms);
+          if (first.Failed()) code = kExitFitFailed;
+          bar.Clear();
+          if (!o.quiet) {
+            fmt::print("{:<24} {:<16} {:<5} {:<11} {:<14} {:>10.1f} {:>10.4g} {:>10.4g} {:>9}\n",
+                       material, model, b.loss, b.budget, b.status, b.time_ms, b.metrics.log_rmse,
+                       b.metrics.cbrt_rmse, b.fit_cells);
+          }
+          points.push_back(std::move(b));
+        }
+      }
+    }
+  }
+  bar.Done();
+  report::WriteBenchCsv(o.out, points);
+  report::Report r;
+  r.title = "brdfit bench: run time against error";
+  r.metric_definition = MetricsDefinition();
+  r.bench = points;
+  for (const auto& f : o.files) r.inputs.push_back(f);
+  r.notes.push_back(fmt::format(
+      "Time: preparing the samples of the budget + initializer + Levenberg-Marquardt, median of "
+      "{} run{} per fit, {} Ceres thread{}; loading the table is not counted.",
+      o.repeat, o.repeat == 1 ? "" : "s", o.threads, o.threads == 1 ? "" : "s"));
+  const fs::path plot = PlotPath(o);
+  WriteTextAtomically(plot, report::RenderHtml(r, chart_js));
+  if (written) {
+    written->push_back(o.out);
+    written->push_back(plot);
+  }
+  if (!o.quiet) fmt::print("wrote {} and {}\n", o.out, plot.string());
+  return code;
+}
+
+Registrar reg{
+    "bench", "Run time against error: sweep models x sample budgets x losses on your tables",
+    [](CLI::App& sub) {
+      auto o = std::make_shared<BenchCliOptions>();
+      sub.add_option("files", o->files, "tables (MERL .binary or brdfit .h5)")->required();
+      sub.add_option("--models", o->models, "models to fit, comma-separated (brdfit models)")
+          ->delimiter(',')
+          ->capture_default_str();
+      sub.add_option("--budgets", o->budgets,
+                     "sample budgets: full, stride:K (every K-th phi_d bin), random:N")
+          ->delimiter(',')
+          ->capture_default_str();
+      sub.add_option("--losses", o->losses, "losses: log, cbrt, rel, l2")
+          ->delimiter(',')
+          ->capture_default_str();
+      sub.add_option("-o,--out", o->out, "CSV file, one row per fit")->capture_default_str();
+      sub.add_option("--plot", o->plot, "HTML page with the Pareto plots (default: CSV name .html)");
+      sub.add_option("--cutoff", o->cutoff_deg, "angle cut-off of fits and metrics (degrees)")
+          ->capture_default_str();
+      sub.add_option("--repeat", o->repeat, "runs per fit; times are medians")
+          ->capture_default_str();
+      sub.add_option("--threads", o->threads, "Ceres threads per fit")->capture_default_str();
+      sub.add_flag("-q,--quiet", o->quiet, "no table on stdout, no progress bar");
+      sub.footer(
+          "Every fit's metrics are computed on all valid cells inside the cut-off, whatever its "
+          "budget,\nso rows are comparable. Open the HTML page in a browser (no network "
+          "needed); docs/cli.md lists\nthe CSV columns.\n"
+          "Exit codes: 0 ok, 1 some fit failed (its row says why), 2 bad input.\n"
+          "Examples:\n"
+          "  brdfit bench mats/*.binary --models lambert+ggx,lambert+beckmann -o bench.csv\n"
+          "  brdfit bench gold.binary --budgets full,stride:8,stride:32,random:20000 \\\n"
+          "      --losses log,cbrt --repeat 5 -o gold-bench.csv --plot gold-bench.html");
+      return [o] { return RunBench(*o); };
+    }};
+
+// Demo step 80: the sweep on the first two demo tables.
+int DemoBench(DemoContext& ctx) {
+  if (ctx.tables.empty()) {
+    fmt::print("bench: no demo table (the synth step wrote none)\n");
+    return kExitOk;
+  }
+  BenchCliOptions o;
+  for (std::size_t i = 0; i < ctx.tables.size() && i < 2; ++i) {
+    o.files.push_back(ctx.tables[i].string());
+  }
+  o.models = {"lambert+ggx", "lambert+beckmann"};
+  o.budgets = ctx.quick ? std::vector<std::string>{"full", "stride:4"}
+                        : std::vector<std::string>{"full", "stride:8", "stride:32"};
+  o.out = (ctx.out_dir / "bench.csv").string();
+  o.plot = (ctx.out_dir / "bench.html").string();
+  return RunBench(o, &ctx.outputs);
+}
+
+DemoStepRegistrar demo_step{80, "bench (run time against error)", DemoBench};
+
+}  // namespace
+}  // namespace brdfit::cli
