@@ -53,7 +53,10 @@ FactorFiles ReadFactorFiles(const std::filesystem::path& json_path) {
   f.sidecar = nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, false);
   const nlohmann::json& j = f.sidecar;
   if (j.is_discarded() || !j.is_object()) throw InputError(json_path, "not a JSON object");
-  if (j.value("format", std::string()) != kFactorFormat) {
+  // Type-checked: json::value() throws json::type_error for a non-string member
+  // (fuzz/regressions/factor_sidecar/crafted-format-not-string.json).
+  if (!j.contains("format") || !j["format"].is_string() ||
+      j["format"].get<std::string>() != kFactorFormat) {
     throw InputError(json_path, fmt::format("not a {} sidecar (format member)", kFactorFormat));
   }
   if (!j.contains("format_version") || !j["format_version"].is_number_integer() ||
