@@ -7,8 +7,6 @@
 // A network that reads must evaluate and tabulate on a small grid: outputs finite (else an
 // InputError naming the source), valid cells non-negative after the documented clamping,
 // below-horizon cells masked.
-#include <zip.h>
-
 #include <cmath>
 #include <string>
 #include <vector>
@@ -20,22 +18,6 @@
 namespace brdfit::fuzz {
 
 namespace {
-
-std::filesystem::path ZipWithMember(std::string_view image) {
-  const auto path = ScratchDir() / "nbrdf-built.zip";
-  int err = 0;
-  zip_t* z = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
-  if (!z) throw std::runtime_error("zip_open failed on the scratch archive");
-  zip_source_t* src = zip_source_buffer(z, image.data(), image.size(), 0);
-  const zip_int64_t idx = src ? zip_file_add(z, "merl_nbrdf/m.h5", src, ZIP_FL_OVERWRITE) : -1;
-  if (idx < 0 || zip_set_file_compression(z, static_cast<zip_uint64_t>(idx), ZIP_CM_STORE, 0) ||
-      zip_close(z) != 0) {
-    if (idx < 0 && src) zip_source_free(src);
-    zip_discard(z);
-    throw std::runtime_error("cannot build the scratch archive");
-  }
-  return path;
-}
 
 void CheckNetwork(const NbrdfNetwork& net) {
   const auto h1 = net.k1.cols(), h2 = net.k2.cols();
@@ -90,7 +72,7 @@ int FuzzNbrdf(const std::uint8_t* data, std::size_t size) {
   const bool member_mode = in.U8() & 1;
   const std::string_view rest = in.Rest();
   if (member_mode) {
-    ReadAndCheck(ZipWithMember(rest), "m");
+    ReadAndCheck(WriteNbrdfZip("nbrdf-built.zip", rest), "m");
     return 0;
   }
   const auto zip = WriteScratch("nbrdf-in.zip", rest.data(), rest.size());

@@ -1,6 +1,7 @@
 #include "fuzz/harness_util.h"
 
 #include <unistd.h>
+#include <zip.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -57,6 +58,22 @@ fs::path WriteScratch(std::string_view name, const void* data, std::size_t size)
   if (!f) throw std::runtime_error("cannot create scratch file " + path.string());
   const bool ok = size == 0 || std::fwrite(data, 1, size, f) == size;
   if (std::fclose(f) != 0 || !ok) throw std::runtime_error("cannot write " + path.string());
+  return path;
+}
+
+fs::path WriteNbrdfZip(std::string_view name, std::string_view image) {
+  const fs::path path = ScratchDir() / std::string(name);
+  int err = 0;
+  zip_t* z = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
+  if (!z) throw std::runtime_error("zip_open failed on " + path.string());
+  zip_source_t* src = zip_source_buffer(z, image.data(), image.size(), 0);
+  const zip_int64_t idx = src ? zip_file_add(z, "merl_nbrdf/m.h5", src, ZIP_FL_OVERWRITE) : -1;
+  if (idx < 0 || zip_set_file_compression(z, static_cast<zip_uint64_t>(idx), ZIP_CM_STORE, 0) ||
+      zip_close(z) != 0) {
+    if (idx < 0 && src) zip_source_free(src);
+    zip_discard(z);
+    throw std::runtime_error("cannot build the archive " + path.string());
+  }
   return path;
 }
 

@@ -42,6 +42,10 @@ const std::filesystem::path& ScratchDir();
 // Writes bytes to ScratchDir()/name (overwriting) and returns the path.
 std::filesystem::path WriteScratch(std::string_view name, const void* data, std::size_t size);
 
+// Writes ScratchDir()/name: a zip archive holding `image` stored (uncompressed) as the member
+// merl_nbrdf/m.h5, i.e. NBRDF material "m" (io/nbrdf.h).
+std::filesystem::path WriteNbrdfZip(std::string_view name, std::string_view image);
+
 // Number of file descriptors of this process open on files under `dir` (/proc/self/fd), to
 // check that a reader closes what it opened, also when it rejects the input. (Counting all
 // descriptors would also see the sanitizers' symbolizer pipes.)
@@ -78,6 +82,8 @@ class ByteReader {
 int FuzzMerl(const std::uint8_t* data, std::size_t size);
 int FuzzHdf5Table(const std::uint8_t* data, std::size_t size);
 int FuzzNbrdf(const std::uint8_t* data, std::size_t size);
+int FuzzExr(const std::uint8_t* data, std::size_t size);
+int FuzzFactorSidecar(const std::uint8_t* data, std::size_t size);
 
 }  // namespace brdfit::fuzz
 

@@ -13,10 +13,18 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfRgbaFile.h>
+#include <OpenEXR/ImfTiledRgbaFile.h>
+
+#include "io/exr_texture.h"
+#include "io/factor_io.h"
 #include "io/hdf5_table.h"
 #include "io/merl.h"
 #include "io/table.h"
@@ -292,6 +300,102 @@ void NbrdfSeeds(const fs::path& dir) {
   fs::remove(zip);
 }
 
+// ---- factorization textures (OpenEXR) and sidecars -----------------------------------------
+
+RgbImage Ramp(int w, int h) {
+  RgbImage im = RgbImage::Filled(w, h, 0.0f);
+  for (int j = 0; j < h; ++j) {
+    for (int i = 0; i < w; ++i) {
+      for (int c = 0; c < 3; ++c) im.At(i, j)[c] = 0.1f * static_cast<float>(i + 2 * j + c);
+    }
+  }
+  return im;
+}
+
+// Half-float RGBA scan lines and tiles (the reader converts HALF to float), other codecs.
+void HalfExr(const fs::path& path, int w, int h, Imf::Compression comp, bool tiled) {
+  std::vector<Imf::Rgba> px(static_cast<std::size_t>(w) * h);
+  for (std::size_t i = 0; i < px.size(); ++i) {
+    px[i] = Imf::Rgba(0.01f * static_cast<float>(i), 0.5f, 2.0f, 1.0f);
+  }
+  if (tiled) {
+    Imf::Header header(w, h);
+    header.compression() = comp;
+    Imf::TiledRgbaOutputFile f(path.c_str(), header, Imf::WRITE_RGBA, 2, 2, Imf::ONE_LEVEL);
+    f.setFrameBuffer(px.data(), 1, w);
+    f.writeTiles(0, f.numXTiles() - 1, 0, f.numYTiles() - 1);
+  } else {
+    Imf::RgbaOutputFile f(path.c_str(), w, h, Imf::WRITE_RGBA, 1, Imath::V2f(0, 0), 1,
+                          Imf::INCREASING_Y, comp);
+    f.setFrameBuffer(px.data(), 1, w);
+    f.writePixels(h);
+  }
+}
+
+void ExrSeeds(const fs::path& dir) {
+  WriteRgbExr(dir / "one-pixel.exr", RgbImage::Filled(1, 1, 0.5f), {});
+  WriteRgbExr(dir / "ramp-5x3-attrs.exr", Ramp(5, 3),
+              {{"brdfit:factor", "p"}, {"brdfit:parameterization", "pq"}, {"note", ""}});
+  RgbImage odd = Ramp(2, 2);
+  odd.At(0, 0)[0] = std::numeric_limits<float>::quiet_NaN();
+  odd.At(1, 0)[1] = std::numeric_limits<float>::infinity();
+  odd.At(1, 1)[2] = -0.0f;
+  WriteRgbExr(dir / "nan-inf-2x2.exr", odd, {});
+  HalfExr(dir / "half-piz-4x3.exr", 4, 3, Imf::PIZ_COMPRESSION, false);
+  HalfExr(dir / "half-rle-3x3.exr", 3, 3, Imf::RLE_COMPRESSION, false);
+  HalfExr(dir / "half-none-tiled-5x4.exr", 5, 4, Imf::NO_COMPRESSION, true);
+}
+
+// A float RGB scan-line file whose header declares w x h pixels and which stores none (the
+// writer is closed before any line is written): 16 kB declaring 32768 x 32768.
+void EmptyExr(const fs::path& path, int w, int h) {
+  Imf::Header header(w, h);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  for (const char* c : {"R", "G", "B"}) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+  Imf::OutputFile f(path.c_str(), header);
+}
+
+void ExrCrafted(const fs::path& dir) { EmptyExr(dir / "crafted-32768x32768-no-pixels.exr", 32768, 32768); }
+
+void SidecarCrafted(const fs::path& dir) {
+  WriteBytes(dir / "crafted-format-not-string.json", R"({"format": 1})");
+  WriteBytes(dir / "crafted-textures-not-object.json",
+             R"({"format": "brdfit-factorization", "format_version": 1, "parameterization": "pq",
+                 "textures": [1, 2]})");
+  WriteBytes(dir / "crafted-absolute-file.json",
+             R"({"format": "brdfit-factorization", "format_version": 1, "parameterization": "pq",
+                 "textures": {"p": {"file": "/dev/zero", "width": 1, "height": 1},
+                              "q": {"file": "/proc/self/mem", "width": 1, "height": 1}}})");
+}
+
+void SidecarSeeds(const fs::path& dir) {
+  // The fuzz_factor_sidecar harness writes p (3 x 2) and q (2 x 4) as f.p.exr, f.q.exr with
+  // parameterization "pq"; this sidecar is what WriteFactorFiles writes for them.
+  const fs::path tmp = dir / ".tmp";
+  fs::create_directories(tmp);
+  FactorFiles f;
+  f.sidecar = {{"parameterization", "pq"},
+               {"formula", "f = p(wi) q(wh) p(wo)"},
+               {"statistics", {{"cells", 12}, {"rms", 0.25}}}};
+  f.p.image = RgbImage::Filled(3, 2, 0.25f);
+  f.q.image = RgbImage::Filled(2, 4, 2.0f);
+  const FactorPaths paths = FactorFilePaths(tmp, "f");
+  WriteFactorFiles(paths, f);
+  const std::string valid = ReadAll(paths.json);
+  fs::remove_all(tmp);
+  WriteBytes(dir / "valid.json", valid);
+  nlohmann::json j = nlohmann::json::parse(valid);
+  j["textures"]["q"]["width"] = 3;
+  WriteBytes(dir / "size-mismatch.json", j.dump());
+  j = nlohmann::json::parse(valid);
+  j["textures"]["p"]["file"] = "f.q.exr";
+  WriteBytes(dir / "swapped-factor.json", j.dump());
+  j = nlohmann::json::parse(valid);
+  j["format_version"] = 2;
+  WriteBytes(dir / "version-2.json", j.dump());
+  WriteBytes(dir / "not-object.json", "[1, 2, 3]");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -301,7 +405,7 @@ int main(int argc, char** argv) {
   }
   const fs::path corpus = fs::path(argv[1]) / "corpus";
   const fs::path regressions = fs::path(argv[1]) / "regressions";
-  for (const char* d : {"merl", "hdf5_table", "nbrdf"}) {
+  for (const char* d : {"merl", "hdf5_table", "nbrdf", "exr", "factor_sidecar"}) {
     fs::create_directories(corpus / d);
     fs::create_directories(regressions / d);
   }
@@ -309,6 +413,10 @@ int main(int argc, char** argv) {
   Hdf5Seeds(corpus / "hdf5_table");
   Hdf5Crafted(regressions / "hdf5_table");
   NbrdfSeeds(corpus / "nbrdf");
+  ExrSeeds(corpus / "exr");
+  SidecarSeeds(corpus / "factor_sidecar");
+  ExrCrafted(regressions / "exr");
+  SidecarCrafted(regressions / "factor_sidecar");
   std::cout << "seeds written to " << corpus << ", crafted inputs to " << regressions << "\n";
   return 0;
 }

@@ -31,6 +31,8 @@ constexpr Harnesses kHarnesses[] = {
     {"merl", FuzzMerl},
     {"hdf5_table", FuzzHdf5Table},
     {"nbrdf", FuzzNbrdf},
+    {"exr", FuzzExr},
+    {"factor_sidecar", FuzzFactorSidecar},
 };
 
 struct Input {

@@ -5,12 +5,18 @@
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
+#include <cstdint>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "fuzz/harness_util.h"
 #include "io/error.h"
+#include "io/exr_texture.h"
+#include "io/factor_io.h"
 #include "io/hdf5_table.h"
+#include "io/nbrdf.h"
 
 namespace brdfit {
 namespace {
@@ -80,6 +86,53 @@ TEST(HostileHdf5Tables, RejectedFilesLeaveNothingOpen) {
   EXPECT_EQ(H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_FILE | H5F_OBJ_DATASET | H5F_OBJ_GROUP |
                                               H5F_OBJ_ATTR),
             0);
+}
+
+// ---- other readers ------------------------------------------------------------------------
+
+fs::path Regression(const std::string& reader, const std::string& name) {
+  return fs::path(BRDFIT_SOURCE_DIR) / "fuzz" / "regressions" / reader / name;
+}
+
+template <class F>
+std::string MessageOf(F read) {
+  try {
+    read();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+TEST(HostileExr, HugeDeclaredImageIsRejectedBeforeAllocating) {
+  // 16 kB declaring 32768 x 32768 float RGB pixels (12 GB) and storing none.
+  const std::string msg =
+      MessageOf([] { ReadRgbExr(Regression("exr", "crafted-32768x32768-no-pixels.exr")); });
+  EXPECT_NE(msg.find("unsupported data window 32768 x 32768"), std::string::npos) << msg;
+}
+
+TEST(HostileFactorSidecar, NonStringFormatIsAnInputError) {
+  // Was an uncaught nlohmann::json::type_error.
+  const std::string msg = MessageOf(
+      [] { ReadFactorFiles(Regression("factor_sidecar", "crafted-format-not-string.json")); });
+  EXPECT_NE(msg.find("not a brdfit-factorization sidecar"), std::string::npos) << msg;
+}
+
+TEST(HostileFactorSidecar, TexturesOutsideRegularFilesAreRejected) {
+  const std::string msg = MessageOf(
+      [] { ReadFactorFiles(Regression("factor_sidecar", "crafted-absolute-file.json")); });
+  EXPECT_NE(msg.find("/dev/zero: is not a regular file"), std::string::npos) << msg;
+}
+
+TEST(HostileNbrdf, HugeElementTypeIsRejected) {
+  // Found by fuzz_nbrdf: a kernel of class FLOAT with gigabytes per element (libhdf5 callocs
+  // a conversion buffer of that size). The regression input is a member image after a mode byte.
+  std::ifstream in(Regression("nbrdf", "kernel-float-huge-elements"), std::ios::binary);
+  const std::string bytes(std::istreambuf_iterator<char>(in), {});
+  ASSERT_GT(bytes.size(), 1u);
+  const fs::path zip = fuzz::WriteNbrdfZip("hostile.zip", std::string_view(bytes).substr(1));
+  const std::string msg = MessageOf([&] { ReadNbrdf(zip, "m"); });
+  EXPECT_NE(msg.find("has the wrong type or shape"), std::string::npos) << msg;
 }
 
 }  // namespace
