@@ -1,6 +1,8 @@
 // Materials ready to render: what a MaterialSpec resolves to after loading (preview/loader.h).
 #pragma once
 
+#include <array>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -12,11 +14,16 @@
 
 namespace brdfit::preview {
 
-// Rank-1 factorization f(wi, wo) ~ p(wi) q(wo) as two textures over the hemisphere
-// (McCool, Ang, Ahmad 2001). Filled from the factorization's files when they exist.
+// A factorization as two textures (McCool, Ang, Ahmad 2001; fit/factor_param.h):
+//   mccool:   f = p(wi) q(wh) p(wo), p on the parabolic disk map, q on the sqrt-theta disk map;
+//   halfdiff: f = p(wh) q(theta_d, phi_d), p on the sqrt-theta disk, q on the (theta_d, phi_d)
+//             rectangle (phi_d periodic).
+// Rows as stored (row 0 first), RGB in rgba with alpha 1.
 struct FactorTextures {
+  std::string parameterization;  // "mccool" or "halfdiff"
   Image p, q;
-  std::string parameterization;  // how a direction maps to texture coordinates
+  // CPU evaluation through the same textures (fit/factor_eval.h), for the reference renderer.
+  std::function<std::array<double, 3>(const Vec3& wi, const Vec3& wo)> eval;
 };
 
 struct ResolvedMaterial {

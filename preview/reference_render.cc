@@ -27,9 +27,6 @@ Image RenderReference(const Scene& scene, const MaterialSet& materials, int widt
     const ResolvedMaterial& m = materials.at(o.material);
     Eval e{nullptr, &m};
     if (m.kind == MaterialKind::kAnalytic) e.model = FindModel(m.model);
-    if (m.kind == MaterialKind::kFactored) {
-      throw std::logic_error("the CPU reference does not render factored materials");
-    }
     evals.push_back(e);
   }
 
@@ -87,6 +84,10 @@ Image RenderReference(const Scene& scene, const MaterialSet& materials, int widt
         const Eval& e = evals[static_cast<std::size_t>(hit)];
         if (e.model) {
           e.model->eval(e.mat->params.data(), MakeGeometry(wi, wo), fr);
+        } else if (e.mat->kind == MaterialKind::kFactored) {
+          if (l.type == LightType::kSpot) continue;  // as the GPU's factored path
+          const auto v = e.mat->factors->eval(wi, wo);
+          for (int c = 0; c < 3; ++c) fr[c] = v[c];
         } else if (auto val = e.mat->table->LookupTrilinear(wi, wo)) {
           for (int c = 0; c < 3; ++c) fr[c] = (*val)[c];
         }

@@ -13,7 +13,8 @@ namespace brdfit::preview {
 
 // Linear radiance per pixel centre; alpha 1 where a sphere is hit. `edge` (optional) receives
 // per pixel the smallest n.v and 1 if the pixel is within one pixel of a silhouette, for tests
-// that exclude silhouettes. Factored materials are not supported (throws std::logic_error).
+// that exclude silhouettes. Factored materials use their CPU evaluator (and, like the GPU
+// path, ignore spot lights).
 struct ReferenceExtras {
   std::vector<double> cos_view;    // n . v at the pixel centre, 0 where nothing is hit
   std::vector<unsigned char> hit;  // 1 where the pixel-centre ray hits an object

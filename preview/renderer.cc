@@ -96,8 +96,10 @@ const Texture& Renderer::FactorTexture(const std::shared_ptr<const FactorTexture
                img.rgba.data());
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  // Disk maps clamp; the (theta_d, phi_d) rectangle of halfdiff's q repeats in phi_d (rows).
+  const bool wrap_rows = q && f->parameterization == "halfdiff";
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap_rows ? GL_REPEAT : GL_CLAMP_TO_EDGE);
   CheckGl("factor texture upload");
   return *textures_.emplace(&img, CachedTexture{f, std::move(tex)}).first->second.texture;
 }
@@ -135,6 +137,15 @@ Image Renderer::RenderLinear(const Scene& scene, const MaterialSet& materials, E
         if (log) log->Add("skip", "light '" + l.name + "' for object '" + obj.name + "': " + why);
         continue;
       }
+      if (mat.kind == MaterialKind::kFactored && l.type == LightType::kSpot) {
+        // Seed 001's factored path: point and directional lights, two fetches per light.
+        if (log) {
+          log->Add("skip", "spot light '" + l.name + "' for object '" + obj.name +
+                               "': the factored path supports point and directional lights "
+                               "only");
+        }
+        continue;
+      }
       (l.type == LightType::kDirectional ? dir : l.type == LightType::kPoint ? point : spot)
           .push_back(&l);
     }
@@ -142,6 +153,7 @@ Image Renderer::RenderLinear(const Scene& scene, const MaterialSet& materials, E
     v.material = mat.kind;
     v.model = mat.model;
     if (mat.table) v.theta_h_mapping = mat.table->grid.theta_h_mapping;
+    if (mat.factors) v.factor_param = mat.factors->parameterization;
     v.num_directional = static_cast<int>(dir.size());
     v.num_point = static_cast<int>(point.size());
     v.num_spot = static_cast<int>(spot.size());

@@ -241,8 +241,9 @@ MaterialSpec ParseMaterial(Reader r, const std::string& name) {
     if (!model) r.Fail("unknown model '" + m.model + "' (known: " + ModelNames() + ")");
     m.fit_report = r.Path("fit_report");
     m.fit_material = r.String("fit_material", "");
-    if (!m.fit_report.empty() && r.Has("params")) {
-      r.Fail("give either 'params' or 'fit_report', not both");
+    m.fit_table = r.Path("fit_table");
+    if ((!m.fit_report.empty()) + (!m.fit_table.empty()) + r.Has("params") > 1) {
+      r.Fail("give one of 'params', 'fit_report', 'fit_table'");
     }
     m.params = ParseParams(r, *model);
   } else if (type == "metallic-roughness") {
@@ -269,10 +270,14 @@ MaterialSpec ParseMaterial(Reader r, const std::string& name) {
   } else if (type == "factored") {
     m.kind = MaterialKind::kFactored;
     m.table = r.Path("table");
-    m.factor_prefix = r.Path("factors");
+    m.factors = r.Path("factors");
     m.factor_resolution = r.Int("resolution", m.factor_resolution);
-    if (m.table.empty() && m.factor_prefix.empty()) {
-      r.Fail("a factored material needs 'factors' (file prefix) or 'table' (to factor)");
+    m.factor_param = r.String("parameterization", m.factor_param);
+    if (m.table.empty() == m.factors.empty()) {
+      r.Fail("a factored material needs either 'factors' (a .factor.json) or 'table' (to factor)");
+    }
+    if (m.factor_resolution < 4 || m.factor_resolution > 1024) {
+      r.Fail("'resolution' must be in [4, 1024]");
     }
   } else {
     r.Fail("unknown material type '" + type +
@@ -354,8 +359,50 @@ Scene ParseScene(const std::string& text, const std::filesystem::path& source) {
     }
     s.objects.push_back(std::move(o));
   }
+  if (r.Has("comparison")) {
+    Reader cr(r.Raw("comparison"), "comparison", source);
+    s.has_comparison = true;
+    s.comparison.measured = cr.RequiredString("measured");
+    if (cr.Has("fitted")) {
+      const Json& f = cr.Raw("fitted");
+      if (f.is_string()) {
+        s.comparison.fitted.push_back(f.get<std::string>());
+      } else if (f.is_array()) {
+        for (const auto& e : f) {
+          if (!e.is_string()) cr.Fail("'fitted' must hold material names");
+          s.comparison.fitted.push_back(e.get<std::string>());
+        }
+      } else {
+        cr.Fail("'fitted' must be a material name or an array of names");
+      }
+    }
+    s.comparison.factored = cr.String("factored", "");
+    cr.Done();
+    auto check = [&](const std::string& name, MaterialKind kind) {
+      const MaterialSpec* m = s.FindMaterial(name);
+      if (!m) cr.Fail("unknown material '" + name + "'");
+      if (m->kind != kind) {
+        cr.Fail("material '" + name + "' is " + ToString(m->kind) + ", expected " + ToString(kind));
+      }
+    };
+    check(s.comparison.measured, MaterialKind::kMeasured);
+    for (const auto& f : s.comparison.fitted) check(f, MaterialKind::kAnalytic);
+    if (!s.comparison.factored.empty()) check(s.comparison.factored, MaterialKind::kFactored);
+  }
   r.Done();
   return s;
+}
+
+std::set<std::string> UsedMaterials(const Scene& scene, bool comparison) {
+  std::set<std::string> used;
+  if (comparison) {
+    used.insert(scene.comparison.measured);
+    used.insert(scene.comparison.fitted.begin(), scene.comparison.fitted.end());
+    if (!scene.comparison.factored.empty()) used.insert(scene.comparison.factored);
+  } else {
+    for (const Object& o : scene.objects) used.insert(o.material);
+  }
+  return used;
 }
 
 Scene LoadScene(const std::filesystem::path& path) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -51,10 +52,12 @@ struct MaterialSpec {
   std::vector<double> params;
   std::filesystem::path fit_report;  // optional: parameters from a report (io/fit_report.h)
   std::string fit_material;          // entry of the report
+  std::filesystem::path fit_table;   // optional: fit `model` to this table (cached on disk)
   // kMeasured: a table file. kFactored: the table to factor, or the factorization's files.
   std::filesystem::path table;
-  std::filesystem::path factor_prefix;  // "<prefix>.p.exr", "<prefix>.q.exr"
-  int factor_resolution = 32;
+  std::filesystem::path factors;  // "<stem>.factor.json" sidecar of `brdfit factor`
+  int factor_resolution = 32;     // when computed from `table`
+  std::string factor_param = "mccool";
 };
 
 enum class ObjectShape { kSphere };
@@ -67,6 +70,13 @@ struct Object {
   std::string material;
 };
 
+// Panels of `brdfit render --compare`: the scene's objects drawn with each material in turn.
+struct ComparisonSpec {
+  std::string measured;              // a measured material
+  std::vector<std::string> fitted;   // analytic materials (the first one is the error panel's)
+  std::string factored;              // a factored material, or empty
+};
+
 struct Scene {
   std::filesystem::path source;  // the scene file, for messages and relative paths
   Camera camera;
@@ -77,9 +87,15 @@ struct Scene {
   Vec3 background{0, 0, 0};  // linear radiance
   bool punctual_pi = true;
   DisplaySettings display;
+  bool has_comparison = false;
+  ComparisonSpec comparison;
 
   const MaterialSpec* FindMaterial(const std::string& name) const;
 };
+
+// Names of the materials a render needs: those the objects reference, or, for a comparison,
+// the comparison's panels.
+std::set<std::string> UsedMaterials(const Scene& scene, bool comparison);
 
 // Parses and validates a scene file; relative paths resolve against the file's folder.
 // Throws InputError naming the file and the problem.

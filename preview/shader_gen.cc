@@ -58,6 +58,7 @@ std::string ShaderVariant::Key() const {
   std::string k = std::string(ToString(material));
   if (material == MaterialKind::kAnalytic) k += ":" + model;
   if (material == MaterialKind::kMeasured) k += std::string(":") + ToString(theta_h_mapping);
+  if (material == MaterialKind::kFactored) k += ":" + factor_param;
   k += " dir=" + std::to_string(num_directional) + " point=" + std::to_string(num_point) +
        " spot=" + std::to_string(num_spot) + (punctual_pi ? " pi" : "");
   return k;
@@ -81,15 +82,18 @@ std::string ShadeFragmentSource(const ShaderVariant& v) {
     case MaterialKind::kAnalytic:
       src += AnalyticEval(v.model);
       break;
-    case MaterialKind::kMeasured:
+    case MaterialKind::kMeasured: {
       src += Define("TABLE_SQRT_THETA_H", v.theta_h_mapping == ThetaHMapping::kSqrt ? 1 : 0);
-      src += "// ---- preview/glsl/measured.glsl\n" +
-             std::string(GlslSource("preview/glsl/measured.glsl"));
+      std::set<std::string> included;
+      Include("preview/glsl/measured.glsl", &included, &src);
       break;
-    case MaterialKind::kFactored:
-      src += "// ---- preview/glsl/factored.glsl\n" +
-             std::string(GlslSource("preview/glsl/factored.glsl"));
+    }
+    case MaterialKind::kFactored: {
+      src += Define("FACTOR_MCCOOL", v.factor_param == "mccool" ? 1 : 0);
+      std::set<std::string> included;
+      Include("preview/glsl/factored.glsl", &included, &src);
       break;
+    }
   }
   src += "// ---- preview/glsl/shade.frag\n" + std::string(GlslSource("preview/glsl/shade.frag"));
   return src;

@@ -14,6 +14,7 @@ struct ShaderVariant {
   MaterialKind material = MaterialKind::kAnalytic;
   std::string model;  // kAnalytic: registry name
   ThetaHMapping theta_h_mapping = ThetaHMapping::kSqrt;  // kMeasured
+  std::string factor_param = "mccool";                   // kFactored
   int num_directional = 0, num_point = 0, num_spot = 0;
   bool punctual_pi = true;
 

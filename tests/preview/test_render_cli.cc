@@ -1,0 +1,141 @@
+// `brdfit render` end to end: only the materials a render uses are loaded or computed; a
+// computed fit is cached on disk and reused by the next render (read from --explain); bad
+// input exits 2 with the file named.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+
+#include "io/synth.h"
+#include "io/table_io.h"
+#include "models/registry.h"
+#include "preview/image_io.h"
+
+namespace brdfit::preview {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int code;
+  std::string out;
+};
+
+CliRun RunCli(const std::string& args) {
+  const std::string cmd = std::string(BRDFIT_EXE) + " " + args + " 2>&1";
+  std::unique_ptr<FILE, int (*)(FILE*)> p(popen(cmd.c_str(), "r"), pclose);
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), p.get())) out += buf.data();
+  const int status = pclose(p.release());
+  return {WEXITSTATUS(status), out};
+}
+
+int Count(const std::string& text, const std::string& needle) {
+  int n = 0;
+  for (auto pos = text.find(needle); pos != std::string::npos; pos = text.find(needle, pos + 1)) ++n;
+  return n;
+}
+
+class RenderCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("brdfit_render_cli_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+            "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    // Three small synthetic tables (lambert+ggx with different roughness).
+    const ModelInfo* m = FindModel("lambert+ggx");
+    Grid grid;
+    grid.n_theta_h = 16;
+    grid.n_theta_d = 16;
+    grid.n_phi_d = 32;
+    for (int k = 0; k < 3; ++k) {
+      std::vector<double> p = m->DefaultParams();
+      p.back() = 0.1 + 0.1 * k;
+      Table t = SynthesizeTable(
+          grid, [&](const Geometry& g, double rgb[3]) { m->eval(p.data(), g, rgb); }, {});
+      std::string name = "t";  // (not "t" + to_string: GCC 12 -Wrestrict false positive)
+      name += std::to_string(k);
+      name += ".h5";
+      SaveTable(t, dir_ / name);
+    }
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  void WriteScene(const std::string& json) { std::ofstream(dir_ / "scene.json") << json; }
+  fs::path dir_;
+};
+
+TEST_F(RenderCli, LoadsOnlyWhatTheSceneUsesAndReusesTheCache) {
+  WriteScene(R"({
+    "image": {"width": 48, "height": 48},
+    "lights": [{"type": "directional", "direction": [1, 1, 1]}],
+    "materials": {
+      "a": {"type": "analytic", "model": "lambert+ggx", "fit_table": "t0.h5"},
+      "b": {"type": "analytic", "model": "lambert+ggx", "fit_table": "t1.h5"},
+      "c": {"type": "measured", "table": "t2.h5"}
+    },
+    "objects": [{"material": "b"}]
+  })");
+  const std::string args = (dir_ / "scene.json").string() + " -o " + (dir_ / "out.png").string() +
+                           " --explain --cache " + (dir_ / "cache").string();
+  const CliRun first = RunCli("render " + args);
+  ASSERT_EQ(first.code, 0) << first.out;
+  EXPECT_EQ(Count(first.out, "compute: fit lambert+ggx of"), 1) << first.out;
+  EXPECT_NE(first.out.find("t1.h5"), std::string::npos) << first.out;
+  EXPECT_EQ(Count(first.out, "skip: material 'a'"), 1) << first.out;
+  EXPECT_EQ(Count(first.out, "skip: material 'c'"), 1) << first.out;
+  EXPECT_EQ(first.out.find("t0.h5"), std::string::npos) << first.out;
+  EXPECT_EQ(first.out.find("t2.h5"), std::string::npos) << first.out;
+
+  const CliRun second = RunCli("render " + args);
+  ASSERT_EQ(second.code, 0) << second.out;
+  EXPECT_EQ(Count(second.out, "compute: fit"), 0) << second.out;
+  EXPECT_EQ(Count(second.out, "reuse: fit lambert+ggx of"), 1) << second.out;
+  // Both renders show the same image.
+  EXPECT_TRUE(fs::exists(dir_ / "out.png"));
+}
+
+TEST_F(RenderCli, CullsLightsThatReachNothing) {
+  WriteScene(R"({
+    "image": {"width": 32, "height": 32},
+    "lights": [{"name": "near", "type": "point", "position": [0, 0, 3], "distance": 10},
+               {"name": "far", "type": "point", "position": [0, 0, 30], "distance": 5},
+               {"name": "aside", "type": "spot", "position": [0, 0, 5], "target": [20, 0, 0],
+                "angle_deg": 10}],
+    "materials": {"m": {"type": "analytic", "model": "ggx"}},
+    "objects": [{"name": "ball", "material": "m"}]
+  })");
+  const CliRun r = RunCli("render " + (dir_ / "scene.json").string() + " -o " +
+                       (dir_ / "out.exr").string() + " --explain");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("skip: light 'far' for object 'ball': out of range"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("skip: light 'aside' for object 'ball': outside the cone"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("analytic:ggx dir=0 point=1 spot=0"), std::string::npos) << r.out;
+  const Image img = ReadExr(dir_ / "out.exr");
+  EXPECT_EQ(img.width, 32);
+  EXPECT_GT(img.At(16, 16)[0], 0.0f);  // lit by 'near'
+}
+
+TEST_F(RenderCli, BadInputExitsTwoNamingTheFile) {
+  WriteScene(R"({"materials": {"m": {"type": "measured", "table": "missing.binary"}},
+                 "objects": [{"material": "m"}]})");
+  const CliRun r = RunCli("render " + (dir_ / "scene.json").string() + " -o " +
+                       (dir_ / "out.png").string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("missing.binary"), std::string::npos) << r.out;
+  const CliRun s = RunCli("render " + (dir_ / "scene.json").string() + " -o x.png --size 12");
+  EXPECT_EQ(s.code, 2);
+  EXPECT_NE(s.out.find("--size"), std::string::npos) << s.out;
+}
+
+}  // namespace
+}  // namespace brdfit::preview
