@@ -13,7 +13,8 @@
 #   scripts/fuzz.sh seeds                 regenerate fuzz/corpus/ (brdfit's writers) and
 #                                         fuzz/regressions/*/crafted-*
 #
-# Build folder: $BUILD_FUZZ (default build-fuzz). The evolving corpus lives in
+# Build folder: $BUILD_FUZZ (default build-fuzz); FUZZ_BIN=DIR runs prebuilt harnesses from DIR
+# without building (long campaigns while the tree changes). The evolving corpus lives in
 # $BUILD_FUZZ/fuzz/corpus/<harness> (seeded from fuzz/corpus/<harness>), crashing inputs in
 # $BUILD_FUZZ/fuzz/artifacts/<harness>/, logs with libFuzzer's final stats in
 # $BUILD_FUZZ/fuzz/logs/. Copy a crashing input to fuzz/regressions/<harness>/ once fixed: the
@@ -24,6 +25,7 @@ ROOT=$PWD
 BUILD_FUZZ=${BUILD_FUZZ:-build-fuzz}
 JOBS=${JOBS:-2}
 OUT=$BUILD_FUZZ/fuzz
+BIN=${FUZZ_BIN:-$OUT}  # where the harness executables are (a copy, for long campaigns)
 
 SAN="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined"
 SAN+=" -fno-omit-frame-pointer"
@@ -86,7 +88,7 @@ replay() {
 
 run() {
   local h=$1 secs=$2 extra=${3:-}
-  [[ -x $OUT/fuzz_$h ]] || { echo "fuzz: no harness $h (scripts/fuzz.sh list)" >&2; exit 2; }
+  [[ -x $BIN/fuzz_$h ]] || { echo "fuzz: no harness $h (scripts/fuzz.sh list)" >&2; exit 2; }
   mkdir -p "$OUT/corpus/$h" "$OUT/artifacts/$h" "$OUT/logs"
   [[ -d fuzz/corpus/$h ]] && cp -n fuzz/corpus/"$h"/* "$OUT/corpus/$h/" 2>/dev/null || true
   local log
@@ -98,7 +100,7 @@ run() {
   fi
   # One fuzzing process: no -jobs/-workers (KEEP_GOING: one forked child at a time).
   # shellcheck disable=SC2046
-  "$OUT/fuzz_$h" $(common_flags "$h") $extra -max_total_time="$secs" "$OUT/corpus/$h" >"$log" 2>&1 ||
+  "$BIN/fuzz_$h" $(common_flags "$h") $extra -max_total_time="$secs" "$OUT/corpus/$h" >"$log" 2>&1 ||
     rc=$?
   grep -E '^(stat::|Done [0-9]+ runs)' "$log" || true
   grep -E '^#[0-9]+: ' "$log" | tail -n 1 || true  # fork mode: last progress line
@@ -120,12 +122,12 @@ case $cmd in
     ;;
   run)
     [[ $# -eq 3 ]] || { echo "usage: $0 run HARNESS SECONDS" >&2; exit 2; }
-    build
+    [[ -n ${FUZZ_BIN:-} ]] || build
     run "$2" "$3"
     ;;
   all)
     [[ $# -eq 2 ]] || { echo "usage: $0 all SECONDS" >&2; exit 2; }
-    build
+    [[ -n ${FUZZ_BIN:-} ]] || build
     status=0
     for h in $(harnesses); do run "$h" "$2" || status=1; done
     exit $status
