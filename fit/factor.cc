@@ -11,7 +11,7 @@ namespace brdfit {
 namespace {
 
 // y = ln f per row; rows with a channel <= 0 or not finite are listed in *removed (y = 0).
-void LogValues(const Table& table, const FactorSystem& sys, Eigen::MatrixX3d* y,
+void LogValues(const Table& table, const FactorSystem& sys, RowValues* y,
                std::vector<std::uint32_t>* removed) {
   const auto& cells = sys.row_cells();
   y->resize(static_cast<Eigen::Index>(cells.size()), 3);
@@ -92,7 +92,8 @@ Factorization Factor(const Table& table, const FactorOptions& options, FactorSys
   if (!hit) st.system_seconds = sys->build_seconds();
   st.usable_cells = sys->num_rows();
 
-  Eigen::MatrixX3d y, x;
+  RowValues y;
+  Eigen::MatrixX3d x;
   std::vector<std::uint32_t> removed;
   LogValues(table, *sys, &y, &removed);
   st.nonpositive_cells = removed.size();

@@ -67,12 +67,83 @@ struct RowEntries {
 
 // FactorWeighting::kSolidAngle: the bin measure shared with the fits (fit/bin_measure.h),
 // 8 pi [cos th_lo - cos th_hi] [(sin^2 td_hi - sin^2 td_lo) / 2] dphi_d, divided by its sum
-// over the whole (theta_h, theta_d, phi_d) box, 8 pi * 1 * 1/2 * pi = 4 pi^2.
-double CellSolidAngleWeight(const Grid& g, std::size_t idx) {
-  int ih, id, ip;
-  g.Unindex(idx, &ih, &id, &ip);
-  return CellMeasure(g, ih, id, ip) / (4 * kPi * kPi);
+// over the whole (theta_h, theta_d, phi_d) box, 8 pi * 1 * 1/2 * pi = 4 pi^2. It does not
+// depend on phi_d.
+double CellSolidAngleWeight(const Grid& g, int ih, int id) {
+  return CellMeasure(g, ih, id, 0) / (4 * kPi * kPi);
 }
+
+// Accumulates M = sum_r w_r a_r a_r^T without forming A: pairs involving one of the first
+// `n_dense` unknowns (the radial profiles) go to a dense n x n_dense block; pairs of texel
+// unknowns (bilinear neighbours) to a short list per texel.
+class NormalAccumulator {
+ public:
+  NormalAccumulator(int n, int n_dense, int max_neighbours)
+      : n_(n),
+        n_dense_(n_dense),
+        max_nb_(max_neighbours),
+        dense_(Eigen::MatrixXd::Zero(n, n_dense)),
+        nb_count_(n - n_dense, 0),
+        nb_col_(static_cast<std::size_t>(n - n_dense) * max_neighbours),
+        nb_val_(nb_col_.size(), 0.0) {}
+
+  void Add(const int* col, const double* val, int cnt, double w) {
+    for (int x = 0; x < cnt; ++x) {
+      const double wx = w * val[x];
+      for (int y = 0; y < cnt; ++y) {
+        const int i = col[x], j = col[y];
+        if (j < n_dense_) {
+          if (i >= j) dense_(i, j) += wx * val[y];  // lower part of the dense columns
+        } else if (i >= n_dense_) {
+          AddTexelPair(i - n_dense_, j, wx * val[y]);
+        }
+      }
+    }
+  }
+
+  Eigen::SparseMatrix<double> ToSparse() const {
+    std::vector<Triplet> t;
+    for (int j = 0; j < n_dense_; ++j) {
+      for (int i = j; i < n_; ++i) {
+        const double v = dense_(i, j);
+        if (v == 0) continue;
+        t.emplace_back(i, j, v);
+        if (i != j) t.emplace_back(j, i, v);
+      }
+    }
+    for (int a = 0; a < n_ - n_dense_; ++a) {
+      for (int m = 0; m < nb_count_[a]; ++m) {
+        const std::size_t s = static_cast<std::size_t>(a) * max_nb_ + m;
+        t.emplace_back(n_dense_ + a, nb_col_[s], nb_val_[s]);
+      }
+    }
+    Eigen::SparseMatrix<double> m(n_, n_);
+    m.setFromTriplets(t.begin(), t.end());
+    return m;
+  }
+
+ private:
+  void AddTexelPair(int a, int col, double v) {
+    const std::size_t base = static_cast<std::size_t>(a) * max_nb_;
+    int& count = nb_count_[a];
+    for (int m = 0; m < count; ++m) {
+      if (nb_col_[base + m] == col) {
+        nb_val_[base + m] += v;
+        return;
+      }
+    }
+    assert(count < max_nb_);  // bilinear footprints: a texel meets at most 9 texels
+    nb_col_[base + count] = col;
+    nb_val_[base + count] = v;
+    ++count;
+  }
+
+  int n_, n_dense_, max_nb_;
+  Eigen::MatrixXd dense_;
+  std::vector<int> nb_count_;
+  std::vector<int> nb_col_;
+  std::vector<double> nb_val_;
+};
 
 // Second differences of a radial profile on k knots over rho in [0, 1]:
 // lambda * integral (g'')^2 drho  ~  sum_k h (Delta^2 x_k / h^2)^2.
@@ -138,6 +209,12 @@ std::shared_ptr<const FactorSystem> FactorSystem::Build(const Grid& grid,
   if (options.resolution < 4 || options.resolution > 1024) {
     throw InputError(fmt::format("resolution {} out of range [4, 1024]", options.resolution));
   }
+  if (options.param == FactorParam::kHalfDiff && options.resolution > kMaxHalfDiffResolution) {
+    throw InputError(
+        fmt::format("resolution {} too large for halfdiff (at most {}: the q "
+                    "texture is solved texel by texel)",
+                    options.resolution, kMaxHalfDiffResolution));
+  }
   if (!(options.lambda > 0) || !std::isfinite(options.lambda)) {
     throw InputError(
         fmt::format("lambda must be a positive finite number (got {}); it fills "
@@ -162,49 +239,94 @@ std::shared_ptr<const FactorSystem> FactorSystem::Build(const Grid& grid,
   s->n_q_ = mccool ? k : n * n;
   const int n_p = s->n_p_;
 
-  // ---- data rows ----
+  // ---- data rows, accumulated into M as they are made ----
+  // Per-axis caches: the row of a cell depends on (theta_h) and (theta_d, phi_d) separately,
+  // and its directions only through cos theta_i, cos theta_o at the cell centre:
+  //   wi = R_y(theta_h) d, d = (sin td cos pd, sin td sin pd, cos td), wo = 2 (wi.h) h - wi
+  //   => cos theta_i = cos th cos td - sin th sin td cos pd,
+  //      cos theta_o = cos th cos td + sin th sin td cos pd        (geometry.h FromHalfDiff).
+  const int nh = grid.n_theta_h, nd = grid.n_theta_d, np = grid.n_phi_d;
+  std::vector<double> cth(nh), sth(nh), ctd(nd), std_(nd), cpd(np);
+  std::vector<Linear2> h_knots(nh);  // sqrt-theta profile of theta_h
+  for (int i = 0; i < nh; ++i) {
+    const double th = grid.ThetaHAt(i + 0.5);
+    cth[i] = std::cos(th);
+    sth[i] = std::sin(th);
+    h_knots[i] = ProfileWeights(DiskRadius(FactorMap::kDiskSqrtTheta, th), k);
+  }
+  for (int i = 0; i < nd; ++i) {
+    const double td = grid.ThetaDAt(i + 0.5);
+    ctd[i] = std::cos(td);
+    std_[i] = std::sin(td);
+  }
+  for (int i = 0; i < np; ++i) cpd[i] = std::cos(grid.PhiDAt(i + 0.5));
+  std::vector<Bilinear> dphi_texels;  // halfdiff: q lookup of (theta_d, phi_d)
+  if (!mccool) {
+    dphi_texels.resize(static_cast<std::size_t>(nd) * np);
+    for (int id = 0; id < nd; ++id) {
+      for (int ip = 0; ip < np; ++ip) {
+        dphi_texels[static_cast<std::size_t>(id) * np + ip] =
+            ThetaDPhiDLookup(grid.ThetaDAt(id + 0.5), grid.PhiDAt(ip + 0.5), n, n);
+      }
+    }
+  }
+  // Parabolic radius tan(theta / 2) = sqrt((1 - cos) / (1 + cos)).
+  auto parabolic = [k](double c) {
+    return ProfileWeights(std::sqrt(std::max(0.0, (1 - c) / (1 + c))), k);
+  };
+  const double cos_max = std::cos(options.max_theta);
+  NormalAccumulator acc(s->n_p_ + s->n_q_, mccool ? s->n_p_ + s->n_q_ : n_p, 9);
+
+  const std::size_t max_rows =
+      static_cast<std::size_t>(std::count_if(mask.begin(), mask.end(), [](auto m) { return m; }));
+  s->row_start_.reserve(max_rows + 1);
+  s->row_cells_.reserve(max_rows);
+  s->row_weight_.reserve(max_rows);
+  s->col_.reserve(6 * max_rows);
+  s->val_.reserve(6 * max_rows);
   s->row_start_.push_back(0);
   double weight_sum = 0;
-  for (std::size_t idx = 0; idx < grid.NumCells(); ++idx) {
-    if (!mask[idx]) continue;
-    const HalfDiffAngles a = grid.CellCentre(idx);
-    Vec3 wi, wo;
-    FromHalfDiff(a, 0.0, &wi, &wo);
-    if (wi.z <= 0 || wo.z <= 0) continue;
-    const double theta_i = std::acos(std::min(wi.z, 1.0));
-    const double theta_o = std::acos(std::min(wo.z, 1.0));
-    if (theta_i > options.max_theta || theta_o > options.max_theta) continue;
-    RowEntries e;
-    if (mccool) {
-      // log f = log p(wi) + log q(wh) + log p(wo); each factor radial (factor_param.h).
-      for (double th : {theta_i, theta_o}) {
-        const Linear2 l = ProfileWeights(DiskRadius(FactorMap::kDiskParabolic, th), k);
-        e.Add(l.index[0], l.weight[0]);
-        e.Add(l.index[1], l.weight[1]);
+  for (int ih = 0; ih < nh; ++ih) {
+    for (int id = 0; id < nd; ++id) {
+      const double w = options.weighting == FactorWeighting::kSolidAngle
+                           ? CellSolidAngleWeight(grid, ih, id)
+                           : 1.0 / static_cast<double>(grid.NumCells());
+      const double a = cth[ih] * ctd[id], b = sth[ih] * std_[id];
+      for (int ip = 0; ip < np; ++ip) {
+        const std::size_t idx = grid.Index(ih, id, ip);
+        if (!mask[idx]) continue;
+        const double cos_i = a - b * cpd[ip], cos_o = a + b * cpd[ip];
+        if (!(cos_i > 0 && cos_o > 0) || cos_i < cos_max || cos_o < cos_max) continue;
+        RowEntries e;
+        const Linear2& lh = h_knots[ih];
+        if (mccool) {
+          // log f = log p(wi) + log q(wh) + log p(wo); each factor radial (factor_param.h).
+          for (double c : {cos_i, cos_o}) {
+            const Linear2 l = parabolic(c);
+            e.Add(l.index[0], l.weight[0]);
+            e.Add(l.index[1], l.weight[1]);
+          }
+          e.Add(n_p + lh.index[0], lh.weight[0]);
+          e.Add(n_p + lh.index[1], lh.weight[1]);
+        } else {
+          // log f = log p(wh) + log q(theta_d, phi_d).
+          e.Add(lh.index[0], lh.weight[0]);
+          e.Add(lh.index[1], lh.weight[1]);
+          const Bilinear& q = dphi_texels[static_cast<std::size_t>(id) * np + ip];
+          for (int c = 0; c < 4; ++c) e.Add(n_p + q.index[c], q.weight[c]);
+        }
+        e.Sort();
+        for (int c = 0; c < e.n; ++c) {
+          s->col_.push_back(e.col[c]);
+          s->val_.push_back(e.val[c]);
+        }
+        acc.Add(e.col.data(), e.val.data(), e.n, w);
+        s->row_start_.push_back(static_cast<int>(s->col_.size()));
+        s->row_cells_.push_back(static_cast<std::uint32_t>(idx));
+        s->row_weight_.push_back(w);
+        weight_sum += w;
       }
-      const Linear2 l = ProfileWeights(DiskRadius(FactorMap::kDiskSqrtTheta, a.theta_h), k);
-      e.Add(n_p + l.index[0], l.weight[0]);
-      e.Add(n_p + l.index[1], l.weight[1]);
-    } else {
-      // log f = log p(wh) + log q(theta_d, phi_d).
-      const Linear2 l = ProfileWeights(DiskRadius(FactorMap::kDiskSqrtTheta, a.theta_h), k);
-      e.Add(l.index[0], l.weight[0]);
-      e.Add(l.index[1], l.weight[1]);
-      const Bilinear b = ThetaDPhiDLookup(a.theta_d, a.phi_d, n, n);
-      for (int c = 0; c < 4; ++c) e.Add(n_p + b.index[c], b.weight[c]);
     }
-    e.Sort();
-    for (int c = 0; c < e.n; ++c) {
-      s->col_.push_back(e.col[c]);
-      s->val_.push_back(e.val[c]);
-    }
-    s->row_start_.push_back(static_cast<int>(s->col_.size()));
-    s->row_cells_.push_back(static_cast<std::uint32_t>(idx));
-    const double w = options.weighting == FactorWeighting::kSolidAngle
-                         ? CellSolidAngleWeight(grid, idx)
-                         : 1.0 / static_cast<double>(grid.NumCells());
-    s->row_weight_.push_back(w);
-    weight_sum += w;
   }
   const std::size_t rows = s->row_cells_.size();
   if (rows == 0 || !(weight_sum > 0)) {
@@ -215,22 +337,7 @@ std::shared_ptr<const FactorSystem> FactorSystem::Build(const Grid& grid,
 
   // ---- normal matrix M = A^T W A + L^T L + g g^T ----
   const int n_unknowns = s->n_p_ + s->n_q_;
-  Eigen::SparseMatrix<double> sqrt_w_a(static_cast<Eigen::Index>(rows), n_unknowns);
-  {
-    // Column-major copy of sqrt(W) A for the product (Eigen's sparse product accumulates each
-    // result column densely: cost sum over rows of nnz^2).
-    std::vector<Triplet> t;
-    t.reserve(s->val_.size());
-    for (std::size_t r = 0; r < rows; ++r) {
-      const double sw = std::sqrt(s->row_weight_[r]);
-      for (int e = s->row_start_[r]; e < s->row_start_[r + 1]; ++e) {
-        t.emplace_back(static_cast<int>(r), s->col_[e], sw * s->val_[e]);
-      }
-    }
-    sqrt_w_a.setFromTriplets(t.begin(), t.end());
-  }
-  Eigen::SparseMatrix<double> normal = sqrt_w_a.transpose() * sqrt_w_a;
-  sqrt_w_a = Eigen::SparseMatrix<double>();
+  const Eigen::SparseMatrix<double> normal = acc.ToSparse();
 
   std::vector<Triplet> lt;
   int lrow = 0;
@@ -277,7 +384,7 @@ void FactorSystem::ApplyReduced(const Eigen::VectorXd& v, const std::vector<std:
   }
 }
 
-bool FactorSystem::Solve(const Eigen::MatrixX3d& y, const std::vector<std::uint32_t>& removed,
+bool FactorSystem::Solve(const RowValues& y, const std::vector<std::uint32_t>& removed,
                          Eigen::MatrixX3d* x, FactorSolveInfo* info) const {
   const std::size_t rows = row_cells_.size();
   assert(static_cast<std::size_t>(y.rows()) == rows);
@@ -292,7 +399,8 @@ bool FactorSystem::Solve(const Eigen::MatrixX3d& y, const std::vector<std::uint3
       continue;
     }
     const double w = row_weight_[r];
-    const double y0 = w * y(r, 0), y1 = w * y(r, 1), y2 = w * y(r, 2);
+    const double* yr = y.data() + 3 * r;
+    const double y0 = w * yr[0], y1 = w * yr[1], y2 = w * yr[2];
     for (int e = row_start_[r]; e < row_start_[r + 1]; ++e) {
       const double a = val_[e];
       double* bp = b.data() + col_[e];
@@ -341,9 +449,9 @@ bool FactorSystem::Solve(const Eigen::MatrixX3d& y, const std::vector<std::uint3
   return true;
 }
 
-double FactorSystem::WeightedRms(const Eigen::MatrixX3d& y,
-                                 const std::vector<std::uint32_t>& removed,
+double FactorSystem::WeightedRms(const RowValues& y, const std::vector<std::uint32_t>& removed,
                                  const Eigen::MatrixX3d& x) const {
+  const Eigen::Index n = x.rows();
   double sum = 0, wsum = 0;
   std::size_t next_removed = 0;
   for (std::size_t r = 0; r < row_cells_.size(); ++r) {
@@ -351,12 +459,17 @@ double FactorSystem::WeightedRms(const Eigen::MatrixX3d& y,
       ++next_removed;
       continue;
     }
-    for (int c = 0; c < 3; ++c) {
-      double pred = 0;
-      for (int e = row_start_[r]; e < row_start_[r + 1]; ++e) pred += val_[e] * x(col_[e], c);
-      const double d = y(r, c) - pred;
-      sum += row_weight_[r] * d * d;
+    double p0 = 0, p1 = 0, p2 = 0;
+    for (int e = row_start_[r]; e < row_start_[r + 1]; ++e) {
+      const double a = val_[e];
+      const double* xp = x.data() + col_[e];
+      p0 += a * xp[0];
+      p1 += a * xp[n];
+      p2 += a * xp[2 * n];
     }
+    const double* yr = y.data() + 3 * r;
+    const double d0 = yr[0] - p0, d1 = yr[1] - p1, d2 = yr[2] - p2;
+    sum += row_weight_[r] * (d0 * d0 + d1 * d1 + d2 * d2);
     wsum += 3 * row_weight_[r];
   }
   return wsum > 0 ? std::sqrt(sum / wsum) : 0.0;

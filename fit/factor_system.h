@@ -47,8 +47,8 @@ FactorWeighting FactorWeightingFromString(const std::string& s);  // throws Inpu
 // Everything the system matrix depends on besides the cell mask.
 struct FactorSystemOptions {
   FactorParam param = FactorParam::kMcCool;
-  int resolution = 64;  // texture side N; radial profiles have N knots
-  double lambda = 1e-5;
+  int resolution = 64;  // texture side N in [4, 1024] (halfdiff: [4, 256]); profiles: N knots
+  double lambda = 1e-8;
   FactorWeighting weighting = FactorWeighting::kSolidAngle;
   double max_theta = kPi / 2;  // cells with theta_i or theta_o above this are not used (rad)
   bool operator==(const FactorSystemOptions&) const = default;
@@ -59,6 +59,9 @@ struct FactorSolveInfo {
   std::size_t removed_rows = 0;  // rows of cells with a channel <= 0 or not finite
   int pcg_iterations = 0;        // low-rank correction iterations (0 if none was needed)
 };
+
+// Per-row data, one RGB triple per row (row-major: a row's channels are adjacent).
+using RowValues = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
 class FactorSystem {
  public:
@@ -86,15 +89,16 @@ class FactorSystem {
   // factorization as preconditioner (exact in at most |removed| + 1 steps). Returns false,
   // leaving x untouched, if too many rows are removed or the correction does not converge:
   // the caller then builds a system for the reduced mask.
-  bool Solve(const Eigen::MatrixX3d& y, const std::vector<std::uint32_t>& removed,
-             Eigen::MatrixX3d* x, FactorSolveInfo* info) const;
+  bool Solve(const RowValues& y, const std::vector<std::uint32_t>& removed, Eigen::MatrixX3d* x,
+             FactorSolveInfo* info) const;
 
   // Data-term residual sqrt(sum_c w_c |y_c - a_c^T x|^2 / sum_c w_c) over the kept rows,
   // channels pooled (a diagnostic of the solve itself, before the textures are baked).
-  double WeightedRms(const Eigen::MatrixX3d& y, const std::vector<std::uint32_t>& removed,
+  double WeightedRms(const RowValues& y, const std::vector<std::uint32_t>& removed,
                      const Eigen::MatrixX3d& x) const;
 
   static constexpr std::size_t kMaxRemovedRows = 4096;
+  static constexpr int kMaxHalfDiffResolution = 256;
   static constexpr int kMaxPcgIterations = 60;
 
  private:

@@ -1,0 +1,101 @@
+// Factorization benchmarks on the MERL grid (90 x 90 x 180, ~1.1 M usable cells): one material
+// factored with a cold cache (build + factor the system, then solve) and with the system reused
+// from the cache (logs, A^T W y, triangular solves, bake), at 32^2 and 64^2 texels, for both
+// parameterizations. The material is an NBRDF network (../shared/data/merl_nbrdf.zip) tabulated
+// once, or a synthetic Lambert + GGX table when the archive is absent. Medians:
+//   build/bench/bench_factor --benchmark_repetitions=9 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <string>
+
+#include "fit/factor.h"
+#include "io/nbrdf.h"
+#include "io/synth.h"
+#include "models/registry.h"
+
+namespace brdfit {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kZip = fs::path(BRDFIT_SHARED_DATA) / "merl_nbrdf.zip";
+constexpr const char* kMaterial = "gold-metallic-paint";
+
+struct Material {
+  std::string name;
+  Table table;
+};
+
+const Material& TheMaterial() {
+  static const Material m = [] {
+    if (fs::exists(kZip)) {
+      return Material{std::string("nbrdf:") + kMaterial,
+                      TabulateNbrdf(ReadNbrdf(kZip, kMaterial), Grid::Merl(), 2).table};
+    }
+    const ModelInfo* info = FindModel("lambert+ggx");
+    const std::vector<double> p = info->DefaultParams();
+    return Material{"synthetic lambert+ggx", SynthesizeTable(Grid::Merl(),
+                                                             [&](const Geometry& g, double rgb[3]) {
+                                                               info->eval(p.data(), g, rgb);
+                                                             },
+                                                             {0.0, 0.0, 1})};
+  }();
+  return m;
+}
+
+FactorOptions Options(const benchmark::State& state) {
+  FactorOptions o;
+  o.param = state.range(0) == 0 ? FactorParam::kMcCool : FactorParam::kHalfDiff;
+  o.resolution = static_cast<int>(state.range(1));
+  return o;
+}
+
+void Label(benchmark::State& state, const Factorization& r) {
+  state.SetLabel(TheMaterial().name + " " + ToString(r.options.param));
+  state.counters["cells"] = static_cast<double>(r.stats.used_cells);
+  state.counters["f<=0"] = static_cast<double>(r.stats.nonpositive_cells);
+  state.counters["pcg_it"] = r.stats.pcg_iterations;
+}
+
+// Cold: every iteration builds and factors the system, then solves.
+void BM_FactorFirst(benchmark::State& state) {
+  const Table& t = TheMaterial().table;
+  const FactorOptions o = Options(state);
+  Factorization r;
+  for (auto _ : state) {
+    FactorSystemCache cache;
+    r = Factor(t, o, &cache);
+    benchmark::DoNotOptimize(r);
+  }
+  Label(state, r);
+}
+
+// Reused: the system comes from the cache; per material only logs, A^T W y and solves.
+void BM_FactorReused(benchmark::State& state) {
+  const Table& t = TheMaterial().table;
+  const FactorOptions o = Options(state);
+  FactorSystemCache cache;
+  Factorization r = Factor(t, o, &cache);
+  for (auto _ : state) {
+    r = Factor(t, o, &cache);
+    benchmark::DoNotOptimize(r);
+  }
+  if (!r.stats.system_reused) state.SkipWithError("cache miss");
+  Label(state, r);
+}
+
+// Args: {parameterization (0 mccool, 1 halfdiff), resolution}.
+BENCHMARK(BM_FactorFirst)
+    ->ArgsProduct({{0, 1}, {32, 64}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_FactorReused)
+    ->ArgsProduct({{0, 1}, {32, 64}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+}  // namespace
+}  // namespace brdfit
+
+BENCHMARK_MAIN();
