@@ -116,16 +116,17 @@ int DemoRender(DemoContext& ctx) {
     return kExitOk;
   }
   const std::filesystem::path table = std::filesystem::absolute(ctx.tables.front());
+  const std::string name = table.stem().string();
   nlohmann::json s = {
       {"camera", {{"position", {0, 0, 4}}, {"fov_deg", 30}}},
       {"lights",
        {{{"name", "key"}, {"type", "directional"}, {"direction", {1, 1, 1.5}}},
         {{"name", "fill"}, {"type", "point"}, {"position", {-3, 0.5, 3}}, {"intensity", 0.4}}}},
       {"materials",
-       {{"measured", {{"type", "measured"}, {"table", table.string()}}},
+       {{name, {{"type", "measured"}, {"table", table.string()}}},
         {"fit", {{"type", "analytic"}, {"model", "lambert+ggx"}, {"fit_table", table.string()}}}}},
-      {"objects", {{{"name", "ball"}, {"material", "measured"}}}},
-      {"comparison", {{"measured", "measured"}, {"fitted", "fit"}}}};
+      {"objects", {{{"name", "ball"}, {"material", name}}}},
+      {"comparison", {{"measured", name}, {"fitted", "fit"}}}};
   if (preview::FactorizationAvailable()) {
     s["materials"]["factored"] = {{"type", "factored"}, {"table", table.string()},
                                   {"resolution", ctx.quick ? 16 : 32}};

@@ -129,7 +129,7 @@ Image RenderComparison(Renderer& renderer, const Scene& scene, const MaterialSet
                kLabelInk);
       DrawText(&out, bar_x + bar_w - TextWidth("100%", 1), bar_y + bar_h + 3, "100%", 1,
                kLabelInk);
-      Label(&out, x0, y0, pw, "rel. error: med " + Percent(s.median_error) + " p95 " +
+      Label(&out, x0, y0, pw, "error med " + Percent(s.median_error) + " p95 " +
                                   Percent(s.p95_error));
       if (log) {
         log->Add("note", "comparison error of '" + c.fitted.front() + "' vs '" + c.measured +

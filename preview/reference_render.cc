@@ -61,10 +61,19 @@ Image RenderReference(const Scene& scene, const MaterialSet& materials, int widt
       const Vec3 p = cam.position + best * d;
       const Vec3 n = (1.0 / o.radius) * (p - o.centre);
       const Vec3 v = -1.0 * d;
-      // Any tangent frame (isotropic models): Gram-Schmidt of the axis least aligned with n.
-      const Vec3 a = std::abs(n.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-      const Vec3 t1 = Normalize(a - Dot(a, n) * n);
-      const Vec3 t2 = Cross(n, t1);
+      // Tangent frame: Duff et al. 2017 (JCGT 6(1)), Listing 3, as the shader, but in world
+      // space. Analytic and tabulated isotropic BRDFs do not depend on it; a factorization's
+      // disk textures do slightly (bilinear filtering of a radial profile is not exactly
+      // radial), so both renderers use the same construction.
+      // The frame is built from the VIEW-space normal (rows s, u, -f rotate world to view) and
+      // rotated back, so it is the shader's frame.
+      const Vec3 nv{Dot(s, n), Dot(u, n), -Dot(f, n)};
+      const double sg = nv.z >= 0 ? 1.0 : -1.0;
+      const double fa = -1.0 / (sg + nv.z), fb = nv.x * nv.y * fa;
+      const Vec3 t1v{1.0 + sg * nv.x * nv.x * fa, sg * fb, -sg * nv.x};
+      const Vec3 t2v{fb, sg + nv.y * nv.y * fa, -nv.y};
+      auto to_world = [&](const Vec3& v) { return v.x * s + v.y * u + (-v.z) * f; };
+      const Vec3 t1 = to_world(t1v), t2 = to_world(t2v);
       auto local = [&](const Vec3& w) { return Vec3{Dot(w, t1), Dot(w, t2), Dot(w, n)}; };
       const Vec3 wo = local(v);
       float* out = img.At(x, y);

@@ -305,7 +305,9 @@ Scene ParseScene(const std::string& text, const std::filesystem::path& source) {
   Json j;
   try {
     j = Json::parse(text);
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {
+    // Not only parse_error: a number too large for a double is out_of_range (406)
+    // (fuzz/regressions/scene/number-overflow-41e308).
     throw InputError(source, std::string("invalid JSON: ") + e.what());
   }
   Scene s;

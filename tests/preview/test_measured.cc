@@ -7,6 +7,9 @@
 #include <cmath>
 
 #include "io/synth.h"
+#if __has_include("fit/factor.h")
+#include "fit/factor.h"
+#endif
 #include "models/registry.h"
 #include "preview/reference_render.h"
 #include "preview/renderer.h"
@@ -92,6 +95,50 @@ TEST(Measured, GpuTextureMatchesTableLookupTrilinear) {
     }
   }
 }
+
+#if __has_include("fit/factor.h")
+// The factored path: two textures per material, GL_LINEAR at texel centres, against the CPU
+// evaluator of the same textures (fit/factor_eval.h). Spot lights are not used by this path.
+TEST(Factored, GpuTexturesMatchCpuEvaluator) {
+  BRDFIT_REQUIRE_GL();
+  Renderer renderer;
+  const auto table = Synth(ThetaHMapping::kSqrt, 0.0);
+  for (const char* param : {"mccool", "halfdiff"}) {
+    SCOPED_TRACE(param);
+    FactorOptions opt;
+    opt.param = FactorParamFromString(param);
+    opt.resolution = 16;
+    Factorization f = Factor(*table, opt);
+    auto tex = std::make_shared<FactorTextures>();
+    tex->parameterization = param;
+    auto to_image = [](const RgbImage& src) {
+      Image img(src.width, src.height);
+      for (std::size_t i = 0; i < static_cast<std::size_t>(src.width) * src.height; ++i) {
+        for (int c = 0; c < 3; ++c) img.rgba[4 * i + c] = src.rgb[3 * i + c];
+        img.rgba[4 * i + 3] = 1.0f;
+      }
+      return img;
+    };
+    tex->p = to_image(f.brdf.p());
+    tex->q = to_image(f.brdf.q());
+    auto brdf = std::make_shared<FactoredBrdf>(f.brdf);
+    tex->eval = [brdf](const Vec3& wi, const Vec3& wo) { return brdf->Eval(wi, wo); };
+    Scene scene = SphereScene();
+    MaterialSet mats;
+    ResolvedMaterial m;
+    m.name = "m";
+    m.kind = MaterialKind::kFactored;
+    m.factors = tex;
+    mats["m"] = m;
+    const Image gpu = renderer.RenderLinear(scene, mats, nullptr);
+    ReferenceExtras ex;
+    const Image cpu = RenderReference(scene, mats, scene.width, scene.height, &ex);
+    const double err = MaxRel(gpu, cpu, ex);
+    std::printf("factored %s: max relative error %.3g\n", param, err);
+    EXPECT_LT(err, kTextureTolerance);
+  }
+}
+#endif
 
 }  // namespace
 }  // namespace brdfit::preview
