@@ -1,0 +1,124 @@
+// `brdfit factor`: outputs on success, exit 2 naming the file on bad input.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "fit/factor_export.h"
+#include "io/hdf5_table.h"
+#include "tests/factor/factor_test_util.h"
+
+namespace brdfit {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string Slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+CliRun Brdfit(const std::vector<std::string>& args, const fs::path& dir) {
+  std::string cmd = std::string("'") + BRDFIT_EXE + "'";
+  for (const auto& a : args) cmd += " '" + a + "'";
+  cmd += " >'" + (dir / "out.txt").string() + "' 2>'" + (dir / "err.txt").string() + "'";
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, Slurp(dir / "out.txt"),
+          Slurp(dir / "err.txt")};
+}
+
+class FactorCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("brdfit_test_factor_cli_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    table_ = (dir_ / "product.h5").string();
+    WriteHdf5Table(testing::McCoolProductTable(testing::SmallGrid()), table_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+  std::string table_;
+};
+
+TEST_F(FactorCli, WritesTexturesAndSidecar) {
+  const CliRun r = Brdfit({"factor", table_, "--res", "16", "-o", (dir_ / "out").string()}, dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const fs::path json = dir_ / "out" / "product.factor.json";
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "product.p.exr"));
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "product.q.exr"));
+  nlohmann::json sidecar;
+  const FactoredBrdf b = LoadFactoredBrdf(json, &sidecar);
+  EXPECT_EQ(b.p().width, 16);
+  EXPECT_EQ(sidecar["source"]["file"], fs::absolute(table_).string());
+  EXPECT_TRUE(sidecar["metrics"]["fit_metrics"]["ok"].get<bool>());
+  EXPECT_LT(sidecar["metrics"]["ln_ratio_rmse"].get<double>(), 0.05);  // 16^2 texels
+  EXPECT_NE(r.out.find("product"), std::string::npos) << r.out;
+}
+
+TEST_F(FactorCli, SecondTableReusesTheSystem) {
+  fs::copy_file(table_, dir_ / "copy.h5");
+  const CliRun r = Brdfit({"factor", table_, (dir_ / "copy.h5").string(), "--param", "halfdiff",
+                           "--res", "8", "-o", (dir_ / "out").string()},
+                          dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto a = nlohmann::json::parse(Slurp(dir_ / "out" / "product.factor.json"));
+  const auto b = nlohmann::json::parse(Slurp(dir_ / "out" / "copy.factor.json"));
+  EXPECT_FALSE(a["stats"]["system_reused"].get<bool>());
+  EXPECT_TRUE(b["stats"]["system_reused"].get<bool>());
+  EXPECT_EQ(b["parameterization"], "halfdiff");
+}
+
+TEST_F(FactorCli, BadInputsExitTwoNamingTheFile) {
+  const std::string out = (dir_ / "out").string();
+  const std::string missing = (dir_ / "missing.binary").string();
+  CliRun r = Brdfit({"factor", missing, "-o", out}, dir_);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find(missing), std::string::npos) << r.err;
+
+  // A file that is no table: reported by name; the good table is still factored.
+  const fs::path junk = dir_ / "junk.binary";
+  std::ofstream(junk) << "not a table";
+  r = Brdfit({"factor", junk.string(), table_, "--res", "8", "-o", out}, dir_);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find(junk.string()), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "product.factor.json"));
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "junk.factor.json"));
+
+  for (const std::vector<std::string>& opts : {std::vector<std::string>{"--param", "svd"},
+                                               {"--res", "2"},
+                                               {"--lambda", "0"},
+                                               {"--weighting", "none"},
+                                               {"--max-theta", "95"}}) {
+    std::vector<std::string> args = {"factor", table_, "-o", out};
+    args.insert(args.end(), opts.begin(), opts.end());
+    r = Brdfit(args, dir_);
+    EXPECT_EQ(r.code, 2) << opts[0];
+    EXPECT_NE(r.err.find("brdfit: error:"), std::string::npos) << r.err;
+  }
+
+  // Two inputs that would write the same outputs.
+  fs::create_directories(dir_ / "other");
+  fs::copy_file(table_, dir_ / "other" / "product.h5");
+  r = Brdfit({"factor", table_, (dir_ / "other" / "product.h5").string(), "-o", out}, dir_);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("same outputs"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace brdfit
