@@ -84,6 +84,7 @@ int FuzzHdf5Table(const std::uint8_t* data, std::size_t size);
 int FuzzNbrdf(const std::uint8_t* data, std::size_t size);
 int FuzzExr(const std::uint8_t* data, std::size_t size);
 int FuzzFactorSidecar(const std::uint8_t* data, std::size_t size);
+int FuzzScene(const std::uint8_t* data, std::size_t size);
 
 }  // namespace brdfit::fuzz
 

@@ -33,6 +33,7 @@ constexpr Harnesses kHarnesses[] = {
     {"nbrdf", FuzzNbrdf},
     {"exr", FuzzExr},
     {"factor_sidecar", FuzzFactorSidecar},
+    {"scene", FuzzScene},
 };
 
 struct Input {

@@ -10,7 +10,10 @@
 
 #include "fuzz/harness_util.h"
 #include "io/hdf5_table.h"
+#include "io/exr_texture.h"
+#include "io/factor_io.h"
 #include "io/nbrdf.h"
+#include "preview/scene.h"
 
 namespace brdfit {
 namespace {
@@ -44,6 +47,18 @@ TEST(FuzzSeeds, NbrdfArchiveIsAccepted) {
   const NbrdfNetwork b = ReadNbrdf(zip, "beta");  // the deflated member
   EXPECT_EQ(b.k2.rows(), 21);
   EXPECT_EQ(b.k3.cols(), 3);
+}
+
+TEST(FuzzSeeds, ExrTexturesAreAccepted) {
+  for (const auto& e : fs::directory_iterator(kCorpus / "exr")) {
+    EXPECT_NO_THROW(ReadRgbExr(e.path())) << e.path();
+  }
+}
+
+TEST(FuzzSeeds, ScenesAreAccepted) {
+  for (const auto& e : fs::directory_iterator(kCorpus / "scene")) {
+    EXPECT_NO_THROW(preview::LoadScene(e.path())) << e.path();
+  }
 }
 
 }  // namespace
