@@ -192,12 +192,18 @@ inline void CookTorrance(const double* p, const Angles& a, double rgb[3]) {
 }
 
 // Lafortune et al. 1997 in the original C-matrix form, C_x = C_y = cxy C_z with
-// C_z = (rho (n + 2) / (2 pi))^(1/n) per channel.
+// C_z = (rho (n + 2) / (2 pi) / sqrt(1 + cxy^(2n)))^(1/n) per channel (models/lafortune.h).
 inline void Lafortune(const double* p, const Angles& a, double rgb[3]) {
   const double cxy = p[3], n = p[4];
   const V3 u = Dir(a.ti, a.pi), v = Dir(a.to, a.po);
   for (int c = 0; c < 3; ++c) {
-    const double cz = std::pow(p[c] * (n + 2) / (2 * kPi), 1.0 / n);
+    // sqrt(1 + |cxy|^(2n)) = |cxy|^n sqrt(1 + |cxy|^(-2n)): the second form for |cxy| > 1,
+    // where |cxy|^(2n) overflows.
+    const double k = p[c] * (n + 2) / (2 * kPi);
+    const double cz =
+        std::abs(cxy) <= 1
+            ? std::pow(k / std::sqrt(1 + std::pow(cxy * cxy, n)), 1.0 / n)
+            : std::pow(k / std::sqrt(1 + std::pow(cxy * cxy, -n)), 1.0 / n) / std::abs(cxy);
     const double cx = cxy * cz, cy = cxy * cz;
     const double x = cx * u.x * v.x + cy * u.y * v.y + cz * u.z * v.z;
     rgb[c] = x > 0 ? std::pow(x, n) : 0.0;
