@@ -160,6 +160,7 @@ TEST(Nbrdf, SmallGridEveryCellAndClampCount) {
     const NbrdfTabulation tab = TabulateNbrdf(ReadNbrdf(kZip, material), g);
     std::size_t clamped = 0;
     for (std::size_t i = 0; i < g.NumCells(); ++i) {
+      ASSERT_EQ(tab.table.valid[i], g.CellAboveHorizon(i)) << i;
       if (!tab.table.valid[i]) continue;
       int ih, id, ip;
       g.Unindex(i, &ih, &id, &ip);
