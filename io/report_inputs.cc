@@ -149,6 +149,23 @@ void AddInput(const fs::path& p, bool explicit_input, ReportSources* out) {
 
 }  // namespace
 
+void AddBenchEntries(Report* report) {
+  for (const BenchPoint& b : report->bench) {
+    Entry e;
+    e.kind = Entry::Kind::kFit;
+    e.name = b.model;
+    e.loss = b.loss;
+    e.budget = b.budget;
+    e.status = b.status;
+    e.message = b.message;
+    e.iterations = b.iterations;
+    e.metrics = b.metrics;
+    e.time_ms = b.time_ms;
+    e.times_ms = {{"prepare", b.prepare_ms}, {"init", b.init_ms}, {"solve", b.solve_ms}};
+    report->GetOrAddMaterial(b.material).entries.push_back(std::move(e));
+  }
+}
+
 ReportSources ReadReportInputs(const std::vector<fs::path>& inputs) {
   ReportSources out;
   for (const fs::path& p : inputs) {

@@ -33,6 +33,10 @@ struct ReportSources {
 // Throws InputError naming the file when an input is missing, unreadable or of no known kind.
 ReportSources ReadReportInputs(const std::vector<std::filesystem::path>& inputs);
 
+// Bench points as entries of their materials (for `brdfit compare` on two bench CSVs): one fit
+// entry per point, keyed like any fit (model | loss | budget).
+void AddBenchEntries(Report* report);
+
 // The material a table path stands for: its file name without the extension.
 std::string MaterialName(const std::filesystem::path& table);
 

@@ -1,0 +1,198 @@
+// The CLI's report, compare and bench commands, run as a user would: exit codes, outputs,
+// messages that name the problem, and --help with examples for every subcommand.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+
+#include "io/bench_csv.h"
+
+namespace brdfit::report {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string ReadText(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           (std::string("brdfit-report-cli-") +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name() + "-" +
+            std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+  CliRun Brdfit(const std::string& args) {
+    const std::string cmd = std::string(BRDFIT_EXE) + " " + args + " > " +
+                            (dir_ / "out.txt").string() + " 2> " + (dir_ / "err.txt").string();
+    const int status = std::system(cmd.c_str());
+    CliRun r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = ReadText(dir_ / "out.txt");
+    r.err = ReadText(dir_ / "err.txt");
+    return r;
+  }
+  std::string P(const std::string& name) const { return (dir_ / name).string(); }
+
+  // Bench results of one material and two models.
+  void WriteBench(const std::string& file, double gold_ggx, double gold_beckmann,
+                  double plastic_ggx) {
+    std::vector<BenchPoint> pts;
+    auto add = [&](const char* material, const char* model, double err) {
+      BenchPoint b;
+      b.material = material;
+      b.model = model;
+      b.loss = "log";
+      b.budget = "full";
+      b.status = "converged";
+      b.time_ms = 100;
+      b.metrics = {true, err, 2 * err, 3 * err, 100, "bin-measure", 80};
+      pts.push_back(b);
+    };
+    add("gold", "lambert+ggx", gold_ggx);
+    add("gold", "lambert+beckmann", gold_beckmann);
+    add("plastic", "lambert+ggx", plastic_ggx);
+    WriteBenchCsv(dir_ / file, pts);
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(Cli, CompareNamesTheRegressedMaterialAndFails) {
+  WriteBench("old.csv", 0.010, 0.020, 0.030);
+  WriteBench("new.csv", 0.0101, 0.0195, 0.036);  // plastic +20 %
+  const CliRun r = Brdfit("compare " + P("old.csv") + " " + P("new.csv"));
+  EXPECT_EQ(r.code, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("REGRESSED: plastic"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("REGRESSED: gold"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("+20.0 %"), std::string::npos) << r.out;
+
+  const CliRun j = Brdfit("compare --json " + P("old.csv") + " " + P("new.csv"));
+  EXPECT_EQ(j.code, 1);
+  const auto json = nlohmann::json::parse(j.out);
+  EXPECT_EQ(json["regressed_materials"], nlohmann::json::array({"plastic"}));
+  EXPECT_EQ(json["counts"]["worse"], 1);
+  EXPECT_EQ(json["counts"]["same"], 2);
+
+  // Within a looser threshold nothing regressed.
+  const CliRun ok = Brdfit("compare --threshold 0.25 " + P("old.csv") + " " + P("new.csv"));
+  EXPECT_EQ(ok.code, 0) << ok.out;
+  EXPECT_NE(ok.out.find("no regressions"), std::string::npos);
+  // Same file: no change at all.
+  EXPECT_EQ(Brdfit("compare " + P("old.csv") + " " + P("old.csv")).code, 0);
+}
+
+TEST_F(Cli, CompareBadInputExitsTwoAndNamesTheFile) {
+  WriteBench("old.csv", 0.01, 0.02, 0.03);
+  CliRun r = Brdfit("compare " + P("old.csv") + " " + P("missing.csv"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("missing.csv"), std::string::npos) << r.err;
+  r = Brdfit("compare --metric psnr " + P("old.csv") + " " + P("old.csv"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("psnr"), std::string::npos) << r.err;
+  r = Brdfit("compare " + P("old.csv"));
+  EXPECT_EQ(r.code, 2);
+}
+
+TEST_F(Cli, ReportWritesOnePageAndRejectsBadInput) {
+  WriteBench("bench.csv", 0.01, 0.02, 0.03);
+  CliRun r = Brdfit("report " + P("bench.csv") + " -o " + P("r.html"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string html = ReadText(dir_ / "r.html");
+  EXPECT_NE(html.find("data-charts-expected=\"2\""), std::string::npos);
+  EXPECT_NE(html.find("Chart.js v3"), std::string::npos);  // inlined, not linked
+
+  std::ofstream(dir_ / "notes.txt") << "x";
+  r = Brdfit("report " + P("notes.txt") + " -o " + P("r2.html"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("notes.txt"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "r2.html"));
+
+  r = Brdfit("report " + P("bench.csv") + " --chart-js /no/chart.js -o " + P("r3.html"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("libjs-chart.js"), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, BenchOnTwoSyntheticTablesWritesCsvAndPlot) {
+  for (const char* name : {"a", "b"}) {
+    const CliRun s = Brdfit(std::string("synth --model lambert+ggx --param alpha=0.2 --grid 16,16,32 -o ") +
+                         P(std::string(name) + ".h5"));
+    ASSERT_EQ(s.code, 0) << s.err;
+  }
+  const CliRun r = Brdfit("bench " + P("a.h5") + " " + P("b.h5") +
+                       " --models lambert+ggx,lambert+beckmann --budgets full,stride:4"
+                       " --losses log,cbrt -o " + P("bench.csv"));
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  const auto pts = ReadBenchCsv(dir_ / "bench.csv");
+  ASSERT_EQ(pts.size(), 2u * 2 * 2 * 2);  // tables x models x budgets x losses
+  for (const auto& p : pts) {
+    EXPECT_TRUE(p.metrics.ok) << p.material << " " << p.model << " " << p.budget;
+    EXPECT_GT(p.time_ms, 0);
+    EXPECT_EQ(p.status, "converged") << p.message;
+  }
+  // The generating model fits its own table better than the other model, at the full budget.
+  for (const auto& p : pts) {
+    if (p.model != "lambert+ggx" || p.budget != "full") continue;
+    for (const auto& q : pts) {
+      if (q.model == "lambert+beckmann" && q.budget == "full" && q.material == p.material &&
+          q.loss == p.loss) {
+        EXPECT_LT(p.metrics.log_rmse, q.metrics.log_rmse);
+      }
+    }
+  }
+  // A stride budget uses fewer cells than the full one.
+  EXPECT_LT(pts[2].fit_cells, pts[0].fit_cells);
+  const std::string html = ReadText(dir_ / "bench.html");
+  EXPECT_NE(html.find("data-charts-expected=\"2\""), std::string::npos);  // one Pareto per table
+  EXPECT_EQ(r.err.find("bench ["), std::string::npos);  // no progress bar when not a terminal
+
+  const CliRun bad = Brdfit("bench " + P("a.h5") + " --models no-such-model -o " + P("x.csv"));
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("no-such-model"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir_ / "x.csv"));
+}
+
+// Manners: every subcommand's --help shows examples.
+TEST_F(Cli, EveryCommandHelpHasExamples) {
+  const CliRun top = Brdfit("--help");
+  ASSERT_EQ(top.code, 0);
+  const std::regex sub(R"(^\s{2}([a-z][a-z-]*)\s{2,})");
+  std::vector<std::string> names;
+  std::istringstream lines(top.out.substr(top.out.find("Subcommands:")));
+  for (std::string line; std::getline(lines, line);) {
+    std::smatch m;
+    if (std::regex_search(line, m, sub)) names.push_back(m[1]);
+  }
+  ASSERT_GE(names.size(), 5u) << top.out;
+  for (const auto& n : {"report", "compare", "bench"}) {
+    EXPECT_NE(std::find(names.begin(), names.end(), n), names.end()) << n;
+  }
+  for (const auto& n : names) {
+    const CliRun h = Brdfit(n + " --help");
+    EXPECT_EQ(h.code, 0) << n;
+    EXPECT_NE(h.out.find("Example"), std::string::npos) << "brdfit " << n << " --help has no examples";
+  }
+}
+
+}  // namespace
+}  // namespace brdfit::report
