@@ -56,7 +56,7 @@ class Browser : public ::testing::Test {
     EXPECT_TRUE(p.console_lines.empty()) << "console messages:" << Join(p.console_lines);
 
     const fs::path png = dir_ / (html.stem().string() + ".png");
-    ASSERT_EQ(Screenshot(html, png, dir_ / ("shot-" + html.stem().string()), 1280, 2400), 0);
+    ASSERT_EQ(Screenshot(html, png, dir_ / ("shot-" + html.stem().string()), 1280, 1000), 0);
     ASSERT_TRUE(fs::exists(png)) << "no screenshot";
     const InkStats ink = MeasureInk(png);
     EXPECT_EQ(ink.width, 1280);
