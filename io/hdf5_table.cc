@@ -5,6 +5,7 @@
 #include <hdf5.h>
 
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -78,9 +79,16 @@ void WriteAxis(const H5::Group& axes, const char* name, const std::vector<double
   WriteStringAttr(ds, "definition", definition);
 }
 
-void WriteFile(const Table& t, const fs::path& file) {
+void WriteFile(const Table& t, const fs::path& file, const fs::path& dest) {
   const Grid& g = t.grid;
-  H5::H5File f(file.string(), H5F_ACC_TRUNC);
+  std::unique_ptr<H5::H5File> created;
+  try {
+    created = std::make_unique<H5::H5File>(file.string(), H5F_ACC_TRUNC);
+  } catch (const H5::Exception& e) {
+    throw OutputError(dest, "cannot create temporary file " + file.string() +
+                                " (HDF5: " + e.getDetailMsg() + ")");
+  }
+  H5::H5File& f = *created;
   WriteStringAttr(f, "format", kHdf5TableFormat);
   WriteScalarAttr(f, "format_version", H5::PredType::STD_I32LE, H5::PredType::NATIVE_INT32,
                   std::int32_t{kHdf5TableVersion});
@@ -341,7 +349,10 @@ void WriteHdf5Table(const Table& t, const fs::path& path) {
   }
   WriteFileAtomically(path, [&](const fs::path& tmp) {
     try {
-      WriteFile(t, tmp);
+      WriteFile(t, tmp, path);
+    } catch (const H5::FileIException& e) {
+      throw OutputError(path, "cannot create temporary file " + tmp.string() +
+                                  " (HDF5: " + e.getDetailMsg() + ")");
     } catch (const H5::Exception& e) {
       throw OutputError(path, "HDF5: " + e.getFuncName() + ": " + e.getDetailMsg());
     }

@@ -168,7 +168,10 @@ void WriteMerl(const Table& t, const fs::path& path) {
   }
   WriteFileAtomically(path, [&](const fs::path& tmp) {
     std::unique_ptr<std::FILE, FileCloser> f(std::fopen(tmp.c_str(), "wb"));
-    if (!f) throw OutputError(tmp, std::string("cannot create: ") + std::strerror(errno));
+    if (!f) {
+      throw OutputError(
+          path, "cannot create temporary file " + tmp.string() + ": " + std::strerror(errno));
+    }
     if (std::fwrite(kMerlDims.data(), sizeof(std::int32_t), 3, f.get()) != 3 ||
         std::fwrite(raw.data(), sizeof(double), raw.size(), f.get()) != raw.size() ||
         std::fflush(f.get()) != 0) {
