@@ -10,6 +10,8 @@
 #include <memory>
 #include <string>
 
+#include <cmath>
+
 #include "io/synth.h"
 #include "io/table_io.h"
 #include "models/registry.h"
@@ -123,6 +125,39 @@ TEST_F(RenderCli, CullsLightsThatReachNothing) {
   const Image img = ReadExr(dir_ / "out.exr");
   EXPECT_EQ(img.width, 32);
   EXPECT_GT(img.At(16, 16)[0], 0.0f);  // lit by 'near'
+}
+
+// What CI renders headless: a 512x512 four-panel comparison (measured | fit | factored |
+// error), with the fit and the factorization computed on the way.
+TEST_F(RenderCli, FourPanelComparison512) {
+  WriteScene(R"({
+    "lights": [{"type": "directional", "direction": [1, 1, 1.5]},
+               {"type": "point", "position": [-3, 0.5, 3], "intensity": 0.4}],
+    "materials": {
+      "meas": {"type": "measured", "table": "t1.h5"},
+      "fit": {"type": "analytic", "model": "ggx", "fit_table": "t1.h5"},
+      "fac": {"type": "factored", "table": "t1.h5", "resolution": 16}
+    },
+    "objects": [{"material": "meas"}],
+    "comparison": {"measured": "meas", "fitted": ["fit"], "factored": "fac"}
+  })");
+  const CliRun r = RunCli("render " + (dir_ / "scene.json").string() + " -o " +
+                          (dir_ / "cmp.png").string() + " --compare --size 512x512 --explain --cache " +
+                          (dir_ / "cache").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(Count(r.out, "load: table"), 1) << r.out;  // one table file, loaded once
+  EXPECT_EQ(Count(r.out, "compute: fit ggx"), 1) << r.out;
+  EXPECT_EQ(Count(r.out, "compute: factorization mccool 16"), 1) << r.out;
+  EXPECT_NE(r.out.find("comparison error of 'fit' vs 'meas': median"), std::string::npos) << r.out;
+  const Image img = ReadPng(dir_ / "cmp.png");
+  ASSERT_EQ(img.width, 512);
+  ASSERT_EQ(img.height, 512);
+  // Each 256 x 256 panel shows a lit sphere at its centre (not the "not available" grey).
+  for (int k = 0; k < 4; ++k) {
+    const float* c = img.At((k % 2) * 256 + 128, (k / 2) * 256 + 128);
+    EXPECT_GT(c[0] + c[1] + c[2], 0.05f) << "panel " << k;
+    EXPECT_FALSE(std::abs(c[0] - 0.18f) < 0.01f && std::abs(c[1] - 0.18f) < 0.01f) << "panel " << k;
+  }
 }
 
 TEST_F(RenderCli, BadInputExitsTwoNamingTheFile) {
