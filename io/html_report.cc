@@ -151,6 +151,7 @@ figure img { max-width: 100%; border: 1px solid var(--line); } figcaption { colo
 #report-errors { display: none; background: var(--bad); border: 1px solid #d33; padding: 8px; }
 nav a { margin-right: 12px; } code { background: #f3f5f7; padding: 0 3px; }
 details { margin: 6px 0; } summary { cursor: pointer; color: var(--muted); }
+.scroll { overflow-x: auto; } td.stages { white-space: normal; min-width: 12em; text-align: left; }
 )css";
 
 // First script of the page: collects errors before anything else runs.
@@ -432,7 +433,7 @@ class Page {
       return fmt::format("<td{}>{}</td>", std::isfinite(v) && v == b ? " class=\"bestv\"" : "",
                          Num(v, spec));
     };
-    body_ += "<table><tr><th class=\"l\">approximation</th><th class=\"l\">loss</th>"
+    body_ += "<div class=\"scroll\"><table><tr><th class=\"l\">approximation</th><th class=\"l\">loss</th>"
              "<th class=\"l\">budget</th><th class=\"l\">status</th><th>log_rmse</th>"
              "<th>cbrt_rmse</th><th>rel_l2</th><th>cells</th><th>time (ms)</th>"
              "<th class=\"l\">stages (ms)</th><th>iter.</th><th>Pareto</th></tr>\n";
@@ -450,7 +451,7 @@ class Page {
       if (!e.message.empty()) status += " <span class=\"muted\">(" + HtmlEscape(e.message) + ")</span>";
       body_ += fmt::format(
           "<tr{}><td class=\"l\">{}{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td>"
-          "<td class=\"l\">{}</td>{}{}{}<td>{}</td>{}<td class=\"l\">{}</td><td>{}</td>"
+          "<td class=\"l\">{}</td>{}{}{}<td>{}</td>{}<td class=\"stages\">{}</td><td>{}</td>"
           "<td>{}</td></tr>\n",
           cls, static_cast<int>(i) == best ? "★ " : "", HtmlEscape(e.name), HtmlEscape(e.loss),
           HtmlEscape(e.budget), status, cell(ok ? e.metrics.log_rmse : NAN, best_log),
@@ -459,7 +460,7 @@ class Page {
           e.kind == Entry::Kind::kFit ? std::to_string(e.iterations) : std::string("–"),
           front.count(i) ? "◆" : "");
     }
-    body_ += "</table>\n<p class=\"muted\">★ lowest log_rmse; bold: best of each column; ◆ on "
+    body_ += "</table></div>\n<p class=\"muted\">★ lowest log_rmse; bold: best of each column; ◆ on "
              "the Pareto front of time against log_rmse. Time: from the loaded table to the "
              "result (fits: preparation, initializer and solve; factorizations: the whole "
              "solve).";
