@@ -82,8 +82,8 @@ TEST(Physics, NdfNormalization) {
 }
 
 // Heitz 2014's normalization constraint on the masking function ("the projected area of the
-// visible microsurface equals the projected area of the geometric surface"): G1(v) * integral of max(0, v.m) D(m) d m = cos theta_v, which
-// holds for the exact Smith Lambda only.
+// visible microsurface equals the projected area of the geometric surface"): G1(v) * integral of
+// max(0, v.m) D(m) d m = cos theta_v, which holds for the exact Smith Lambda only.
 template <class Ndf>
 double MaskingIdentity(double alpha, double theta_v) {
   const Vec3 v = FromSpherical(theta_v, 0.0);
