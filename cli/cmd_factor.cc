@@ -3,6 +3,7 @@
 // factored system is built once per grid and mask and reused for every further file.
 #include <fmt/core.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -131,8 +132,12 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
       if (!o.quiet) {
         fmt::print("{:<28} {:<8} {:>4} {:>8} {:>7} {:>10.4g} {:>9.4g} {:>9.4g} {:>8} {:>8.1f}ms\n",
                    stem, o.param, options.resolution, r.stats.used_cells, r.stats.nonpositive_cells,
-                   ln_rmse, m.log_rmse, m.cbrt_rmse, r.stats.system_reused ? "reused" : "built",
+                   ln_rmse, m.log_rmse, m.cbrt_rmse,
+                   r.stats.system_rebuilt  ? "rebuilt"
+                   : r.stats.system_reused ? "reused"
+                                           : "built",
                    1e3 * r.stats.seconds);
+        std::fflush(stdout);  // one line per table, visible as it finishes
       }
     } catch (const InputError& e) {
       fmt::print(stderr, "brdfit: error: {}\n", e.what());
