@@ -19,6 +19,10 @@
 #include <vector>
 
 #include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfMultiPartOutputFile.h>
+#include <OpenEXR/ImfOutputPart.h>
+#include <OpenEXR/ImfPartType.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfRgbaFile.h>
 #include <OpenEXR/ImfTiledRgbaFile.h>
@@ -332,6 +336,30 @@ void HalfExr(const fs::path& path, int w, int h, Imf::Compression comp, bool til
   }
 }
 
+// Two float RGB scan-line parts (the reader takes part 0).
+void MultiPartExr(const fs::path& path) {
+  std::vector<Imf::Header> headers;
+  for (const char* name : {"first", "second"}) {
+    Imf::Header h(2, 2);
+    for (const char* c : {"R", "G", "B"}) h.channels().insert(c, Imf::Channel(Imf::FLOAT));
+    h.setName(name);
+    h.setType(Imf::SCANLINEIMAGE);
+    headers.push_back(h);
+  }
+  Imf::MultiPartOutputFile file(path.c_str(), headers.data(), static_cast<int>(headers.size()));
+  std::vector<float> px(2 * 2 * 3, 0.75f);
+  for (int part = 0; part < 2; ++part) {
+    Imf::OutputPart out(file, part);
+    Imf::FrameBuffer fb;
+    for (int c = 0; c < 3; ++c) {
+      static const char* const kRgb[3] = {"R", "G", "B"};
+      fb.insert(kRgb[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(px.data() + c), 12, 24));
+    }
+    out.setFrameBuffer(fb);
+    out.writePixels(2);
+  }
+}
+
 void ExrSeeds(const fs::path& dir) {
   WriteRgbExr(dir / "one-pixel.exr", RgbImage::Filled(1, 1, 0.5f), {});
   WriteRgbExr(dir / "ramp-5x3-attrs.exr", Ramp(5, 3),
@@ -344,6 +372,7 @@ void ExrSeeds(const fs::path& dir) {
   HalfExr(dir / "half-piz-4x3.exr", 4, 3, Imf::PIZ_COMPRESSION, false);
   HalfExr(dir / "half-rle-3x3.exr", 3, 3, Imf::RLE_COMPRESSION, false);
   HalfExr(dir / "half-none-tiled-5x4.exr", 5, 4, Imf::NO_COMPRESSION, true);
+  MultiPartExr(dir / "multipart-2x2.exr");
 }
 
 // A float RGB scan-line file whose header declares w x h pixels and which stores none (the
