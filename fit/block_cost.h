@@ -37,7 +37,10 @@ template <class M>
 class BlockCost final : public ceres::CostFunction {
  public:
   static constexpr int P = static_cast<int>(kNumParams<M>);
-  using Jet = ceres::Jet<double, P>;
+  // Derivative lanes padded to a multiple of 4: Eigen then vectorizes and inlines the Jet
+  // arithmetic (an odd size such as 7 falls back to out-of-line scalar loops; bench_fit).
+  static constexpr int kLanes = (P + 3) / 4 * 4;
+  using Jet = ceres::Jet<double, kLanes>;
 
   BlockCost(const Samples& samples, const LossData& loss, const ParamLayout& layout,
             const ceres::LossFunction* robust, std::size_t begin, std::size_t end)
@@ -60,6 +63,8 @@ class BlockCost final : public ceres::CostFunction {
   }
 
  private:
+  // Cost and Jacobian are summed in the same order (sample, channel, observation) so that both
+  // paths give bit-identical costs.
   double CostOnly(const double* x) const {
     double p[P];
     for (int i = 0; i < P; ++i) p[i] = layout_.FromOpt(i, x[i]);
@@ -67,11 +72,11 @@ class BlockCost final : public ceres::CostFunction {
     for (std::size_t s = begin_; s < end_; ++s) {
       double rgb[3];
       M::Eval(p, s_.geometry[s], rgb);
-      for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
-        const double c = l_.mult[o], w = l_.sqrt_w[o];
-        for (int ch = 0; ch < 3; ++ch) {
-          const double e =
-              l_.inv[3 * o + ch] * (LossTransform(l_.kind, rgb[ch] * c) - l_.target[3 * o + ch]);
+      for (int ch = 0; ch < 3; ++ch) {
+        for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
+          const double w = l_.sqrt_w[o];
+          const double e = l_.inv[3 * o + ch] *
+                           (LossTransform(l_.kind, rgb[ch] * l_.mult[o]) - l_.target[3 * o + ch]);
           double term, rs, js;
           Robustify(robust_, e, &term, &rs, &js);
           cost += w * w * term;
@@ -81,7 +86,13 @@ class BlockCost final : public ceres::CostFunction {
     return cost;
   }
 
+  // The model is differentiated once per sample (Jets); each of its observations' residuals
+  // e_j = inv_j (T(f c_j) - t_j) then has the gradient a_j grad f with the scalar
+  // a_j = sqrt(omega_j) js_j inv_j T'(f c_j) c_j. Per sample and channel, J^T J gains
+  // (sum a_j^2) grad f grad f^T and J^T r gains (sum a_j b_j) grad f (b_j the weighted,
+  // robustified residual): one rank-1 row [sqrt(sum a^2) grad f, sum a b / sqrt(sum a^2)].
   bool WithJacobian(const double* x, double* residuals, double* jacobian) const {
+    using Slope = ceres::Jet<double, 1>;
     constexpr int kCols = P + 1;
     constexpr int kChunk = 64;
     std::array<double, kChunk * kCols> rows;
@@ -97,21 +108,27 @@ class BlockCost final : public ceres::CostFunction {
     for (std::size_t s = begin_; s < end_; ++s) {
       Jet rgb[3];
       M::Eval(p, s_.geometry[s], rgb);
-      for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
-        const double c = l_.mult[o], w = l_.sqrt_w[o];
-        for (int ch = 0; ch < 3; ++ch) {
-          const Jet e =
-              l_.inv[3 * o + ch] * (LossTransform(l_.kind, rgb[ch] * c) - l_.target[3 * o + ch]);
+      for (int ch = 0; ch < 3; ++ch) {
+        double saa = 0, sab = 0;
+        for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
+          const double c = l_.mult[o], w = l_.sqrt_w[o], inv = l_.inv[3 * o + ch];
+          const Slope t = LossTransform(l_.kind, Slope(rgb[ch].a * c, 0));
+          const double e = inv * (t.a - l_.target[3 * o + ch]);
           double term, rs, js;
-          Robustify(robust_, e.a, &term, &rs, &js);
+          Robustify(robust_, e, &term, &rs, &js);
           cost += w * w * term;
-          double* row = &rows[filled * kCols];
-          for (int i = 0; i < P; ++i) row[i] = w * js * e.v[i];
-          row[P] = w * rs * e.a;
-          if (++filled == kChunk) {
-            AccumulateGram(rows.data(), filled, kCols, gram.data());
-            filled = 0;
-          }
+          const double a = w * js * inv * t.v[0] * c;
+          saa += a * a;
+          sab += a * (w * rs * e);
+        }
+        if (!(saa > 0)) continue;
+        const double sq = std::sqrt(saa);
+        double* row = &rows[filled * kCols];
+        for (int i = 0; i < P; ++i) row[i] = sq * rgb[ch].v[i];
+        row[P] = sab / sq;
+        if (++filled == kChunk) {
+          AccumulateGram(rows.data(), filled, kCols, gram.data());
+          filled = 0;
         }
       }
     }

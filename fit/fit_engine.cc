@@ -1,11 +1,13 @@
 // The fit of one model: initializer, Levenberg-Marquardt stages, result and metrics
 // (pipeline described in fit/fitter.h).
+#include <ceres/manifold.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <memory>
 
 #include "fit/grid_init.h"
@@ -19,6 +21,11 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double MsSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+double ThreadCpuMs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
 }
 
 // Blocks per problem: enough for Ceres' threads and short accumulations, few enough that the
@@ -38,41 +45,98 @@ void AddBlocks(const ModelOps& ops, const Samples& s, const LossData& l,
 }
 
 struct LmRun {
-  ceres::Solver::Summary summary;
+  ceres::Solver::Summary summary;  // of the last round
+  int iterations = 0;              // all rounds
   bool finite = false;
 };
 
+int Iterations(const ceres::Solver::Summary& s) {
+  // summary.iterations[0] is the evaluation at the starting point.
+  return std::max<int>(static_cast<int>(s.iterations.size()) - 1, 0);
+}
+
+// Indices of x on a bound (within a relative 1e-12 of the range), snapped onto it.
+std::vector<int> OnBounds(const ParamLayout& layout, double* x) {
+  std::vector<int> on;
+  for (std::size_t i = 0; i < layout.size(); ++i) {
+    const double lo = layout.lower_opt[i], hi = layout.upper_opt[i], tol = 1e-12 * (hi - lo);
+    if (x[i] <= lo + tol) {
+      x[i] = lo;
+      on.push_back(static_cast<int>(i));
+    } else if (x[i] >= hi - tol) {
+      x[i] = hi;
+      on.push_back(static_cast<int>(i));
+    }
+  }
+  return on;
+}
+
+// Levenberg-Marquardt within the bounds, with an active set. Ceres projects steps that leave the
+// box, but its Gauss-Newton step still assumes the clipped coordinates move, so a weight pinned
+// at 0 (no diffuse part in a metal) makes it crawl (57 iterations on a full table). Instead:
+// parameters on a bound are held there (ceres::SubsetManifold) while LM runs on the others;
+// then the gradient decides: a held parameter whose gradient points into the box is released,
+// one that reached a bound with the gradient pushing out is held; repeat until the set is
+// stable (Nocedal & Wright 2006, Numerical Optimization, §16.5, active-set methods).
 LmRun RunLm(const ModelOps& ops, const Samples& s, const LossData& l,
             const ceres::LossFunction* robust, const FitOptions& opt, double* x) {
   const ParamLayout& layout = ops.layout;
-  ceres::Problem problem;
-  AddBlocks(ops, s, l, robust, x, &problem);
-  for (std::size_t i = 0; i < layout.size(); ++i) {
-    problem.SetParameterLowerBound(x, static_cast<int>(i), layout.lower_opt[i]);
-    problem.SetParameterUpperBound(x, static_cast<int>(i), layout.upper_opt[i]);
-  }
+  const int P = static_cast<int>(layout.size());
   ceres::Solver::Options so;
   so.minimizer_type = ceres::TRUST_REGION;
   so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
   so.linear_solver_type = ceres::DENSE_QR;
   so.num_threads = std::max(opt.threads, 1);
-  so.max_num_iterations = std::max(opt.max_iterations, 0);
   so.function_tolerance = opt.function_tolerance;
   so.parameter_tolerance = opt.parameter_tolerance;
   so.gradient_tolerance = opt.gradient_tolerance;
   so.logging_type = ceres::SILENT;
   so.minimizer_progress_to_stdout = false;
-  LmRun run;
-  ceres::Solve(so, &problem, &run.summary);
-  // Ceres #988: CONVERGENCE can come with an infinite cost. Check everything.
-  run.finite = std::isfinite(run.summary.final_cost);
-  for (std::size_t i = 0; i < layout.size(); ++i) run.finite = run.finite && std::isfinite(x[i]);
-  return run;
-}
 
-int Iterations(const ceres::Solver::Summary& s) {
-  // summary.iterations[0] is the evaluation at the starting point.
-  return std::max<int>(static_cast<int>(s.iterations.size()) - 1, 0);
+  LmRun run;
+  std::vector<int> held = OnBounds(layout, x);
+  constexpr int kMaxRounds = 4;
+  for (int round = 0; round < kMaxRounds; ++round) {
+    ceres::Problem::Options po;
+    po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    ceres::Problem problem(po);
+    AddBlocks(ops, s, l, robust, x, &problem);
+    for (int i = 0; i < P; ++i) {
+      problem.SetParameterLowerBound(x, i, layout.lower_opt[i]);
+      problem.SetParameterUpperBound(x, i, layout.upper_opt[i]);
+    }
+    std::unique_ptr<ceres::SubsetManifold> subset;
+    if (!held.empty() && static_cast<int>(held.size()) < P) {
+      subset = std::make_unique<ceres::SubsetManifold>(P, held);
+      problem.SetManifold(x, subset.get());
+    }
+    so.max_num_iterations = std::max(opt.max_iterations - run.iterations, 0);
+    if (static_cast<int>(held.size()) == P) so.max_num_iterations = 0;
+    ceres::Solve(so, &problem, &run.summary);
+    run.iterations += Iterations(run.summary);
+    // Ceres #988: CONVERGENCE can come with an infinite cost. Check everything.
+    run.finite = std::isfinite(run.summary.final_cost);
+    for (int i = 0; i < P; ++i) run.finite = run.finite && std::isfinite(x[i]);
+    if (!run.finite || run.summary.termination_type == ceres::FAILURE) return run;
+
+    std::vector<int> on = OnBounds(layout, x);
+    if (on.empty() && held.empty()) return run;  // interior: nothing to check
+    if (subset) problem.SetManifold(x, nullptr);
+    double cost = 0;
+    std::vector<double> gradient;
+    if (!problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, &gradient, nullptr)) {
+      return run;
+    }
+    std::vector<int> next;
+    for (int i : on) {
+      const bool at_lower = x[i] == layout.lower_opt[i];
+      if (at_lower ? gradient[i] >= 0 : gradient[i] <= 0) next.push_back(i);
+    }
+    if (next == held) return run;
+    held = next;
+    if (run.iterations >= opt.max_iterations) return run;
+  }
+  return run;
 }
 
 }  // namespace
@@ -88,6 +152,7 @@ FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& lo
   r.at_bound.assign(P, false);
   r.fit_samples = fit.NumSamples();
   r.fit_cells = fit.NumObservations();
+  r.sample_counts = fit.counts;
   r.metrics.weighting = ToString(metric.options.weighting);
   r.metrics.cutoff_deg = metric.options.cutoff_deg;
   if (fit.NumSamples() == 0 || !(fit.total_weight > 0)) {
@@ -99,15 +164,18 @@ FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& lo
 
   // 1. Initializer on a stratified subset.
   auto t0 = Clock::now();
+  double c0 = ThreadCpuMs();
   const Samples init_set = Subsample(fit, opt.init_samples, opt.seed);
   const LossData init_loss = PrepareLoss(init_set, opt);
   GridInitializer grid(init_set, init_loss, layout, ops.eval, robust.get());
   const std::vector<InitCandidate> starts = grid.Run(std::max(opt.multistart, 1));
   r.times.init = MsSince(t0);
+  r.times.init_cpu = ThreadCpuMs() - c0;
   if (!starts.empty() && std::isfinite(starts.front().cost)) r.init_cost = starts.front().cost;
 
   // 2. LM from each start; on a coarse subset first when the fit set is large.
   t0 = Clock::now();
+  c0 = ThreadCpuMs();
   const bool coarse = opt.coarse_samples > 0 && fit.NumSamples() > 4 * opt.coarse_samples;
   Samples coarse_set;
   LossData coarse_loss;
@@ -135,11 +203,11 @@ FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& lo
     if (coarse) {
       std::vector<double> xc = x;
       const LmRun run = RunLm(ops, coarse_set, coarse_loss, robust.get(), opt, xc.data());
-      r.iterations += Iterations(run.summary);
+      r.iterations += run.iterations;
       if (run.finite) x = xc;  // else continue from the grid point
     }
     const LmRun run = RunLm(ops, fit, loss, robust.get(), opt, x.data());
-    r.iterations += Iterations(run.summary);
+    r.iterations += run.iterations;
     const bool usable = run.finite && run.summary.termination_type != ceres::FAILURE &&
                         run.summary.termination_type != ceres::USER_FAILURE;
     if (!usable) {
@@ -154,6 +222,7 @@ FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& lo
     }
   }
   r.times.solve = MsSince(t0);
+  r.times.solve_cpu = ThreadCpuMs() - c0;
 
   if (!have_best) {
     r.status = FitStatus::kFailed;
@@ -180,6 +249,7 @@ FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& lo
 
   // 3. Metrics on the metric set.
   t0 = Clock::now();
+  c0 = ThreadCpuMs();
   std::vector<double> pred(3 * metric.NumSamples());
   for (std::size_t s = 0; s < metric.NumSamples(); ++s) {
     ops.eval(r.params.data(), metric.geometry[s], &pred[3 * s]);
@@ -187,6 +257,7 @@ FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& lo
   const std::vector<double> per_obs = ExpandToObservations(metric, pred);
   r.metrics = ComputeMetrics(metric, per_obs);
   r.times.metrics = MsSince(t0);
+  r.times.metrics_cpu = ThreadCpuMs() - c0;
   if (!r.metrics.ok) {
     r.status = FitStatus::kFailed;
     r.message = "metrics: " + r.metrics.problem;

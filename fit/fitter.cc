@@ -81,16 +81,4 @@ NormalEquations EvaluateNormalEquations(std::string_view model, const Samples& s
   return internal::NormalEquationsWithOps(Find(model), samples, loss, options, params);
 }
 
-const char* ToString(FitStatus s) {
-  switch (s) {
-    case FitStatus::kConverged:
-      return "converged";
-    case FitStatus::kNoConvergence:
-      return "no_convergence";
-    case FitStatus::kFailed:
-      return "failed";
-  }
-  return "failed";
-}
-
 }  // namespace brdfit

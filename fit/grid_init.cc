@@ -91,14 +91,15 @@ std::vector<InitCandidate> GridInitializer::Run(int keep) {
   std::vector<int> outer, inner;
   for (int idx : layout_.shape) (layout_.specs[idx].log_scale ? outer : inner).push_back(idx);
   const ShapeStarts starts = MakeShapeStarts(layout_, outer, !inner.empty());
-  const std::vector<double> inner_step = Spacing(inner, std::vector<double>(inner.size(), 0.25));
+  const std::vector<double> inner_step =
+      Spacing(inner, std::vector<double>(inner.size(), 1.0 / 64));
   std::vector<double> p(layout_.size());
   for (std::size_t i = 0; i < p.size(); ++i) p[i] = layout_.specs[i].init;
   std::vector<InitCandidate> all;
   for (const auto& point : starts.points) {
     for (std::size_t d = 0; d < outer.size(); ++d) p[outer[d]] = point[d];
     InitCandidate c = EvaluatePoint(p);
-    if (!inner.empty()) PatternSearch(&c, inner, inner_step, 3, 24);
+    if (!inner.empty()) PatternSearch(&c, inner, inner_step, 1.0 / 16, 40);
     all.push_back(std::move(c));
   }
   // Stable order: ties keep grid order, so results do not depend on the sort algorithm.
@@ -110,12 +111,12 @@ std::vector<InitCandidate> GridInitializer::Run(int keep) {
   const std::size_t refine = std::min<std::size_t>(all.size(), std::max(keep, 1) + 1);
   all.resize(refine);
   std::vector<double> fractions(starts.spacing);
-  fractions.resize(layout_.shape.size(), 0.125);  // inner dims after the outer ones
+  fractions.resize(layout_.shape.size(), 1.0 / 64);  // inner dims after the outer ones
   std::vector<int> dims = outer;
   dims.insert(dims.end(), inner.begin(), inner.end());
   const std::vector<double> step = Spacing(dims, fractions);
   for (auto& c : all) {
-    PatternSearch(&c, dims, step, 6, 200);
+    PatternSearch(&c, dims, step, 1.0 / 64, 200);
     ComputeBasis(c.params);
     for (int it = 0; it < 2; ++it) Relinearize(&c.params);
     c.cost = Score(c.params);
@@ -145,36 +146,42 @@ InitCandidate GridInitializer::EvaluatePoint(std::vector<double> p) {
 }
 
 // Compass search (Kolda, Lewis, Torczon 2003, "Optimization by Direct Search", SIAM Review
-// 45(3), §3): +-step along each shape coordinate (log for log_scale parameters), accept any
-// improvement, halve the steps when none.
+// 45(3), §3) with a step per coordinate (log for log_scale parameters): +-step, accept an
+// improvement and double the step, halve it when neither direction improves; a coordinate is
+// done when its step falls below shrink_to times its initial step.
 void GridInitializer::PatternSearch(InitCandidate* c, const std::vector<int>& dims,
-                                    const std::vector<double>& spacing, int levels,
+                                    const std::vector<double>& initial_step, double shrink_to,
                                     int max_evaluations) {
-  std::vector<double> step = spacing;
+  std::vector<double> step = initial_step;
   int evaluations = 0;
-  for (int level = 0; level < levels && evaluations < max_evaluations; ++level) {
-    bool improved = true;
-    while (improved && evaluations < max_evaluations) {
-      improved = false;
-      for (std::size_t d = 0; d < dims.size(); ++d) {
-        const int idx = dims[d];
-        for (const double sign : {-1.0, 1.0}) {
-          const double x0 = layout_.ToOpt(idx, c->params[idx]);
-          const double x =
-              std::clamp(x0 + sign * step[d], layout_.lower_opt[idx], layout_.upper_opt[idx]);
-          if (x == x0) continue;
-          std::vector<double> trial = c->params;
-          trial[idx] = layout_.FromOpt(idx, x);
-          InitCandidate t = EvaluatePoint(std::move(trial));
-          ++evaluations;
-          if (Less(t.cost, c->cost)) {
-            *c = std::move(t);
-            improved = true;
-          }
+  bool any = true;
+  while (any && evaluations < max_evaluations) {
+    any = false;
+    for (std::size_t d = 0; d < dims.size() && evaluations < max_evaluations; ++d) {
+      const int idx = dims[d];
+      const double range = layout_.upper_opt[idx] - layout_.lower_opt[idx];
+      if (step[d] < shrink_to * initial_step[d]) continue;
+      any = true;
+      bool improved = false;
+      for (const double sign : {-1.0, 1.0}) {
+        const double x0 = layout_.ToOpt(idx, c->params[idx]);
+        const double x =
+            std::clamp(x0 + sign * step[d], layout_.lower_opt[idx], layout_.upper_opt[idx]);
+        if (x == x0) continue;
+        std::vector<double> trial = c->params;
+        trial[idx] = layout_.FromOpt(idx, x);
+        InitCandidate t = EvaluatePoint(std::move(trial));
+        ++evaluations;
+        if (Less(t.cost, c->cost)) {
+          *c = std::move(t);
+          improved = true;
+          break;
         }
       }
+      // Expand after a success (the local scale may be larger than the first guess), shrink
+      // after a failure in both directions.
+      step[d] = improved ? std::min(2.0 * step[d], 0.25 * range) : 0.5 * step[d];
     }
-    for (double& s : step) s *= 0.5;
   }
 }
 

@@ -35,6 +35,7 @@ FitMetrics ComputeMetrics(const Samples& samples, std::span<const double> predic
       return m;
     }
   }
+  const bool pre = samples.metric_log.size() == 3 * n && samples.metric_cbrt.size() == 3 * n;
   double log_sum = 0, cbrt_sum = 0, num = 0, den = 0;
   double worst = -1;
   for (std::size_t o = 0; o < n; ++o) {
@@ -44,8 +45,10 @@ FitMetrics ComputeMetrics(const Samples& samples, std::span<const double> predic
     for (int ch = 0; ch < 3; ++ch) {
       const double f = predicted_rgb[3 * o + ch];
       const double v = samples.value[3 * o + ch];
-      const double dl = GuardedLog1p(f * c) - GuardedLog1p(v * c);
-      const double dc = GuardedCbrt(f * c) - GuardedCbrt(v * c);
+      const double dl =
+          GuardedLog1p(f * c) - (pre ? samples.metric_log[3 * o + ch] : GuardedLog1p(v * c));
+      const double dc =
+          GuardedCbrt(f * c) - (pre ? samples.metric_cbrt[3 * o + ch] : GuardedCbrt(v * c));
       log_sum += w * dl * dl;
       cbrt_sum += w * dc * dc;
       num += w * c * c * (f - v) * (f - v);

@@ -14,14 +14,29 @@ enum class FitStatus {
   kNoConvergence,  // iteration limit reached; parameters are the best found, still usable
   kFailed,         // no usable result (see message); parameters are the initial guess or 0
 };
-const char* ToString(FitStatus s);
+inline const char* ToString(FitStatus s) {
+  switch (s) {
+    case FitStatus::kConverged:
+      return "converged";
+    case FitStatus::kNoConvergence:
+      return "no_convergence";
+    case FitStatus::kFailed:
+      return "failed";
+  }
+  return "failed";
+}
 
-struct FitTimes {      // milliseconds, wall clock
-  double load = 0;     // reading the table (set by the caller)
-  double prepare = 0;  // samples and loss constants (set by the caller, shared per table)
-  double init = 0;     // grid initializer
-  double solve = 0;    // Levenberg-Marquardt, all stages and starts
-  double metrics = 0;  // predictions on the metric set and ComputeMetrics
+// Milliseconds. Wall clock, and the fitting thread's CPU time (CLOCK_THREAD_CPUTIME_ID): on a
+// busy machine the wall time includes waiting for a core, the CPU time does not.
+struct FitTimes {
+  double load = 0;      // reading the table (set by the caller)
+  double prepare = 0;   // samples and loss constants (set by the caller, shared per table)
+  double init = 0;      // grid initializer
+  double solve = 0;     // Levenberg-Marquardt, all stages and starts
+  double metrics = 0;   // predictions on the metric set and ComputeMetrics
+  double init_cpu = 0;  // CPU time of init, solve, metrics
+  double solve_cpu = 0;
+  double metrics_cpu = 0;
 };
 
 struct FitResult {
@@ -38,6 +53,7 @@ struct FitResult {
   double final_cost = 0;        // loss at the result on the fit samples
   std::size_t fit_samples = 0;  // model evaluation points of the final stage
   std::size_t fit_cells = 0;    // observations of the final stage
+  SampleCounts sample_counts;   // what preparation kept, dropped and flagged (fit set)
   FitMetrics metrics;
   FitTimes times;
 

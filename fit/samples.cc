@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "fit/bin_measure.h"
+#include "fit/loss.h"
 #include "fit/stratified.h"
 #include "io/error.h"
 
@@ -34,6 +35,19 @@ struct Unit {
   int members;
   double weight;  // sum of the members' cell weights
 };
+
+void FillMetricTargets(Samples* s) {
+  const std::size_t n = s->NumObservations();
+  s->metric_log.resize(3 * n);
+  s->metric_cbrt.resize(3 * n);
+  for (std::size_t o = 0; o < n; ++o) {
+    for (int ch = 0; ch < 3; ++ch) {
+      const double x = s->value[3 * o + ch] * s->cos_i[o];
+      s->metric_log[3 * o + ch] = GuardedLog1p(x);
+      s->metric_cbrt[3 * o + ch] = GuardedCbrt(x);
+    }
+  }
+}
 
 }  // namespace
 
@@ -230,6 +244,7 @@ Samples PrepareSamples(const Table& table, const SampleOptions& options) {
     out.obs_begin.push_back(static_cast<std::uint32_t>(out.cell.size()));
   }
   out.counts.selected = out.cell.size();
+  FillMetricTargets(&out);
   return out;
 }
 
@@ -266,6 +281,7 @@ Samples Subsample(const Samples& samples, std::size_t n, std::uint64_t seed) {
     out.obs_begin.push_back(static_cast<std::uint32_t>(out.cell.size()));
   }
   out.counts.selected = out.cell.size();
+  FillMetricTargets(&out);
   return out;
 }
 

@@ -6,7 +6,9 @@
 // The fits run with the default options except the budget: noise-free tables are fitted on a
 // stratified random budget (the optimum is the exact parameters on any subset, so this checks
 // the initializer and the solver at a fraction of the cost) and, for Lambert + GGX, on the full
-// budget (the default); noisy tables on random:65536 (noise averages over ~390 k residuals).
+// budget (the default); noisy tables on stride:4 (every row of the table, a quarter of the phi_d
+// bins: a random subset holds too few cells of the sharpest highlights for 5 % noise to
+// average out, e.g. 3 % error on a Lafortune lobe with n = 4500 from random:65536).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -128,7 +130,7 @@ TEST_P(Recovery, NoisyWithHolesMerlGrid) {
   const std::vector<double> truth = Params(c.model, c.params);
   const Table table = SynthModel(c.model, truth, Grid::Merl(), 0.05, 0.30, 11);
   SampleOptions so;
-  so.budget = Budget::Parse("random:65536");
+  so.budget = Budget::Parse("stride:4");
   const FitResult r = FitTable(c.model, table, so, FitOptions{});
   ExpectRecovered(r, truth, 0.03, c.model + " noisy alpha " + std::to_string(alpha));
 }

@@ -1,0 +1,184 @@
+// Fitting speed against error.
+//
+//   bench_fit                 Google Benchmark: Lambert + GGX on full MERL-grid tables (a noisy
+//                             synthetic one and, when ../shared/data/merl_nbrdf.zip is present,
+//                             five NBRDF materials), initializer + LM, one thread, per budget.
+//                             Medians over 5 repetitions; times exclude preparation and metrics.
+//   bench_fit --csv FILE [--models a,b] [--budgets full,stride:32,...] [--nbrdf all|m1,m2]
+//             [--repeats N]   the sweep: every (table, model, budget) fit, median times and the
+//                             metrics relative to the model's full-budget fit, as CSV
+//                             (fit/bench_sweep.h), plus a summary of medians on stdout.
+#include <benchmark/benchmark.h>
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "fit/bench_sweep.h"
+#include "fit/fitter.h"
+#include "io/atomic_file.h"
+#include "io/model_params.h"
+#include "io/nbrdf.h"
+#include "io/synth.h"
+#include "models/registry.h"
+
+namespace {
+
+using namespace brdfit;
+namespace fs = std::filesystem;
+
+const fs::path kZip = fs::path(BRDFIT_SHARED_DATA) / "merl_nbrdf.zip";
+const std::vector<std::string> kDefaultNbrdf = {"gold-metallic-paint", "blue-acrylic", "pink-felt",
+                                                "chrome", "specular-black-phenolic"};
+const std::vector<std::string> kBudgets = {"full", "stride:8", "stride:16", "stride:32",
+                                           "random:8192"};
+
+std::vector<std::string> Split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string part;
+  while (std::getline(ss, part, ',')) {
+    if (!part.empty()) out.push_back(part);
+  }
+  return out;
+}
+
+BenchTable SyntheticTable() {
+  const ModelInfo& m = *FindModel("lambert+ggx");
+  const std::vector<double> p = ResolveModelParams(
+      m, {"kd_r=0.2", "kd_g=0.1", "kd_b=0.05", "ks_r=0.5", "ks_g=0.4", "ks_b=0.3", "alpha=0.08"});
+  SynthOptions o;
+  o.noise = 0.05;
+  o.missing_fraction = 0.1;
+  o.seed = 1;
+  Table t = SynthesizeTable(
+      Grid::Merl(), [&](const Geometry& g, double rgb[3]) { m.eval(p.data(), g, rgb); }, o);
+  return {"synthetic-lambert-ggx-0.08", "synthetic", std::move(t)};
+}
+
+std::vector<BenchTable> LoadTables(const std::vector<std::string>& nbrdf) {
+  std::vector<BenchTable> tables;
+  tables.push_back(SyntheticTable());
+  if (!fs::exists(kZip)) {
+    fmt::print(stderr, "{} not found: NBRDF tables skipped\n", kZip.string());
+    return tables;
+  }
+  for (const std::string& name : nbrdf) {
+    NbrdfTabulation tab = TabulateNbrdf(ReadNbrdf(kZip, name), Grid::Merl(), 1);
+    tables.push_back({name, "nbrdf", std::move(tab.table)});
+  }
+  return tables;
+}
+
+// Google Benchmark: init + LM of lambert+ggx, metrics excluded (a one-sample metric set).
+void BM_LambertGgx(benchmark::State& state, const BenchTable* table, std::string budget) {
+  SampleOptions so;
+  so.budget = Budget::Parse(budget);
+  FitOptions fo;
+  PreparedTable prepared = PrepareTable(table->table, so, fo);
+  prepared.metric_own = Subsample(prepared.fit, 1, 1);
+  prepared.has_own_metric = true;
+  FitResult r;
+  for (auto _ : state) {
+    r = FitPrepared("lambert+ggx", prepared, fo);
+    benchmark::DoNotOptimize(r.params.data());
+  }
+  state.counters["samples"] = static_cast<double>(r.fit_samples);
+  state.counters["iterations"] = r.iterations;
+  state.SetLabel(std::string(ToString(r.status)));
+}
+
+int Sweep(const std::string& csv, const std::vector<std::string>& models,
+          const std::vector<std::string>& budgets, const std::vector<std::string>& nbrdf,
+          int repeats) {
+  const std::vector<BenchTable> tables = LoadTables(nbrdf);
+  BenchConfig config;
+  config.models = models;
+  config.budgets = budgets;
+  config.repeats = repeats;
+  const std::vector<BenchRow> rows =
+      RunBenchSweep(tables, config, [](std::size_t done, std::size_t total, const std::string& l) {
+        fmt::print(stderr, "[{}/{}] {}\n", done + 1, total, l);
+      });
+  WriteTextAtomically(csv, BenchRowsCsv(rows));
+  // Summary: medians over the tables per (model, budget).
+  fmt::print("{:<24} {:<12} {:>8} {:>11} {:>11} {:>11} {:>11} {:>11}\n", "model", "budget",
+             "samples", "solve_ms", "solve_cpu", "log_ratio", "cbrt_ratio", "max_log_r");
+  for (const std::string& model : models) {
+    for (const std::string& budget : budgets) {
+      std::vector<double> ms, cpu, lr, cr, n;
+      for (const BenchRow& r : rows) {
+        if (r.model != model || r.budget != budget) continue;
+        ms.push_back(r.solve_ms);
+        cpu.push_back(r.solve_cpu_ms);
+        lr.push_back(r.log_rmse_ratio);
+        cr.push_back(r.cbrt_rmse_ratio);
+        n.push_back(static_cast<double>(r.fit_samples));
+      }
+      auto median = [](std::vector<double> v) {
+        if (v.empty()) return 0.0;
+        std::sort(v.begin(), v.end());
+        return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+      };
+      const double worst = lr.empty() ? 0.0 : *std::max_element(lr.begin(), lr.end());
+      fmt::print("{:<24} {:<12} {:>8.0f} {:>11.1f} {:>11.1f} {:>11.4f} {:>11.4f} {:>11.4f}\n",
+                 model, budget, median(n), median(ms), median(cpu), median(lr), median(cr), worst);
+    }
+  }
+  fmt::print("wrote {} ({} rows)\n", csv, rows.size());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string csv;
+  std::vector<std::string> models = {"lambert+ggx"};
+  std::vector<std::string> budgets = kBudgets;
+  std::vector<std::string> nbrdf = kDefaultNbrdf;
+  int repeats = 3;
+  std::vector<char*> rest = {argv[0]};
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const bool has_value = i + 1 < argc;
+    if (a == "--csv" && has_value) {
+      csv = argv[++i];
+    } else if (a == "--models" && has_value) {
+      models = Split(argv[++i]);
+    } else if (a == "--budgets" && has_value) {
+      budgets = Split(argv[++i]);
+    } else if (a == "--nbrdf" && has_value) {
+      const std::string v = argv[++i];
+      nbrdf = v == "all"
+                  ? (fs::exists(kZip) ? ListNbrdfMaterials(kZip) : std::vector<std::string>{})
+                  : Split(v);
+    } else if (a == "--repeats" && has_value) {
+      repeats = std::max(1, std::atoi(argv[++i]));
+    } else {
+      rest.push_back(argv[i]);
+    }
+  }
+  if (!csv.empty()) return Sweep(csv, models, budgets, nbrdf, repeats);
+
+  static const std::vector<BenchTable> tables = LoadTables(kDefaultNbrdf);
+  for (const BenchTable& t : tables) {
+    for (const std::string& b : kBudgets) {
+      benchmark::RegisterBenchmark(("lambert+ggx/" + t.material + "/" + b).c_str(), BM_LambertGgx,
+                                   &t, b)
+          ->Unit(benchmark::kMillisecond)
+          ->Repetitions(5)
+          ->ReportAggregatesOnly(true)
+          ->Iterations(b == "full" ? 1 : 3);
+    }
+  }
+  int n = static_cast<int>(rest.size());
+  benchmark::Initialize(&n, rest.data());
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

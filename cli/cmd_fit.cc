@@ -1,0 +1,353 @@
+// `brdfit fit FILES... --model ggx,beckmann,...`: fits models to tables, prints a metric table,
+// writes every fit to an HDF5 report (docs/formats.md, "Fit reports") and optionally the
+// parameters as JSON. Parallel over (file, model) with --jobs; resumable: entries already in
+// the report with the same options are skipped unless --force. Also demo step 20.
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <chrono>
+#include <condition_variable>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli/command.h"
+#include "cli/demo.h"
+#include "cli/progress.h"
+#include "fit/fitter.h"
+#include "io/atomic_file.h"
+#include "io/error.h"
+#include "io/fit_report.h"
+#include "io/table_io.h"
+
+namespace brdfit::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+struct FitCliOptions {
+  std::vector<std::string> files;
+  std::vector<std::string> models = {"ggx"};
+  std::string diffuse = "lambert";
+  std::string loss = "log";
+  bool no_cosine = false;
+  std::string robust = "none";
+  double robust_scale = FitOptions{}.robust_scale;
+  double cutoff = SampleOptions{}.cutoff_deg;
+  std::string weighting = "bin-measure";
+  std::string budget = "full";
+  std::uint64_t seed = 1;
+  int multistart = 1;
+  int max_iterations = FitOptions{}.max_iterations;
+  int jobs = 1;
+  int threads = 1;
+  bool force = false;
+  std::string out = "fits.h5";
+  std::string json;
+  bool no_timings = false;
+  bool quiet = false;
+  bool no_progress = false;
+};
+
+double MsSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// "lafortune:2" -> "lafortune+lafortune" (N lobes of one model). Then --diffuse D: a name N
+// becomes "D+N" when the catalog has it (measured materials have a diffuse part); names that
+// already include a diffuse lobe, diffuse models and names without a "D+N" entry stay as given.
+std::vector<std::string> ResolveModels(const std::vector<std::string>& requested,
+                                       const std::string& diffuse) {
+  if (diffuse != "none" && diffuse != "lambert" && !IsFittable(diffuse)) {
+    throw InputError("--diffuse '" + diffuse +
+                     "' is not a model (expected none or a diffuse model)");
+  }
+  std::vector<std::string> out;
+  for (const std::string& n : requested) {
+    if (n.empty()) continue;
+    std::string name = n;
+    if (const auto colon = n.find(':'); colon != std::string::npos) {
+      const std::string base = n.substr(0, colon), count = n.substr(colon + 1);
+      const bool digits =
+          !count.empty() && count.size() <= 2 && std::all_of(count.begin(), count.end(), ::isdigit);
+      const int lobes = digits ? std::stoi(count) : 0;
+      if (base.empty() || lobes < 1) {
+        throw InputError("model '" + n + "': expected NAME:N with N >= 1 lobes");
+      }
+      name = base;
+      for (int k = 1; k < lobes; ++k) name += "+" + base;
+    }
+    if (diffuse != "none" && IsFittable(diffuse + "+" + name)) name = diffuse + "+" + name;
+    if (!IsFittable(name)) {
+      std::string known;
+      for (const auto& k : FittableModels()) known += (known.empty() ? "" : ", ") + k;
+      throw InputError("unknown model '" + n + "' (known: " + known + ")");
+    }
+    if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
+  }
+  if (out.empty()) throw InputError("--model: no model given");
+  return out;
+}
+
+struct Task {
+  std::size_t file;
+  std::string model;
+};
+
+// A table loaded and prepared once, shared by the fits of its models; freed after the last.
+struct FileState {
+  std::mutex mu;
+  bool ready = false;
+  std::optional<PreparedTable> prepared;
+  std::string error;  // InputError message if loading failed
+  double load_ms = 0, prepare_ms = 0;
+  std::atomic<int> remaining{0};
+};
+
+struct RunSummary {
+  std::vector<FitReportEntry> fresh;  // fits made now
+  std::vector<std::string> input_errors;
+  std::size_t skipped = 0;
+};
+
+void PrintTable(const std::vector<FitReportEntry>& entries) {
+  fmt::print("{:<28} {:<26} {:>9} {:>9} {:>8} {:>5} {:>9} {}\n", "material", "model", "log_rmse",
+             "cbrt_rmse", "rel_l2", "iter", "solve_ms", "status");
+  for (const FitReportEntry& e : entries) {
+    const FitResult& r = e.result;
+    fmt::print("{:<28} {:<26} {:>9.5f} {:>9.5f} {:>8.4f} {:>5} {:>9.1f} {}\n", e.material, r.model,
+               r.metrics.log_rmse, r.metrics.cbrt_rmse, r.metrics.rel_l2, r.iterations,
+               r.times.init + r.times.solve, ToString(r.status));
+    if (!r.message.empty()) fmt::print("    {}\n", r.message);
+  }
+}
+
+int RunFit(const FitCliOptions& o) {
+  if (o.files.empty()) throw InputError("no input files");
+  if (o.jobs < 1 || o.jobs > 256) throw InputError("--jobs must be in [1, 256]");
+  if (o.threads < 1 || o.threads > 256) throw InputError("--threads must be in [1, 256]");
+  if (o.multistart < 1 || o.multistart > 1000)
+    throw InputError("--multistart must be in [1, 1000]");
+  if (o.max_iterations < 1) throw InputError("--max-iterations must be >= 1");
+  SampleOptions so;
+  so.cutoff_deg = o.cutoff;
+  so.weighting = WeightingFromString(o.weighting);
+  so.budget = Budget::Parse(o.budget);
+  so.seed = o.seed;
+  FitOptions fo;
+  fo.loss = LossKindFromString(o.loss);
+  fo.cosine = !o.no_cosine;
+  fo.robust = RobustKindFromString(o.robust);
+  fo.robust_scale = o.robust_scale;
+  if (!(fo.robust_scale > 0)) throw InputError("--robust-scale must be positive");
+  fo.multistart = o.multistart;
+  fo.max_iterations = o.max_iterations;
+  fo.threads = o.threads;
+  fo.seed = o.seed;
+  if (!(so.cutoff_deg > 0 && so.cutoff_deg <= 90)) throw InputError("--cutoff must be in (0, 90]");
+  const std::vector<std::string> models = ResolveModels(o.models, o.diffuse);
+  const std::string options = OptionsJson(so, fo);
+  const fs::path out = o.out;
+
+  // Resume: keep what the report holds; skip fits already done with the same options.
+  std::vector<FitReportEntry> kept;
+  if (fs::exists(out) && !o.force) {
+    try {
+      kept = ReadFitReport(out);
+    } catch (const InputError& e) {
+      throw InputError(out, std::string("exists but is not a readable fit report (use --force to "
+                                        "overwrite): ") +
+                                e.what());
+    }
+  }
+  std::set<std::tuple<std::string, std::string, std::string>> done;
+  for (const auto& e : kept) {
+    if (!e.result.Failed()) done.insert({e.source, e.result.model, e.options});
+  }
+  std::vector<Task> tasks;
+  std::vector<std::unique_ptr<FileState>> files;
+  RunSummary summary;
+  for (std::size_t f = 0; f < o.files.size(); ++f) {
+    files.push_back(std::make_unique<FileState>());
+    for (const std::string& m : models) {
+      if (done.count({o.files[f], m, options})) {
+        ++summary.skipped;
+        continue;
+      }
+      tasks.push_back({f, m});
+      ++files[f]->remaining;
+    }
+  }
+  // Entries replaced by this run leave the kept set.
+  std::set<std::pair<std::string, std::string>> redo;
+  for (const Task& t : tasks) redo.insert({o.files[t.file], t.model});
+  std::erase_if(kept, [&](const FitReportEntry& e) {
+    return redo.count({e.source, e.result.model}) && e.options == options;
+  });
+
+  std::mutex mu;  // guards summary, progress and checkpoints
+  Progress bar(tasks.size(), "fitting", !o.no_progress && !o.quiet);
+  auto last_write = Clock::now();
+  auto write_report = [&](bool final) {
+    std::vector<FitReportEntry> all = kept;
+    all.insert(all.end(), summary.fresh.begin(), summary.fresh.end());
+    WriteFitReport(std::move(all), out, !o.no_timings);
+    if (!final) last_write = Clock::now();
+  };
+
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    while (true) {
+      const std::size_t i = next++;
+      if (i >= tasks.size()) return;
+      const Task& t = tasks[i];
+      FileState& fs_ = *files[t.file];
+      {
+        std::lock_guard<std::mutex> lock(mu);
+        bar.Step(fmt::format("{} {}", fs::path(o.files[t.file]).stem().string(), t.model));
+      }
+      {
+        std::lock_guard<std::mutex> lock(fs_.mu);
+        if (!fs_.ready) {
+          try {
+            auto t0 = Clock::now();
+            const Table table = LoadTable(o.files[t.file]);
+            fs_.load_ms = MsSince(t0);
+            t0 = Clock::now();
+            fs_.prepared.emplace(PrepareTable(table, so, fo));
+            fs_.prepare_ms = MsSince(t0);
+          } catch (const InputError& e) {
+            fs_.error = e.what();
+          }
+          fs_.ready = true;
+        }
+      }
+      if (fs_.error.empty()) {
+        FitResult r = FitPrepared(t.model, *fs_.prepared, fo);
+        r.times.load = fs_.load_ms;
+        r.times.prepare = fs_.prepare_ms;
+        FitReportEntry e{o.files[t.file], fs::path(o.files[t.file]).stem().string(), options,
+                         std::move(r)};
+        std::lock_guard<std::mutex> lock(mu);
+        summary.fresh.push_back(std::move(e));
+        if (MsSince(last_write) > 5000) write_report(false);  // checkpoint for resuming
+      }
+      if (--fs_.remaining == 0) {
+        std::lock_guard<std::mutex> lock(fs_.mu);
+        if (!fs_.error.empty()) {
+          std::lock_guard<std::mutex> lock2(mu);
+          summary.input_errors.push_back(fs_.error);
+        }
+        fs_.prepared.reset();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  const int n_workers =
+      std::min<int>(o.jobs, static_cast<int>(std::max<std::size_t>(tasks.size(), 1)));
+  for (int j = 0; j < n_workers; ++j) pool.emplace_back(worker);
+  for (auto& th : pool) th.join();
+  bar.Done();
+
+  write_report(true);
+  SortEntries(summary.fresh);
+  std::vector<FitReportEntry> all = kept;
+  all.insert(all.end(), summary.fresh.begin(), summary.fresh.end());
+  if (!o.json.empty()) WriteTextAtomically(o.json, FitParamsJson(all));
+
+  if (!o.quiet) {
+    if (!summary.fresh.empty()) PrintTable(summary.fresh);
+    fmt::print("{} fits, {} skipped (already in {}; --force to redo); report {}{}\n",
+               summary.fresh.size(), summary.skipped, out.string(), out.string(),
+               o.json.empty() ? "" : ", parameters " + o.json);
+  }
+  std::sort(summary.input_errors.begin(), summary.input_errors.end());
+  for (const auto& e : summary.input_errors) fmt::print(stderr, "brdfit: error: {}\n", e);
+  if (!summary.input_errors.empty()) return kExitBadInput;
+  const bool failed = std::any_of(summary.fresh.begin(), summary.fresh.end(),
+                                  [](const FitReportEntry& e) { return e.result.Failed(); });
+  return failed ? kExitFitFailed : kExitOk;
+}
+
+// Demo step 20: fit the synthesized tables with the main models, report into the demo folder.
+int DemoFit(DemoContext& ctx) {
+  FitCliOptions o;
+  for (const auto& t : ctx.tables) o.files.push_back(t.string());
+  o.models = ctx.quick ? std::vector<std::string>{"ggx", "beckmann"}
+                       : std::vector<std::string>{"ggx",         "beckmann",      "ward",
+                                                  "blinn-phong", "cook-torrance", "lafortune"};
+  o.jobs = 2;
+  o.force = true;
+  o.no_progress = true;
+  o.out = (ctx.out_dir / "fits.h5").string();
+  o.json = (ctx.out_dir / "fits.json").string();
+  const int code = RunFit(o);
+  ctx.outputs.push_back(o.out);
+  ctx.outputs.push_back(o.json);
+  return code;
+}
+
+Registrar reg{
+    "fit", "Fit analytic models to tables; metrics, times and an HDF5 report", [](CLI::App& sub) {
+      auto o = std::make_shared<FitCliOptions>();
+      sub.add_option("files", o->files, "tables (MERL .binary or brdfit .h5)")->required();
+      sub.add_option("-m,--model", o->models,
+                     "models, comma-separated (brdfit models lists them); NAME:N for N lobes, "
+                     "e.g. lafortune:2, ggx:2")
+          ->delimiter(',')
+          ->capture_default_str();
+      sub.add_option("--diffuse", o->diffuse,
+                     "diffuse lobe added to bare specular names: ggx -> lambert+ggx (none: fit "
+                     "names as given)")
+          ->capture_default_str();
+      sub.add_option("--loss", o->loss, "log (Low 2012 E2) | cbrt | rel | l2")
+          ->capture_default_str();
+      sub.add_flag("--no-cosine", o->no_cosine, "leave cos(theta_i) out of the loss");
+      sub.add_option("--robust", o->robust, "none | huber | cauchy")->capture_default_str();
+      sub.add_option("--robust-scale", o->robust_scale, "robust loss scale, in loss units")
+          ->capture_default_str();
+      sub.add_option("--cutoff", o->cutoff, "angle cut-off on theta_i and theta_o, degrees")
+          ->capture_default_str();
+      sub.add_option("--weighting", o->weighting, "cell weights: bin-measure | uniform")
+          ->capture_default_str();
+      sub.add_option("--budget", o->budget,
+                     "samples fitted: full | stride:K (every K-th phi_d bin) | random:N "
+                     "(N stratified samples); metrics always use every cell")
+          ->capture_default_str();
+      sub.add_option("--seed", o->seed, "seed of random budgets and subsets")
+          ->capture_default_str();
+      sub.add_option("--multistart", o->multistart, "LM runs from the best N initializer points")
+          ->capture_default_str();
+      sub.add_option("--max-iterations", o->max_iterations, "per LM run")->capture_default_str();
+      sub.add_option("-j,--jobs", o->jobs, "fits in parallel (over files and models)")
+          ->capture_default_str();
+      sub.add_option("--threads", o->threads, "Ceres threads per fit")->capture_default_str();
+      sub.add_flag("--force", o->force, "redo fits already in the report");
+      sub.add_option("-o,--out", o->out, "HDF5 report (docs/formats.md)")->capture_default_str();
+      sub.add_option("--json", o->json, "also write the parameters as JSON");
+      sub.add_flag("--no-timings", o->no_timings,
+                   "leave timings out of the report (byte-identical reruns)");
+      sub.add_flag("-q,--quiet", o->quiet, "no table, no progress bar");
+      sub.add_flag("--no-progress", o->no_progress, "no progress bar");
+      sub.footer(
+          "Exit codes: 0 ok, 1 some fit failed, 2 bad input.\n"
+          "Examples:\n"
+          "  brdfit fit mats/*.binary --model ggx,beckmann,ward -o fits.h5 --jobs 2\n"
+          "  brdfit fit gold.binary --model ggx --budget random:4000 --json gold.json\n"
+          "  brdfit fit gold.binary --model ggx:2,lafortune:3 --loss cbrt --multistart 4");
+      return [o] { return RunFit(*o); };
+    }};
+
+DemoStepRegistrar demo_step{20, "fit models", DemoFit};
+
+}  // namespace
+}  // namespace brdfit::cli

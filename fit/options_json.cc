@@ -1,0 +1,31 @@
+#include <nlohmann/json.hpp>
+
+#include "fit/loss.h"
+#include "fit/options.h"
+#include "fit/samples.h"
+
+namespace brdfit {
+
+std::string OptionsJson(const SampleOptions& s, const FitOptions& f) {
+  nlohmann::json j;  // std::map-backed: keys come out sorted
+  j["cutoff_deg"] = s.cutoff_deg;
+  j["weighting"] = ToString(s.weighting);
+  j["budget"] = s.budget.ToString();
+  j["sample_seed"] = s.seed;
+  j["pair_mirrors"] = s.pair_mirrors;
+  j["loss"] = ToString(f.loss);
+  j["cosine"] = f.cosine;
+  j["robust"] = ToString(f.robust);
+  j["robust_scale"] = f.robust_scale;
+  j["multistart"] = f.multistart;
+  j["max_iterations"] = f.max_iterations;
+  j["init_samples"] = f.init_samples;
+  j["coarse_samples"] = f.coarse_samples;
+  j["seed"] = f.seed;
+  j["function_tolerance"] = f.function_tolerance;
+  j["parameter_tolerance"] = f.parameter_tolerance;
+  j["gradient_tolerance"] = f.gradient_tolerance;
+  return j.dump();
+}
+
+}  // namespace brdfit

@@ -1,0 +1,61 @@
+// Fit reports: every fit of `brdfit fit` in one HDF5 file (docs/formats.md, "Fit reports",
+// format "brdfit-fits" v1), and the fitted parameters as JSON.
+//
+//   /                       attrs format = "brdfit-fits", format_version = 1,
+//                           metrics_definition (how the metrics are computed)
+//   /entries/NNNNN          one group per fit, ordered by (source, model, options)
+//       attrs  source, material, model, options (canonical JSON, fit/options.h), status
+//              (converged | no_convergence | failed), message, termination, iterations,
+//              starts, init_cost, final_cost, fit_samples, fit_cells
+//       params       float64 [P]   attr names: the qualified parameter names, in order
+//       at_bound     uint8   [P]   1 where a parameter ended on a bound
+//       metrics      group, attrs ok, problem, log_rmse, cbrt_rmse, rel_l2, cells,
+//                    total_weight, weighting, cutoff_deg
+//       metrics/worst  group, attrs cell, theta_h, theta_d, phi_d (rad), theta_i_deg,
+//                    theta_o_deg, log_error; datasets measured [3], predicted [3] (1/sr)
+//       samples      group, attrs cells, valid, nonfinite, negative, beyond_cutoff, eligible,
+//                    selected (fit/samples.h SampleCounts)
+//       timing       group (absent when written without timings), attrs load_ms,
+//                    prepare_ms, init_ms, solve_ms, metrics_ms (wall), init_cpu_ms,
+//                    solve_cpu_ms, metrics_cpu_ms (thread CPU time)
+//
+// Nothing else in the file depends on the run: no timestamps (object time tracking is off), so
+// the same entries written without timings give byte-identical files. No NaN or Inf is ever
+// written: FitResult holds none (fit/result.h), and the writer refuses one (std::logic_error).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "fit/result.h"
+
+namespace brdfit {
+
+inline constexpr const char* kFitReportFormat = "brdfit-fits";
+inline constexpr int kFitReportVersion = 1;
+
+struct FitReportEntry {
+  std::string source;    // input file as given
+  std::string material;  // its stem, e.g. "gold-paint"
+  std::string options;   // OptionsJson of the fit (fit/options.h)
+  FitResult result;
+};
+
+// Sorts entries by (source, model, options): the order of a report does not depend on the order
+// in which fits finished.
+void SortEntries(std::vector<FitReportEntry>& entries);
+
+// Writes atomically. include_timings = false leaves out every /timing group.
+void WriteFitReport(std::vector<FitReportEntry> entries, const std::filesystem::path& path,
+                    bool include_timings = true);
+
+// Throws InputError naming the file and the problem.
+std::vector<FitReportEntry> ReadFitReport(const std::filesystem::path& path);
+
+// {"format": "brdfit-fit-params", "format_version": 1, "fits": [{"source", "material", "model",
+//  "status", "message", "params": {"name": value, ...}, "metrics": {"log_rmse", "cbrt_rmse",
+//  "rel_l2"}, "options": {...}}, ...]} in report order, no timings: deterministic.
+std::string FitParamsJson(std::vector<FitReportEntry> entries);
+
+}  // namespace brdfit
