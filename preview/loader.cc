@@ -15,6 +15,13 @@
 #include "models/registry.h"
 #include "preview/cache_key.h"
 
+#if __has_include("io/fit_report.h")
+#define BRDFIT_PREVIEW_HAS_FIT_REPORT 1
+#include "io/fit_report.h"
+#else
+#define BRDFIT_PREVIEW_HAS_FIT_REPORT 0
+#endif
+
 #if __has_include("fit/factor.h") && __has_include("fit/factor_export.h")
 #define BRDFIT_PREVIEW_HAS_FACTOR 1
 #include "fit/factor.h"
@@ -116,6 +123,33 @@ std::vector<double> FitCached(const MaterialSpec& m, const std::filesystem::path
   return r.params;
 }
 
+// Parameters of `model` for `material` from a fit report (io/fit_report.h). The material is
+// matched against the entry's material name (its source's stem) or its source path.
+std::vector<double> FromReport(const MaterialSpec& m, ExplainLog* log) {
+#if BRDFIT_PREVIEW_HAS_FIT_REPORT
+  const auto entries = ReadFitReport(m.fit_report);
+  const std::string wanted = m.fit_material.empty() ? m.name : m.fit_material;
+  for (const auto& e : entries) {
+    if (e.result.model != m.model || (e.material != wanted && e.source != wanted)) continue;
+    if (e.result.Failed()) {
+      throw InputError(m.fit_report, "entry " + wanted + " / " + m.model + " is a failed fit");
+    }
+    if (log) {
+      log->Add("load", "material '" + m.name + "': " + m.model + " parameters of '" + wanted +
+                           "' from report " + m.fit_report.string() + " (" +
+                           ToString(e.result.status) + ")");
+    }
+    return e.result.params;
+  }
+  throw InputError(m.fit_report, "no fit of model '" + m.model + "' for material '" + wanted + "'");
+#else
+  (void)log;
+  throw InputError(m.fit_report, "material '" + m.name +
+                                     "': reading fit reports is not available in this build "
+                                     "(give 'params' or 'fit_table')");
+#endif
+}
+
 #if BRDFIT_PREVIEW_HAS_FACTOR
 Image ToImage(const RgbImage& src) {
   Image img(src.width, src.height);
@@ -214,9 +248,7 @@ MaterialSet LoadMaterials(const Scene& scene, const std::set<std::string>& used,
         if (!m.fit_table.empty()) {
           r.params = FitCached(m, cache_dir, &tables, log);
         } else if (!m.fit_report.empty()) {
-          throw InputError(m.fit_report, "material '" + m.name +
-                                             "': reading fit reports is not available in this "
-                                             "build (give 'params' or 'fit_table')");
+          r.params = FromReport(m, log);
         } else {
           r.params = m.params;
           if (log) log->Add("load", "material '" + m.name + "': " + m.model + " from scene parameters");
