@@ -152,7 +152,9 @@ int DemoReport(DemoContext& ctx) {
   for (const auto& p : ctx.outputs) {
     const std::string name = p.filename().string();
     const bool factor = name.size() > 12 && name.ends_with(".factor.json");
-    const bool known = factor || p.extension() == ".csv" || p.extension() == ".png";
+    const bool table = std::find(ctx.tables.begin(), ctx.tables.end(), p) != ctx.tables.end();
+    const bool fits = p.extension() == ".h5" && !table;  // the fit step's report
+    const bool known = factor || fits || p.extension() == ".csv" || p.extension() == ".png";
     if (known) o.inputs.push_back(p.string());
   }
   for (const auto& t : ctx.tables) o.inputs.push_back(t.string());

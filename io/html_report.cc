@@ -265,7 +265,22 @@ class Page {
   }
 
  private:
+  // True if some dataset holds a finite value (Chart.js would draw an empty frame otherwise).
+  static bool HasData(const json& config) {
+    for (const json& d : config["data"]["datasets"]) {
+      for (const json& v : d["data"]) {
+        const json& y = v.is_object() ? v["y"] : v;
+        if (y.is_number() && std::isfinite(y.get<double>())) return true;
+      }
+    }
+    return false;
+  }
+
   void Chart(const json& config, const std::string& aria) {
+    if (!HasData(config)) {
+      body_ += "<p class=\"note\">No data to plot: " + HtmlEscape(aria) + ".</p>\n";
+      return;
+    }
     const std::string id = fmt::format("chart-{}", charts_++);
     body_ += fmt::format(
         "<div class=\"chart\"><canvas id=\"{}\" role=\"img\" aria-label=\"{}\"></canvas></div>\n"

@@ -9,6 +9,7 @@
 
 #include "io/bench_csv.h"
 #include "io/error.h"
+#include "io/fit_report.h"
 #include "io/table_io.h"
 
 namespace brdfit::report {
@@ -35,13 +36,14 @@ json ReadJson(const fs::path& path) {
   return j;
 }
 
-enum class Kind { kFactor, kBench, kRender, kTable, kUnknown };
+enum class Kind { kFactor, kBench, kRender, kTable, kParamsJson, kUnknown };
 
 Kind Classify(const fs::path& p) {
   const std::string name = Lower(p.filename().string());
   if (EndsWith(name, ".factor.json")) return Kind::kFactor;
   if (EndsWith(name, ".csv")) return Kind::kBench;
   if (EndsWith(name, ".png")) return Kind::kRender;
+  if (EndsWith(name, ".json")) return Kind::kParamsJson;
   if (EndsWith(name, ".binary") || EndsWith(name, ".merl") || EndsWith(name, ".h5") ||
       EndsWith(name, ".hdf5")) {
     return Kind::kTable;
@@ -98,6 +100,115 @@ Entry FactorEntry(const fs::path& sidecar, std::string* material, std::string* t
 
 namespace {
 
+// "log", "log+huber(0.1)", "l2 (no cosine)": the loss and what else changes the objective.
+std::string LossLabel(const json& options) {
+  std::string loss = options.value("loss", std::string("?"));
+  const std::string robust = options.value("robust", std::string("none"));
+  if (robust != "none") loss += fmt::format("+{}({})", robust, options.value("robust_scale", 0.0));
+  if (!options.value("cosine", true)) loss += " (no cosine)";
+  const std::string weighting = options.value("weighting", std::string("bin-measure"));
+  if (weighting != "bin-measure") loss += ", " + weighting;
+  return loss;
+}
+
+// Adds an entry to its material; a second entry with the same key is told apart by a suffix.
+void AddEntry(Report& r, const std::string& material, const std::string& source, Entry e) {
+  Material& m = r.GetOrAddMaterial(material);
+  if (m.source.empty()) m.source = source;
+  const std::string base = e.name;
+  for (int k = 2; std::any_of(m.entries.begin(), m.entries.end(),
+                              [&](const Entry& x) { return x.Key() == e.Key(); });
+       ++k) {
+    e.name = fmt::format("{} #{}", base, k);
+  }
+  m.entries.push_back(std::move(e));
+}
+
+Entry FitEntry(const FitReportEntry& f) {
+  const FitResult& r = f.result;
+  const json options = json::parse(f.options.empty() ? "{}" : f.options, nullptr, false);
+  Entry e;
+  e.kind = Entry::Kind::kFit;
+  e.name = r.model;
+  e.loss = options.is_object() ? LossLabel(options) : "?";
+  e.budget = options.is_object() ? options.value("budget", std::string("?")) : "?";
+  e.status = ToString(r.status);
+  e.message = r.message;
+  e.param_names = r.param_names;
+  e.params = r.params;
+  e.at_bound = r.at_bound;
+  e.iterations = r.iterations;
+  e.metrics.ok = r.metrics.ok;
+  e.metrics.log_rmse = r.metrics.log_rmse;
+  e.metrics.cbrt_rmse = r.metrics.cbrt_rmse;
+  e.metrics.rel_l2 = r.metrics.rel_l2;
+  e.metrics.cells = r.metrics.cells;
+  e.metrics.weighting = r.metrics.weighting;
+  e.metrics.cutoff_deg = r.metrics.cutoff_deg;
+  if (!e.metrics.ok && e.message.empty()) e.message = r.metrics.problem;
+  const FitTimes& t = r.times;
+  e.times_ms = {{"prepare", t.prepare}, {"init", t.init}, {"solve", t.solve},
+                {"metrics", t.metrics}};
+  e.time_ms = t.prepare + t.init + t.solve;
+  return e;
+}
+
+// A fit report (HDF5, io/fit_report.h): every fit of every material, and its tables.
+void AddFitReport(const std::vector<FitReportEntry>& entries, ReportSources* out) {
+  for (const FitReportEntry& f : entries) {
+    const std::string material = f.material.empty() ? MaterialName(f.source) : f.material;
+    AddEntry(out->report, material, f.source, FitEntry(f));
+    std::error_code ec;
+    if (!f.source.empty() && !out->tables.count(material) && fs::is_regular_file(f.source, ec)) {
+      out->tables[material] = f.source;
+    }
+  }
+}
+
+// The parameters JSON of `brdfit fit` (FitParamsJson): fits without timings.
+bool AddFitParamsJson(const fs::path& p, ReportSources* out) {
+  // Ordered: the parameters must keep the model's order.
+  std::ifstream in(p, std::ios::binary);
+  if (!in) throw InputError(p, "cannot open");
+  const auto j = nlohmann::ordered_json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) throw InputError(p, "not a JSON object");
+  if (j.value("format", "") != "brdfit-fit-params") return false;
+  const auto fits = j.value("fits", nlohmann::ordered_json::array());
+  if (!fits.is_array()) throw InputError(p, "\"fits\" is not an array");
+  for (const auto& f : fits) {
+    if (!f.is_object()) throw InputError(p, "an element of \"fits\" is not an object");
+    Entry e;
+    e.kind = Entry::Kind::kFit;
+    e.name = f.value("model", std::string("?"));
+    const json options = f.value("options", nlohmann::ordered_json::object());
+    e.loss = LossLabel(options);
+    e.budget = options.value("budget", std::string("?"));
+    e.status = f.value("status", std::string("?"));
+    e.message = f.value("message", std::string());
+    const auto params = f.value("params", nlohmann::ordered_json::object());
+    for (const auto& [name, value] : params.items()) {
+      if (!value.is_number()) throw InputError(p, "parameter " + name + " is not a number");
+      e.param_names.push_back(name);
+      e.params.push_back(value.get<double>());
+    }
+    const json m = f.value("metrics", nlohmann::ordered_json::object());
+    e.metrics.ok = e.status != "failed";
+    e.metrics.log_rmse = Get(m, "log_rmse");
+    e.metrics.cbrt_rmse = Get(m, "cbrt_rmse");
+    e.metrics.rel_l2 = Get(m, "rel_l2");
+    e.metrics.weighting = m.value("weighting", std::string());
+    e.metrics.cutoff_deg = Get(m, "cutoff_deg");
+    const std::string source = f.value("source", std::string());
+    const std::string material = f.value("material", MaterialName(source));
+    AddEntry(out->report, material, source, std::move(e));
+    std::error_code ec;
+    if (!source.empty() && !out->tables.count(material) && fs::is_regular_file(source, ec)) {
+      out->tables[material] = source;
+    }
+  }
+  return true;
+}
+
 void AddInput(const fs::path& p, bool explicit_input, ReportSources* out) {
   const Kind kind = Classify(p);
   Report& r = out->report;
@@ -126,12 +237,42 @@ void AddInput(const fs::path& p, bool explicit_input, ReportSources* out) {
     case Kind::kRender:
       r.renders.push_back({p.stem().string(), p.string()});
       break;
+    case Kind::kParamsJson:
+      // In a folder the fit report beside it holds the same fits (and their times).
+      if (!explicit_input) break;
+      if (!AddFitParamsJson(p, out)) {
+        throw InputError(p, "not a brdfit fit parameters file (format \"brdfit-fit-params\")");
+      }
+      break;
     case Kind::kTable: {
+      TableFormat format;
       try {
-        DetectTableFormat(p);
+        format = DetectTableFormat(p);
       } catch (const InputError&) {
         if (explicit_input) throw;
         return;
+      }
+      if (format == TableFormat::kHdf5) {
+        // An HDF5 file is a fit report or a table.
+        std::vector<FitReportEntry> fits;
+        bool is_report = true;
+        try {
+          fits = ReadFitReport(p);
+        } catch (const InputError& e) {
+          is_report = false;
+          if (std::string(e.what()).find(kFitReportFormat) == std::string::npos) {
+            // Not a format mismatch: a damaged fit report. Say so unless it is a table.
+            try {
+              LoadTable(p);
+            } catch (const InputError&) {
+              throw InputError(p, std::string("neither a fit report nor a table: ") + e.what());
+            }
+          }
+        }
+        if (is_report) {
+          AddFitReport(fits, out);
+          break;
+        }
       }
       out->tables[MaterialName(p)] = p;
       Material& m = r.GetOrAddMaterial(MaterialName(p));

@@ -3,7 +3,9 @@
 //   <stem>.factor.json       a factorization (io/factor_io.h): one entry of its table's material
 //   *.csv                    a bench CSV (io/bench_csv.h): bench points
 //   *.png                    a preview render, embedded
-//   fit reports              every fit of every material (io/fit_report.h)
+//   fit reports              every fit of every material (io/fit_report.h, HDF5)
+//   fit parameters .json     the same fits without times (brdfit fit --json); read only when
+//                            named, not from a folder (the fit report beside it has them)
 //   *.binary, table *.h5     a table: the source of θh slices for the material of its stem
 //   a folder                 every file in it (not recursive) of the kinds above; others skipped
 // A material is named after its table's file stem ("red-plastic" for red-plastic.binary).

@@ -30,7 +30,7 @@ struct Entry {
   std::string name;    // model ("lambert+ggx") or factorization ("factor:mccool")
   std::string loss;    // fits: loss name ("log"); factorizations: "log (linear)"
   std::string budget;  // fits: "full", "stride:8", "random:N"; factorizations: "res 64"
-  std::string status;  // "converged", "no-convergence", "failed"
+  std::string status;  // "converged", "no_convergence", "failed" (fit/result.h)
   std::string message;
   std::vector<std::string> param_names;
   std::vector<double> params;

@@ -11,6 +11,8 @@
 #include <sstream>
 
 #include "io/bench_csv.h"
+#include "io/fit_report.h"
+#include "models/registry.h"
 
 namespace brdfit::report {
 namespace {
@@ -170,6 +172,66 @@ TEST_F(Cli, BenchOnTwoSyntheticTablesWritesCsvAndPlot) {
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.err.find("no-such-model"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir_ / "x.csv"));
+}
+
+// Fit reports of `brdfit fit` (io/fit_report.h): two materials fitted with lambert+ggx.
+std::vector<FitReportEntry> FitEntries(const fs::path& dir, double plastic_error) {
+  const ModelInfo* m = FindModel("lambert+ggx");
+  std::vector<FitReportEntry> out;
+  for (const char* material : {"gold", "plastic"}) {
+    FitReportEntry e;
+    e.source = (dir / (std::string(material) + ".h5")).string();
+    e.material = material;
+    e.options = R"({"cutoff_deg":80,"weighting":"bin-measure","budget":"full","loss":"log",)"
+                R"("cosine":true,"robust":"none"})";
+    FitResult& r = e.result;
+    r.model = m->name;
+    r.param_names = m->param_names;
+    r.params = m->DefaultParams();
+    r.at_bound.assign(r.params.size(), false);
+    r.status = FitStatus::kConverged;
+    r.iterations = 9;
+    r.metrics.ok = true;
+    r.metrics.log_rmse = std::string(material) == "plastic" ? plastic_error : 0.01;
+    r.metrics.cbrt_rmse = 2 * r.metrics.log_rmse;
+    r.metrics.rel_l2 = 3 * r.metrics.log_rmse;
+    r.metrics.cells = 1000;
+    r.metrics.weighting = "bin-measure";
+    r.metrics.cutoff_deg = 80;
+    r.times.prepare = 5;
+    r.times.init = 10;
+    r.times.solve = 100;
+    out.push_back(e);
+  }
+  return out;
+}
+
+// Acceptance: compare on two reports where one material regressed exits non-zero and names it.
+TEST_F(Cli, CompareFitReportsNamesTheRegressedMaterial) {
+  WriteFitReport(FitEntries(dir_, 0.02), dir_ / "old.h5");
+  WriteFitReport(FitEntries(dir_, 0.03), dir_ / "new.h5");
+  const CliRun r = Brdfit("compare " + P("old.h5") + " " + P("new.h5"));
+  EXPECT_EQ(r.code, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("REGRESSED: plastic (1 regressions)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("+50.0 %"), std::string::npos) << r.out;
+  EXPECT_EQ(Brdfit("compare " + P("new.h5") + " " + P("old.h5")).code, 0);
+}
+
+// A fit report whose sources exist gets θh slices; the page counts its charts.
+TEST_F(Cli, ReportOnAFitReportDrawsSlicesFromItsTables) {
+  for (const char* name : {"gold", "plastic"}) {
+    ASSERT_EQ(Brdfit(std::string("synth --model lambert+ggx --grid 16,16,32 -o ") +
+                     P(std::string(name) + ".h5")).code, 0);
+  }
+  WriteFitReport(FitEntries(dir_, 0.02), dir_ / "fits.h5");
+  const CliRun r = Brdfit("report " + P("fits.h5") + " -o " + P("r.html"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("2 materials, 2 results"), std::string::npos) << r.out;
+  const std::string html = ReadText(dir_ / "r.html");
+  // Summary + per material: Pareto, metrics, 4 slices.
+  EXPECT_NE(html.find("data-charts-expected=\"13\""), std::string::npos);
+  EXPECT_NE(html.find("plastic: θd = "), std::string::npos);
+  EXPECT_NE(html.find("ggx.alpha"), std::string::npos);  // parameters listed
 }
 
 // Manners: every subcommand's --help shows examples.

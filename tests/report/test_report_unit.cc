@@ -376,6 +376,21 @@ int Count(const std::string& s, const std::string& what) {
   return n;
 }
 
+Report OneMaterialForHtml() {
+  Report r;
+  Entry e;
+  e.name = "lambert+ggx";
+  e.loss = "log";
+  e.budget = "full";
+  e.status = "converged";
+  e.metrics.ok = true;
+  e.metrics.log_rmse = 0.01;
+  e.metrics.cbrt_rmse = 0.02;
+  e.metrics.rel_l2 = 0.1;
+  r.GetOrAddMaterial("gold").entries.push_back(e);
+  return r;
+}
+
 TEST(Html, StructureOfTheFixtureReport) {
   const fs::path dir = TempDir("html");
   const Report r = testing::MakeFixtureReport(dir);
@@ -407,6 +422,14 @@ TEST(Html, StructureOfTheFixtureReport) {
   // Nothing is loaded from elsewhere.
   EXPECT_EQ(Count(html, "src=\"http"), 0);
   EXPECT_EQ(Count(html, "<link"), 0);
+}
+
+TEST(Html, ChartsWithoutDataBecomeNotes) {
+  // Fits without times (a parameters JSON): no Pareto plot, but metrics and a summary.
+  Report r = OneMaterialForHtml();
+  const std::string html = RenderHtml(r, "");
+  EXPECT_NE(html.find("data-charts-expected=\"2\""), std::string::npos);
+  EXPECT_NE(html.find("No data to plot: scatter plot of fit time"), std::string::npos);
 }
 
 TEST(Html, UnreadableRenderBecomesANote) {
