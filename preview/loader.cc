@@ -1,6 +1,7 @@
 #include "preview/loader.h"
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -9,6 +10,7 @@
 #include <sstream>
 
 #include "fit/fitter.h"
+#include "fit/options.h"
 #include "io/atomic_file.h"
 #include "io/error.h"
 #include "io/table_io.h"
@@ -76,11 +78,13 @@ class TableCache {
 // Cache entry of a fit: {"model", "params", "param_names", "status", "source", "key"}.
 std::vector<double> FitCached(const MaterialSpec& m, const std::filesystem::path& cache_dir,
                               TableCache* tables, ExplainLog* log) {
-  // The key: table content + model + the fit options (defaults of fit/options.h and
-  // fit/samples.h; they are part of the key through this version tag).
+  // The key: table content + model + every option that can change the result (canonical
+  // JSON of the fitter's defaults, fit/options.h): new defaults never reuse an old entry.
+  const SampleOptions sample_options;
+  const FitOptions fit_options;
   Fnv1a64 h;
   h.Add(FileContentKey(m.fit_table));
-  h.Add("|fit|" + m.model + "|defaults-v1");
+  h.Add("|fit|" + m.model + "|" + OptionsJson(sample_options, fit_options));
   const std::filesystem::path entry = cache_dir / ("fit-" + h.Hex() + ".json");
   if (std::filesystem::exists(entry)) {
     std::ifstream in(entry);
@@ -101,7 +105,7 @@ std::vector<double> FitCached(const MaterialSpec& m, const std::filesystem::path
   }
   const auto table = tables->Get(m.fit_table);
   const auto t0 = Clock::now();
-  const FitResult r = FitTable(m.model, *table, SampleOptions{}, FitOptions{});
+  const FitResult r = FitTable(m.model, *table, sample_options, fit_options);
   if (r.Failed()) {
     throw InputError(m.fit_table, "fit of '" + m.model + "' for material '" + m.name +
                                       "' failed: " + r.message);
@@ -183,7 +187,11 @@ std::shared_ptr<const FactorTextures> FactorCached(const MaterialSpec& m,
   opt.resolution = m.factor_resolution;
   Fnv1a64 h;
   h.Add(FileContentKey(m.table));
-  h.Add("|factor|" + m.factor_param + "|" + std::to_string(m.factor_resolution) + "|defaults-v1");
+  // Every solver option (defaults included: a changed default never reuses an old entry).
+  char opts[160];
+  std::snprintf(opts, sizeof opts, "|factor|%s|%d|%.17g|%d|%.17g", m.factor_param.c_str(),
+                opt.resolution, opt.lambda, static_cast<int>(opt.weighting), opt.max_theta);
+  h.Add(opts);
   const std::string stem = "factor-" + h.Hex();
   const FactorPaths paths = FactorFilePaths(cache_dir, stem);
   if (std::filesystem::exists(paths.json)) {
