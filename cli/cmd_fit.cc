@@ -9,6 +9,7 @@
 #include <cctype>
 #include <chrono>
 #include <condition_variable>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -26,6 +27,7 @@
 #include "io/atomic_file.h"
 #include "io/error.h"
 #include "io/fit_report.h"
+#include "io/nbrdf.h"
 #include "io/table_io.h"
 
 namespace brdfit::cli {
@@ -98,6 +100,57 @@ std::vector<std::string> ResolveModels(const std::vector<std::string>& requested
   return out;
 }
 
+// NBRDF inputs ("nbrdf:NAME", "nbrdf:all"): the networks of ../shared/data/merl_nbrdf.zip
+// tabulated on the MERL grid in memory (io/nbrdf.h). The archive: $BRDFIT_NBRDF_ZIP, else
+// ../shared/data/merl_nbrdf.zip from the working directory or beside an ancestor of the
+// executable's folder.
+constexpr const char* kNbrdfPrefix = "nbrdf:";
+
+bool IsNbrdf(const std::string& input) {
+  return input.rfind(kNbrdfPrefix, 0) == 0;
+}
+
+fs::path NbrdfArchive() {
+  if (const char* env = std::getenv("BRDFIT_NBRDF_ZIP"); env && *env) return env;
+  std::vector<fs::path> candidates = {fs::path("..") / "shared" / "data" / "merl_nbrdf.zip"};
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    for (fs::path d = exe.parent_path(); !d.empty() && d != d.root_path(); d = d.parent_path()) {
+      candidates.push_back(d.parent_path() / "shared" / "data" / "merl_nbrdf.zip");
+    }
+  }
+  for (const auto& c : candidates) {
+    if (fs::is_regular_file(c, ec)) return c;
+  }
+  return candidates.front();
+}
+
+std::vector<std::string> ExpandInputs(const std::vector<std::string>& inputs) {
+  std::vector<std::string> out;
+  for (const std::string& in : inputs) {
+    if (in == std::string(kNbrdfPrefix) + "all") {
+      for (const auto& m : ListNbrdfMaterials(NbrdfArchive())) out.push_back(kNbrdfPrefix + m);
+    } else {
+      out.push_back(in);
+    }
+  }
+  return out;
+}
+
+std::string MaterialOf(const std::string& input) {
+  return IsNbrdf(input) ? input.substr(std::string(kNbrdfPrefix).size())
+                        : fs::path(input).stem().string();
+}
+
+Table LoadInput(const std::string& input) {
+  if (!IsNbrdf(input)) return LoadTable(input);
+  const NbrdfNetwork net = ReadNbrdf(NbrdfArchive(), MaterialOf(input));
+  Table t = TabulateNbrdf(net, Grid::Merl(), 1).table;
+  t.provenance.source = input;
+  return t;
+}
+
 struct Task {
   std::size_t file;
   std::string model;
@@ -131,8 +184,47 @@ void PrintTable(const std::vector<FitReportEntry>& entries) {
   }
 }
 
+double MedianOf(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+// Per model over the tables: mean and median of each metric, median init + solve time.
+void PrintSummary(const std::vector<FitReportEntry>& entries,
+                  const std::vector<std::string>& models) {
+  fmt::print("\n{:<30} {:>6} {:>19} {:>19} {:>17} {:>10} {:>6}\n", "model (over tables)", "fits",
+             "log_rmse mean/med", "cbrt_rmse mean/med", "rel_l2 mean/med", "solve_ms", "failed");
+  for (const std::string& m : models) {
+    std::vector<double> l, c, r, t;
+    int failed = 0;
+    for (const FitReportEntry& e : entries) {
+      if (e.result.model != m) continue;
+      if (e.result.Failed()) {
+        ++failed;
+        continue;
+      }
+      l.push_back(e.result.metrics.log_rmse);
+      c.push_back(e.result.metrics.cbrt_rmse);
+      r.push_back(e.result.metrics.rel_l2);
+      t.push_back(e.result.times.init + e.result.times.solve);
+    }
+    if (l.empty() && failed == 0) continue;
+    auto mean = [](const std::vector<double>& v) {
+      double s = 0;
+      for (double x : v) s += x;
+      return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+    };
+    fmt::print(
+        "{:<30} {:>6} {:>9.5f}/{:<9.5f} {:>9.5f}/{:<9.5f} {:>8.4f}/{:<8.4f} {:>10.1f} {:>6}\n", m,
+        l.size() + failed, mean(l), MedianOf(l), mean(c), MedianOf(c), mean(r), MedianOf(r),
+        MedianOf(t), failed);
+  }
+}
+
 int RunFit(const FitCliOptions& o) {
-  if (o.files.empty()) throw InputError("no input files");
+  const std::vector<std::string> files = ExpandInputs(o.files);
+  if (files.empty()) throw InputError("no input files");
   if (o.jobs < 1 || o.jobs > 256) throw InputError("--jobs must be in [1, 256]");
   if (o.threads < 1 || o.threads > 256) throw InputError("--threads must be in [1, 256]");
   if (o.multistart < 1 || o.multistart > 1000)
@@ -174,22 +266,22 @@ int RunFit(const FitCliOptions& o) {
     if (!e.result.Failed()) done.insert({e.source, e.result.model, e.options});
   }
   std::vector<Task> tasks;
-  std::vector<std::unique_ptr<FileState>> files;
+  std::vector<std::unique_ptr<FileState>> states;
   RunSummary summary;
-  for (std::size_t f = 0; f < o.files.size(); ++f) {
-    files.push_back(std::make_unique<FileState>());
+  for (std::size_t f = 0; f < files.size(); ++f) {
+    states.push_back(std::make_unique<FileState>());
     for (const std::string& m : models) {
-      if (done.count({o.files[f], m, options})) {
+      if (done.count({files[f], m, options})) {
         ++summary.skipped;
         continue;
       }
       tasks.push_back({f, m});
-      ++files[f]->remaining;
+      ++states[f]->remaining;
     }
   }
   // Entries replaced by this run leave the kept set.
   std::set<std::pair<std::string, std::string>> redo;
-  for (const Task& t : tasks) redo.insert({o.files[t.file], t.model});
+  for (const Task& t : tasks) redo.insert({files[t.file], t.model});
   std::erase_if(kept, [&](const FitReportEntry& e) {
     return redo.count({e.source, e.result.model}) && e.options == options;
   });
@@ -210,17 +302,17 @@ int RunFit(const FitCliOptions& o) {
       const std::size_t i = next++;
       if (i >= tasks.size()) return;
       const Task& t = tasks[i];
-      FileState& fs_ = *files[t.file];
+      FileState& fs_ = *states[t.file];
       {
         std::lock_guard<std::mutex> lock(mu);
-        bar.Step(fmt::format("{} {}", fs::path(o.files[t.file]).stem().string(), t.model));
+        bar.Step(fmt::format("{} {}", MaterialOf(files[t.file]), t.model));
       }
       {
         std::lock_guard<std::mutex> lock(fs_.mu);
         if (!fs_.ready) {
           try {
             auto t0 = Clock::now();
-            const Table table = LoadTable(o.files[t.file]);
+            const Table table = LoadInput(files[t.file]);
             fs_.load_ms = MsSince(t0);
             t0 = Clock::now();
             fs_.prepared.emplace(PrepareTable(table, so, fo));
@@ -235,8 +327,7 @@ int RunFit(const FitCliOptions& o) {
         FitResult r = FitPrepared(t.model, *fs_.prepared, fo);
         r.times.load = fs_.load_ms;
         r.times.prepare = fs_.prepare_ms;
-        FitReportEntry e{o.files[t.file], fs::path(o.files[t.file]).stem().string(), options,
-                         std::move(r)};
+        FitReportEntry e{files[t.file], MaterialOf(files[t.file]), options, std::move(r)};
         std::lock_guard<std::mutex> lock(mu);
         summary.fresh.push_back(std::move(e));
         if (MsSince(last_write) > 5000) write_report(false);  // checkpoint for resuming
@@ -266,6 +357,7 @@ int RunFit(const FitCliOptions& o) {
 
   if (!o.quiet) {
     if (!summary.fresh.empty()) PrintTable(summary.fresh);
+    if (files.size() > 1 && !summary.fresh.empty()) PrintSummary(summary.fresh, models);
     fmt::print("{} fits, {} skipped (already in {}; --force to redo); report {}{}\n",
                summary.fresh.size(), summary.skipped, out.string(), out.string(),
                o.json.empty() ? "" : ", parameters " + o.json);
@@ -299,7 +391,10 @@ int DemoFit(DemoContext& ctx) {
 Registrar reg{
     "fit", "Fit analytic models to tables; metrics, times and an HDF5 report", [](CLI::App& sub) {
       auto o = std::make_shared<FitCliOptions>();
-      sub.add_option("files", o->files, "tables (MERL .binary or brdfit .h5)")->required();
+      sub.add_option("files", o->files,
+                     "tables (MERL .binary or brdfit .h5); nbrdf:NAME or nbrdf:all tabulates the "
+                     "NBRDF networks of ../shared/data/merl_nbrdf.zip on the MERL grid")
+          ->required();
       sub.add_option("-m,--model", o->models,
                      "models, comma-separated (brdfit models lists them); NAME:N for N lobes, "
                      "e.g. lafortune:2, ggx:2")
@@ -343,7 +438,8 @@ Registrar reg{
           "Examples:\n"
           "  brdfit fit mats/*.binary --model ggx,beckmann,ward -o fits.h5 --jobs 2\n"
           "  brdfit fit gold.binary --model ggx --budget random:4000 --json gold.json\n"
-          "  brdfit fit gold.binary --model ggx:2,lafortune:3 --loss cbrt --multistart 4");
+          "  brdfit fit gold.binary --model ggx:2,lafortune:3 --loss cbrt --multistart 4\n"
+          "  brdfit fit nbrdf:all --model ggx,beckmann,ward -j 2 -o nbrdf-fits.h5");
       return [o] { return RunFit(*o); };
     }};
 

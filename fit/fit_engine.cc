@@ -179,6 +179,10 @@ FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& lo
   const bool coarse = opt.coarse_samples > 0 && fit.NumSamples() > 4 * opt.coarse_samples;
   Samples coarse_set;
   LossData coarse_loss;
+  // The coarse stage is cheap: it runs to a 1000x tighter tolerance, so that the expensive
+  // full-set stage starts as close as the subset allows and needs only a few iterations.
+  FitOptions coarse_opt = opt;
+  coarse_opt.function_tolerance = opt.function_tolerance * 1e-3;
   if (coarse) {
     coarse_set = Subsample(fit, opt.coarse_samples, opt.seed + 1);
     coarse_loss = PrepareLoss(coarse_set, opt);
@@ -202,7 +206,7 @@ FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& lo
     ++r.starts;
     if (coarse) {
       std::vector<double> xc = x;
-      const LmRun run = RunLm(ops, coarse_set, coarse_loss, robust.get(), opt, xc.data());
+      const LmRun run = RunLm(ops, coarse_set, coarse_loss, robust.get(), coarse_opt, xc.data());
       r.iterations += run.iterations;
       if (run.finite) x = xc;  // else continue from the grid point
     }

@@ -41,7 +41,7 @@ struct FitOptions {
   // LM stops when the relative cost change falls below function_tolerance: with 1e-9 the
   // metrics agree with the converged optimum to ~1e-9 (model-mismatch fits converge only
   // linearly; zero-residual fits converge quadratically whatever the tolerance).
-  double function_tolerance = 1e-9;
+  double function_tolerance = 1e-8;
   double parameter_tolerance = 1e-10;
   double gradient_tolerance = 1e-16;
 
