@@ -230,6 +230,11 @@ class Reader {
     e.material = Str(g, where, "material");
     r.model = Str(g, where, "model");
     e.options = Str(g, where, "options");
+    // FitParamsJson parses it (fuzz/regressions/fit_report/crafted-options-not-json.h5 made it
+    // throw json::parse_error out of `brdfit fit --json`).
+    if (!e.options.empty() && !nlohmann::json::accept(e.options)) {
+      Fail(fmt::format("{}@options is not JSON", where));
+    }
     const std::string status = Str(g, where, "status");
     if (status == "converged") {
       r.status = FitStatus::kConverged;
