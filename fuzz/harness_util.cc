@@ -61,6 +61,17 @@ fs::path WriteScratch(std::string_view name, const void* data, std::size_t size)
   return path;
 }
 
+std::string ReadAllBytes(const fs::path& path) {
+  std::string out;
+  if (std::FILE* f = std::fopen(path.c_str(), "rb")) {
+    char buf[1 << 16];
+    std::size_t n;
+    while ((n = std::fread(buf, 1, sizeof(buf), f)) > 0) out.append(buf, n);
+    std::fclose(f);
+  }
+  return out;
+}
+
 fs::path WriteNbrdfZip(std::string_view name, std::string_view image) {
   const fs::path path = ScratchDir() / std::string(name);
   int err = 0;

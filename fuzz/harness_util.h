@@ -42,6 +42,9 @@ const std::filesystem::path& ScratchDir();
 // Writes bytes to ScratchDir()/name (overwriting) and returns the path.
 std::filesystem::path WriteScratch(std::string_view name, const void* data, std::size_t size);
 
+// The bytes of a file ("" if it cannot be read).
+std::string ReadAllBytes(const std::filesystem::path& path);
+
 // Writes ScratchDir()/name: a zip archive holding `image` stored (uncompressed) as the member
 // merl_nbrdf/m.h5, i.e. NBRDF material "m" (io/nbrdf.h).
 std::filesystem::path WriteNbrdfZip(std::string_view name, std::string_view image);
@@ -85,6 +88,7 @@ int FuzzNbrdf(const std::uint8_t* data, std::size_t size);
 int FuzzExr(const std::uint8_t* data, std::size_t size);
 int FuzzFactorSidecar(const std::uint8_t* data, std::size_t size);
 int FuzzScene(const std::uint8_t* data, std::size_t size);
+int FuzzFitReport(const std::uint8_t* data, std::size_t size);
 
 }  // namespace brdfit::fuzz
 

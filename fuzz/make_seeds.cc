@@ -29,6 +29,7 @@
 
 #include "io/exr_texture.h"
 #include "io/factor_io.h"
+#include "io/fit_report.h"
 #include "io/hdf5_table.h"
 #include "io/merl.h"
 #include "io/table.h"
@@ -425,6 +426,63 @@ void SidecarSeeds(const fs::path& dir) {
   WriteBytes(dir / "not-object.json", "[1, 2, 3]");
 }
 
+// ---- fit reports --------------------------------------------------------------------------
+
+FitReportEntry ReportEntry(const std::string& source, const std::string& model, bool failed) {
+  FitReportEntry e;
+  e.source = source;
+  e.material = fs::path(source).stem().string();
+  e.options = R"({"fit":{"loss":"log","max_iterations":100},"samples":{"cutoff_deg":80}})";
+  FitResult& r = e.result;
+  r.model = model;
+  r.param_names = {"lambert.kd_r", "lambert.kd_g", "lambert.kd_b", "ggx.ks_r", "ggx.ks_g",
+                   "ggx.ks_b",     "ggx.alpha"};
+  r.params = {0.3, 0.25, 0.2, 0.5, 0.5, 0.5, 0.12};
+  r.at_bound = {false, false, false, false, false, false, true};
+  r.status = failed ? FitStatus::kFailed : FitStatus::kConverged;
+  r.message = failed ? "no usable cells" : "";
+  r.termination = failed ? "" : "CONVERGENCE";
+  r.iterations = failed ? 0 : 17;
+  r.starts = 1;
+  r.init_cost = 1.5;
+  r.final_cost = 0.25;
+  r.fit_samples = 1000;
+  r.fit_cells = 2000;
+  r.metrics.ok = !failed;
+  r.metrics.problem = failed ? "no samples" : "";
+  r.metrics.log_rmse = 0.05;
+  r.metrics.cbrt_rmse = 0.04;
+  r.metrics.rel_l2 = 0.1;
+  r.metrics.cells = 2000;
+  r.metrics.total_weight = 3.5;
+  r.metrics.weighting = "bin-measure";
+  r.metrics.cutoff_deg = 80;
+  r.metrics.worst.cell = 1234;
+  r.metrics.worst.angles = {0.1, 0.2, 0.3};
+  r.metrics.worst.measured = {1, 2, 3};
+  r.metrics.worst.predicted = {1.5, 2.5, 3.5};
+  r.times.solve = 12.5;
+  return e;
+}
+
+void FitReportSeeds(const fs::path& dir) {
+  WriteFitReport({ReportEntry("mats/gold.binary", "lambert+ggx", false),
+                  ReportEntry("mats/felt.h5", "lambert+ggx", true)},
+                 dir / "two-entries.h5", true);
+  WriteFitReport({ReportEntry("t.binary", "lambert+ggx", false)}, dir / "no-timings.h5", false);
+  WriteFitReport({}, dir / "empty.h5", true);
+}
+
+void FitReportCrafted(const fs::path& dir) {
+  // The writer stores the options string as given; a report from elsewhere may hold anything.
+  FitReportEntry e = ReportEntry("t.binary", "lambert+ggx", false);
+  e.options = "{not json";
+  WriteFitReport({e}, dir / "crafted-options-not-json.h5", false);
+  e = ReportEntry("t.binary", "lambert+ggx", false);
+  e.result.param_names = {"a", "a", "b", "c", "d", "e", "f"};  // duplicate names
+  WriteFitReport({e}, dir / "crafted-duplicate-param-names.h5", false);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -434,7 +492,7 @@ int main(int argc, char** argv) {
   }
   const fs::path corpus = fs::path(argv[1]) / "corpus";
   const fs::path regressions = fs::path(argv[1]) / "regressions";
-  for (const char* d : {"merl", "hdf5_table", "nbrdf", "exr", "factor_sidecar"}) {
+  for (const char* d : {"merl", "hdf5_table", "nbrdf", "exr", "factor_sidecar", "fit_report"}) {
     fs::create_directories(corpus / d);
     fs::create_directories(regressions / d);
   }
@@ -444,6 +502,8 @@ int main(int argc, char** argv) {
   NbrdfSeeds(corpus / "nbrdf");
   ExrSeeds(corpus / "exr");
   SidecarSeeds(corpus / "factor_sidecar");
+  FitReportSeeds(corpus / "fit_report");
+  FitReportCrafted(regressions / "fit_report");
   ExrCrafted(regressions / "exr");
   SidecarCrafted(regressions / "factor_sidecar");
   std::cout << "seeds written to " << corpus << ", crafted inputs to " << regressions << "\n";

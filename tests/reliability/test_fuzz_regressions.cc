@@ -34,6 +34,7 @@ constexpr Harnesses kHarnesses[] = {
     {"exr", FuzzExr},
     {"factor_sidecar", FuzzFactorSidecar},
     {"scene", FuzzScene},
+    {"fit_report", FuzzFitReport},
 };
 
 struct Input {

@@ -15,6 +15,7 @@
 #include "io/error.h"
 #include "io/exr_texture.h"
 #include "io/factor_io.h"
+#include "io/fit_report.h"
 #include "io/hdf5_table.h"
 #include "io/nbrdf.h"
 
@@ -122,6 +123,13 @@ TEST(HostileFactorSidecar, TexturesOutsideRegularFilesAreRejected) {
   const std::string msg = MessageOf(
       [] { ReadFactorFiles(Regression("factor_sidecar", "crafted-absolute-file.json")); });
   EXPECT_NE(msg.find("/dev/zero: is not a regular file"), std::string::npos) << msg;
+}
+
+TEST(HostileFitReport, OptionsThatAreNotJsonAreAnInputError) {
+  // Was accepted, then FitParamsJson (brdfit fit --json when resuming) threw json::parse_error.
+  const std::string msg = MessageOf(
+      [] { ReadFitReport(Regression("fit_report", "crafted-options-not-json.h5")); });
+  EXPECT_NE(msg.find("/entries/00000@options is not JSON"), std::string::npos) << msg;
 }
 
 TEST(HostileNbrdf, HugeElementTypeIsRejected) {
