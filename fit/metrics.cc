@@ -8,13 +8,6 @@
 
 namespace brdfit {
 
-const char* MetricsDefinition() {
-  return "log_rmse: sqrt(sum w (ln(1+f cos_i) - ln(1+m cos_i))^2 / (3 sum w)) (Low 2012 E2); "
-         "cbrt_rmse: sqrt(sum w (cbrt(f cos_i) - cbrt(m cos_i))^2 / (3 sum w)); "
-         "rel_l2: sqrt(sum w cos_i^2 (f-m)^2 / sum w cos_i^2 m^2); sums over cells and RGB; "
-         "w = cell weight; worst: max over cells of |ln(1+f cos_i) - ln(1+m cos_i)|";
-}
-
 FitMetrics ComputeMetrics(const Samples& samples, std::span<const double> predicted_rgb) {
   const std::size_t n = samples.NumObservations();
   if (predicted_rgb.size() != 3 * n) {

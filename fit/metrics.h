@@ -56,7 +56,13 @@ struct FitMetrics {
 // Throws std::invalid_argument if the size does not match.
 FitMetrics ComputeMetrics(const Samples& samples, std::span<const double> predicted_rgb);
 
-// One line describing the metric definitions, for reports.
-const char* MetricsDefinition();
+// One line describing the metric definitions, for reports (inline: io/fit_report.cc uses it
+// without linking the fit library).
+inline const char* MetricsDefinition() {
+  return "log_rmse: sqrt(sum w (ln(1+f cos_i) - ln(1+m cos_i))^2 / (3 sum w)) (Low 2012 E2); "
+         "cbrt_rmse: sqrt(sum w (cbrt(f cos_i) - cbrt(m cos_i))^2 / (3 sum w)); "
+         "rel_l2: sqrt(sum w cos_i^2 (f-m)^2 / sum w cos_i^2 m^2); sums over cells and RGB; "
+         "w = cell weight; worst: max over cells of |ln(1+f cos_i) - ln(1+m cos_i)|";
+}
 
 }  // namespace brdfit
