@@ -117,7 +117,7 @@ Factorization Factor(const Table& table, const FactorOptions& options, FactorSys
     }
   }
   st.used_cells = sys->num_rows() - removed.size();
-  st.solve_log_rms = sys->WeightedRms(y, removed, x);
+  st.solve_log_rms = info.weighted_rms;
 
   const int n = options.resolution;
   const int k = sys->num_p();

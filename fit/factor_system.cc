@@ -360,6 +360,7 @@ std::shared_ptr<const FactorSystem> FactorSystem::Build(const Grid& grid,
   Eigen::SparseMatrix<double> l(lrow, n_unknowns);
   l.setFromTriplets(lt.begin(), lt.end());
   s->normal_ = normal + Eigen::SparseMatrix<double>(l.transpose() * l);
+  s->smooth_ = std::move(l);
   s->normal_.makeCompressed();
 
   s->ldlt_.compute(s->normal_);
@@ -373,14 +374,15 @@ std::shared_ptr<const FactorSystem> FactorSystem::Build(const Grid& grid,
   return s;
 }
 
-void FactorSystem::ApplyReduced(const Eigen::VectorXd& v, const std::vector<std::uint32_t>& removed,
-                                Eigen::VectorXd* out) const {
+void FactorSystem::ApplyReduced(const Eigen::MatrixX3d& v,
+                                const std::vector<std::uint32_t>& removed,
+                                Eigen::MatrixX3d* out) const {
   *out = normal_ * v;
   for (std::uint32_t r : removed) {
-    double dot = 0;
-    for (int e = row_start_[r]; e < row_start_[r + 1]; ++e) dot += val_[e] * v[col_[e]];
-    const double s = row_weight_[r] * dot;
-    for (int e = row_start_[r]; e < row_start_[r + 1]; ++e) (*out)[col_[e]] -= s * val_[e];
+    Eigen::RowVector3d dot = Eigen::RowVector3d::Zero();
+    for (int e = row_start_[r]; e < row_start_[r + 1]; ++e) dot += val_[e] * v.row(col_[e]);
+    dot *= row_weight_[r];
+    for (int e = row_start_[r]; e < row_start_[r + 1]; ++e) out->row(col_[e]) -= val_[e] * dot;
   }
 }
 
@@ -392,6 +394,7 @@ bool FactorSystem::Solve(const RowValues& y, const std::vector<std::uint32_t>& r
   const int n = n_p_ + n_q_;
   // b = A^T W y over the kept rows.
   Eigen::MatrixX3d b = Eigen::MatrixX3d::Zero(n, 3);
+  double ywy = 0, wsum = 0;  // y^T W y and sum of w over the kept rows (all channels)
   std::size_t next_removed = 0;
   for (std::size_t r = 0; r < rows; ++r) {
     if (next_removed < removed.size() && removed[next_removed] == r) {
@@ -401,6 +404,8 @@ bool FactorSystem::Solve(const RowValues& y, const std::vector<std::uint32_t>& r
     const double w = row_weight_[r];
     const double* yr = y.data() + 3 * r;
     const double y0 = w * yr[0], y1 = w * yr[1], y2 = w * yr[2];
+    ywy += y0 * yr[0] + y1 * yr[1] + y2 * yr[2];
+    wsum += 3 * w;
     for (int e = row_start_[r]; e < row_start_[r + 1]; ++e) {
       const double a = val_[e];
       double* bp = b.data() + col_[e];
@@ -415,35 +420,41 @@ bool FactorSystem::Solve(const RowValues& y, const std::vector<std::uint32_t>& r
   if (!removed.empty()) {
     // Preconditioned CG on (M - sum_removed w a a^T) x = b, preconditioner M^-1, started at
     // M^-1 b. The preconditioned operator is I minus a rank-|removed| term, so CG is exact in
-    // at most |removed| + 1 steps; clustered spectra make it far fewer in practice.
-    Eigen::VectorXd r, z, p, ap;
-    for (int c = 0; c < 3; ++c) {
-      Eigen::VectorXd xc = sol.col(c);
-      ApplyReduced(xc, removed, &ap);
-      r = b.col(c) - ap;
-      const double b_norm = std::max(b.col(c).norm(), 1e-300);
-      z = ldlt_.solve(r);
-      p = z;
-      double rz = r.dot(z);
-      int it = 0;
-      for (; it < kMaxPcgIterations && r.norm() > 1e-11 * b_norm; ++it) {
-        ApplyReduced(p, removed, &ap);
-        const double pap = p.dot(ap);
-        if (!(pap > 0)) return false;
-        const double alpha = rz / pap;
-        xc += alpha * p;
-        r -= alpha * ap;
-        z = ldlt_.solve(r);
-        const double rz_new = r.dot(z);
-        p = z + (rz_new / rz) * p;
-        rz = rz_new;
+    // at most |removed| + 1 steps; clustered spectra make it far fewer in practice. The three
+    // channels run as independent CGs whose matrix products and triangular solves are batched
+    // (one pass over M and the factor serves all three).
+    Eigen::MatrixX3d r, z, p, ap;
+    ApplyReduced(sol, removed, &ap);
+    r = b - ap;
+    z = ldlt_.solve(r);
+    p = z;
+    Eigen::Array3d rz = (r.array() * z.array()).colwise().sum().transpose();
+    const Eigen::Array3d tol = 1e-11 * b.colwise().norm().transpose().array().max(1e-300);
+    auto converged = [&] { return (r.colwise().norm().transpose().array() <= tol).all(); };
+    int it = 0;
+    for (; it < kMaxPcgIterations && !converged(); ++it) {
+      ApplyReduced(p, removed, &ap);
+      const Eigen::Array3d pap = (p.array() * ap.array()).colwise().sum().transpose();
+      for (int c = 0; c < 3; ++c) {
+        if (r.col(c).norm() <= tol[c]) continue;  // this channel is done: freeze it
+        if (!(pap[c] > 0)) return false;
+        const double alpha = rz[c] / pap[c];
+        sol.col(c) += alpha * p.col(c);
+        r.col(c) -= alpha * ap.col(c);
       }
-      if (r.norm() > 1e-11 * b_norm) return false;
-      local.pcg_iterations = std::max(local.pcg_iterations, it);
-      sol.col(c) = xc;
+      z = ldlt_.solve(r);
+      for (int c = 0; c < 3; ++c) {
+        const double rz_new = r.col(c).dot(z.col(c));
+        p.col(c) = z.col(c) + (rz[c] > 0 ? rz_new / rz[c] : 0.0) * p.col(c);
+        rz[c] = rz_new;
+      }
     }
+    if (!converged()) return false;
+    local.pcg_iterations = it;
   }
   if (!sol.allFinite()) return false;
+  const double sq = ywy - (sol.array() * b.array()).sum() - (smooth_ * sol).squaredNorm();
+  local.weighted_rms = wsum > 0 ? std::sqrt(std::max(0.0, sq) / wsum) : 0.0;
   *x = sol;
   if (info) *info = local;
   return true;

@@ -58,6 +58,10 @@ struct FactorSystemOptions {
 struct FactorSolveInfo {
   std::size_t removed_rows = 0;  // rows of cells with a channel <= 0 or not finite
   int pcg_iterations = 0;        // low-rank correction iterations (0 if none was needed)
+  // Data-term residual of the solution, sqrt(sum_c w_c |y_c - a_c^T x|^2 / (3 sum_c w_c)) over
+  // the kept rows, channels pooled (before the textures are baked). From the normal equations
+  // (M' x = b): |y - A x|_W^2 = y^T W y - x^T b - |L x|^2, no second pass over the rows.
+  double weighted_rms = 0;
 };
 
 // Per-row data, one RGB triple per row (row-major: a row's channels are adjacent).
@@ -92,8 +96,7 @@ class FactorSystem {
   bool Solve(const RowValues& y, const std::vector<std::uint32_t>& removed, Eigen::MatrixX3d* x,
              FactorSolveInfo* info) const;
 
-  // Data-term residual sqrt(sum_c w_c |y_c - a_c^T x|^2 / sum_c w_c) over the kept rows,
-  // channels pooled (a diagnostic of the solve itself, before the textures are baked).
+  // The same residual as FactorSolveInfo::weighted_rms by an explicit pass over the rows.
   double WeightedRms(const RowValues& y, const std::vector<std::uint32_t>& removed,
                      const Eigen::MatrixX3d& x) const;
 
@@ -103,8 +106,9 @@ class FactorSystem {
 
  private:
   FactorSystem() = default;
-  void ApplyReduced(const Eigen::VectorXd& v, const std::vector<std::uint32_t>& removed,
-                    Eigen::VectorXd* out) const;
+  // (M - sum_{r in removed} w_r a_r a_r^T) v, for the three channels at once.
+  void ApplyReduced(const Eigen::MatrixX3d& v, const std::vector<std::uint32_t>& removed,
+                    Eigen::MatrixX3d* out) const;
 
   Grid grid_;
   std::vector<std::uint8_t> mask_;
@@ -116,6 +120,7 @@ class FactorSystem {
   std::vector<int> row_start_;
   std::vector<int> col_;
   std::vector<double> val_;
+  Eigen::SparseMatrix<double> smooth_;  // L (sqrt(lambda) scaled) and the gauge row g
   Eigen::SparseMatrix<double> normal_;  // M, full symmetric storage
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
   double build_seconds_ = 0;

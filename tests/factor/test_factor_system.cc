@@ -136,6 +136,32 @@ void CheckZeroCells(std::size_t every, bool expect_rebuild) {
   EXPECT_LE(MaxLogDiff(r.brdf.q(), ref.brdf.q()), 1e-6);
 }
 
+TEST(FactorSystem, ResidualFromNormalEquationsMatchesExplicitResidual) {
+  // FactorSolveInfo::weighted_rms uses |y - Ax|_W^2 = y^T W y - x^T b - |Lx|^2; an explicit
+  // pass over the rows must agree, with and without dropped rows (low-rank correction).
+  const Grid g = testing::SmallGrid();
+  const Table t = OtherMaterial(g);  // not a product: a residual well above rounding
+  FactorOptions o;
+  o.resolution = 16;
+  for (FactorParam param : {FactorParam::kMcCool, FactorParam::kHalfDiff}) {
+    o.param = param;
+    const auto s = FactorSystem::Build(g, t.valid, o);
+    RowValues y(s->num_rows(), 3);
+    for (std::size_t r = 0; r < s->num_rows(); ++r) {
+      for (int c = 0; c < 3; ++c) y(r, c) = std::log(t.Value(s->row_cells()[r])[c]);
+    }
+    for (const std::vector<std::uint32_t>& removed :
+         {std::vector<std::uint32_t>{}, std::vector<std::uint32_t>{3, 50, 700, 1234}}) {
+      Eigen::MatrixX3d x;
+      FactorSolveInfo info;
+      ASSERT_TRUE(s->Solve(y, removed, &x, &info));
+      const double explicit_rms = s->WeightedRms(y, removed, x);
+      EXPECT_GT(explicit_rms, 1e-3);
+      EXPECT_NEAR(info.weighted_rms, explicit_rms, 1e-6 * explicit_rms);
+    }
+  }
+}
+
 TEST(FactorSystem, FewZeroCellsUseTheLowRankCorrection) {
   CheckZeroCells(997, false);
 }
