@@ -358,9 +358,12 @@ int RunFit(const FitCliOptions& o) {
   if (!o.quiet) {
     if (!summary.fresh.empty()) PrintTable(summary.fresh);
     if (files.size() > 1 && !summary.fresh.empty()) PrintSummary(summary.fresh, models);
-    fmt::print("{} fits, {} skipped (already in {}; --force to redo); report {}{}\n",
-               summary.fresh.size(), summary.skipped, out.string(), out.string(),
-               o.json.empty() ? "" : ", parameters " + o.json);
+    fmt::print("{} fits{}; report {}{}\n", summary.fresh.size(),
+               summary.skipped ? fmt::format(", {} skipped (already in the report with the same "
+                                             "options; --force redoes them)",
+                                             summary.skipped)
+                               : std::string(),
+               out.string(), o.json.empty() ? "" : ", parameters " + o.json);
   }
   std::sort(summary.input_errors.begin(), summary.input_errors.end());
   for (const auto& e : summary.input_errors) fmt::print(stderr, "brdfit: error: {}\n", e);
