@@ -358,11 +358,10 @@ int RunFit(const FitCliOptions& o) {
   if (!o.quiet) {
     if (!summary.fresh.empty()) PrintTable(summary.fresh);
     if (files.size() > 1 && !summary.fresh.empty()) PrintSummary(summary.fresh, models);
-    fmt::print("{} fits{}; report {}{}\n", summary.fresh.size(),
-               summary.skipped ? fmt::format(", {} skipped (already in the report with the same "
-                                             "options; --force redoes them)",
-                                             summary.skipped)
-                               : std::string(),
+    fmt::print("{} fits, {} skipped{}; report {}{}\n", summary.fresh.size(), summary.skipped,
+               summary.skipped ? " (already in the report with the same options; --force redoes "
+                                 "them)"
+                               : "",
                out.string(), o.json.empty() ? "" : ", parameters " + o.json);
   }
   std::sort(summary.input_errors.begin(), summary.input_errors.end());
