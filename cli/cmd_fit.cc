@@ -319,12 +319,22 @@ int RunFit(const FitCliOptions& o) {
             fs_.prepare_ms = MsSince(t0);
           } catch (const InputError& e) {
             fs_.error = e.what();
+          } catch (const std::exception& e) {  // e.g. out of memory: reported, not fatal
+            fs_.error = files[t.file] + ": " + e.what();
           }
           fs_.ready = true;
         }
       }
       if (fs_.error.empty()) {
-        FitResult r = FitPrepared(t.model, *fs_.prepared, fo);
+        FitResult r;
+        try {
+          r = FitPrepared(t.model, *fs_.prepared, fo);
+        } catch (const std::exception& e) {  // never expected; a failed entry, not a crash
+          r = FitResult{};
+          r.model = t.model;
+          r.status = FitStatus::kFailed;
+          r.message = std::string("internal error: ") + e.what();
+        }
         r.times.load = fs_.load_ms;
         r.times.prepare = fs_.prepare_ms;
         FitReportEntry e{files[t.file], MaterialOf(files[t.file]), options, std::move(r)};

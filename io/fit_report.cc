@@ -97,7 +97,8 @@ void WriteEntry(const H5::Group& g, const FitReportEntry& e, bool timings) {
   DoubleArray(g, "params", r.params);
   {
     H5::DataSet params = g.openDataSet("params");
-    StringAttr(params, "names", nlohmann::json(r.param_names).dump());
+    StringAttr(params, "names", nlohmann::json(r.param_names)
+                                    .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
     std::vector<std::uint8_t> b(r.at_bound.begin(), r.at_bound.end());
     const hsize_t dims[1] = {b.size()};
     H5::DataSet ds =
@@ -428,7 +429,10 @@ std::string FitParamsJson(std::vector<FitReportEntry> entries) {
   root["format"] = "brdfit-fit-params";
   root["format_version"] = 1;
   root["fits"] = fits;
-  return root.dump(2) + "\n";
+  // Strings come from file names and from reports written elsewhere: bytes that are not UTF-8
+  // become U+FFFD instead of throwing json::type_error 316 (fuzz_fit_report; a table named
+  // "caf\xe9.binary" made `brdfit fit --json` fail after fitting).
+  return root.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace brdfit
