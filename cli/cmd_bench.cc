@@ -52,8 +52,8 @@ double Median(std::vector<double> v) {
 }
 
 report::BenchPoint ToPoint(const std::string& material, const std::string& table,
-                           const std::string& loss, const std::string& budget,
-                           const FitResult& r, double prepare_ms) {
+                           const std::string& loss, const std::string& budget, const FitResult& r,
+                           double prepare_ms) {
   report::BenchPoint b;
   b.material = material;
   b.table = table;
@@ -203,7 +203,8 @@ Registrar reg{
           ->delimiter(',')
           ->capture_default_str();
       sub.add_option("-o,--out", o->out, "CSV file, one row per fit")->capture_default_str();
-      sub.add_option("--plot", o->plot, "HTML page with the Pareto plots (default: CSV name .html)");
+      sub.add_option("--plot", o->plot,
+                     "HTML page with the Pareto plots (default: CSV name .html)");
       sub.add_option("--cutoff", o->cutoff_deg, "angle cut-off of fits and metrics (degrees)")
           ->capture_default_str();
       sub.add_option("--repeat", o->repeat, "runs per fit; times are medians")

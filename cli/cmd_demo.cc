@@ -34,15 +34,21 @@ int RunDemo(const DemoOptions& opts) {
   fmt::print("demo outputs ({} files) in {}\n", ctx.outputs.size(),
              std::filesystem::absolute(ctx.out_dir).string());
   for (const auto& p : ctx.outputs) fmt::print("  {}\n", p.string());
+  if (!ctx.report.empty()) {
+    fmt::print("report: {}\n", std::filesystem::absolute(ctx.report).string());
+  }
   return kExitOk;
 }
 
 Registrar reg{"demo", "Run the pipeline on built-in synthetic materials", [](CLI::App& sub) {
                 auto opts = std::make_shared<DemoOptions>();
-                sub.add_option("-o,--out", opts->out_dir, "output folder")
-                    ->capture_default_str();
+                sub.add_option("-o,--out", opts->out_dir, "output folder")->capture_default_str();
                 sub.add_flag("--quick", opts->quick, "smaller grids and budgets (for tests)");
-                sub.footer("Example:\n  brdfit demo -o demo-out");
+                sub.footer(
+                    "Synthesizes tables, fits, factors, renders, benchmarks and ends by printing "
+                    "the HTML report's path.\n"
+                    "Exit codes: 0 ok, 1 some fit failed, 2 bad input or an output not writable.\n"
+                    "Examples:\n  brdfit demo -o demo-out\n  brdfit demo --quick -o /tmp/d");
                 return [opts] { return RunDemo(*opts); };
               }};
 

@@ -174,6 +174,7 @@ Registrar reg{
           ->capture_default_str();
       sub.add_flag("-q,--quiet", o->quiet, "no table on stdout");
       sub.footer(
+          "Exit codes: 0 ok, 2 bad input (named, the other tables are still factored).\n"
           "Writes DIR/<stem>.p.exr, DIR/<stem>.q.exr (float32 RGB OpenEXR) and "
           "DIR/<stem>.factor.json per table\n(docs/formats.md, docs/factorization.md).\n"
           "Examples:\n"

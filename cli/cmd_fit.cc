@@ -9,6 +9,7 @@
 #include <cctype>
 #include <chrono>
 #include <condition_variable>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
@@ -172,15 +173,15 @@ struct RunSummary {
   std::size_t skipped = 0;
 };
 
-void PrintTable(const std::vector<FitReportEntry>& entries) {
-  fmt::print("{:<28} {:<26} {:>9} {:>9} {:>8} {:>5} {:>9} {}\n", "material", "model", "log_rmse",
-             "cbrt_rmse", "rel_l2", "iter", "solve_ms", "status");
+void PrintTable(std::FILE* out, const std::vector<FitReportEntry>& entries) {
+  fmt::print(out, "{:<28} {:<26} {:>9} {:>9} {:>8} {:>5} {:>9} {}\n", "material", "model",
+             "log_rmse", "cbrt_rmse", "rel_l2", "iter", "solve_ms", "status");
   for (const FitReportEntry& e : entries) {
     const FitResult& r = e.result;
-    fmt::print("{:<28} {:<26} {:>9.5f} {:>9.5f} {:>8.4f} {:>5} {:>9.1f} {}\n", e.material, r.model,
-               r.metrics.log_rmse, r.metrics.cbrt_rmse, r.metrics.rel_l2, r.iterations,
+    fmt::print(out, "{:<28} {:<26} {:>9.5f} {:>9.5f} {:>8.4f} {:>5} {:>9.1f} {}\n", e.material,
+               r.model, r.metrics.log_rmse, r.metrics.cbrt_rmse, r.metrics.rel_l2, r.iterations,
                r.times.init + r.times.solve, ToString(r.status));
-    if (!r.message.empty()) fmt::print("    {}\n", r.message);
+    if (!r.message.empty()) fmt::print(out, "    {}\n", r.message);
   }
 }
 
@@ -191,10 +192,11 @@ double MedianOf(std::vector<double> v) {
 }
 
 // Per model over the tables: mean and median of each metric, median init + solve time.
-void PrintSummary(const std::vector<FitReportEntry>& entries,
+void PrintSummary(std::FILE* out, const std::vector<FitReportEntry>& entries,
                   const std::vector<std::string>& models) {
-  fmt::print("\n{:<30} {:>6} {:>19} {:>19} {:>17} {:>10} {:>6}\n", "model (over tables)", "fits",
-             "log_rmse mean/med", "cbrt_rmse mean/med", "rel_l2 mean/med", "solve_ms", "failed");
+  fmt::print(out, "\n{:<30} {:>6} {:>19} {:>19} {:>17} {:>10} {:>6}\n", "model (over tables)",
+             "fits", "log_rmse mean/med", "cbrt_rmse mean/med", "rel_l2 mean/med", "solve_ms",
+             "failed");
   for (const std::string& m : models) {
     std::vector<double> l, c, r, t;
     int failed = 0;
@@ -216,8 +218,8 @@ void PrintSummary(const std::vector<FitReportEntry>& entries,
       return v.empty() ? 0.0 : s / static_cast<double>(v.size());
     };
     fmt::print(
-        "{:<30} {:>6} {:>9.5f}/{:<9.5f} {:>9.5f}/{:<9.5f} {:>8.4f}/{:<8.4f} {:>10.1f} {:>6}\n", m,
-        l.size() + failed, mean(l), MedianOf(l), mean(c), MedianOf(c), mean(r), MedianOf(r),
+        out, "{:<30} {:>6} {:>9.5f}/{:<9.5f} {:>9.5f}/{:<9.5f} {:>8.4f}/{:<8.4f} {:>10.1f} {:>6}\n",
+        m, l.size() + failed, mean(l), MedianOf(l), mean(c), MedianOf(c), mean(r), MedianOf(r),
         MedianOf(t), failed);
   }
 }
@@ -312,10 +314,10 @@ int RunFit(const FitCliOptions& o) {
         if (!fs_.ready) {
           try {
             auto t0 = Clock::now();
-            const Table table = LoadInput(files[t.file]);
+            Table table = LoadInput(files[t.file]);
             fs_.load_ms = MsSince(t0);
             t0 = Clock::now();
-            fs_.prepared.emplace(PrepareTable(table, so, fo));
+            fs_.prepared.emplace(PrepareTable(std::move(table), so, fo));
             fs_.prepare_ms = MsSince(t0);
           } catch (const InputError& e) {
             fs_.error = e.what();
@@ -363,16 +365,24 @@ int RunFit(const FitCliOptions& o) {
   SortEntries(summary.fresh);
   std::vector<FitReportEntry> all = kept;
   all.insert(all.end(), summary.fresh.begin(), summary.fresh.end());
-  if (!o.json.empty()) WriteTextAtomically(o.json, FitParamsJson(all));
+  // `--json -`: the parameters are the standard output; the table goes to stderr.
+  const bool json_to_stdout = o.json == "-";
+  if (json_to_stdout) {
+    fmt::print("{}", FitParamsJson(all));
+  } else if (!o.json.empty()) {
+    WriteTextAtomically(o.json, FitParamsJson(all));
+  }
 
   if (!o.quiet) {
-    if (!summary.fresh.empty()) PrintTable(summary.fresh);
-    if (files.size() > 1 && !summary.fresh.empty()) PrintSummary(summary.fresh, models);
-    fmt::print("{} fits, {} skipped{}; report {}{}\n", summary.fresh.size(), summary.skipped,
+    std::FILE* table_out = json_to_stdout ? stderr : stdout;
+    if (!summary.fresh.empty()) PrintTable(table_out, summary.fresh);
+    if (files.size() > 1 && !summary.fresh.empty()) PrintSummary(table_out, summary.fresh, models);
+    fmt::print(table_out, "{} fits, {} skipped{}; report {}{}\n", summary.fresh.size(),
+               summary.skipped,
                summary.skipped ? " (already in the report with the same options; --force redoes "
                                  "them)"
                                : "",
-               out.string(), o.json.empty() ? "" : ", parameters " + o.json);
+               out.string(), o.json.empty() || json_to_stdout ? "" : ", parameters " + o.json);
   }
   std::sort(summary.input_errors.begin(), summary.input_errors.end());
   for (const auto& e : summary.input_errors) fmt::print(stderr, "brdfit: error: {}\n", e);
@@ -440,7 +450,8 @@ Registrar reg{
       sub.add_option("--threads", o->threads, "Ceres threads per fit")->capture_default_str();
       sub.add_flag("--force", o->force, "redo fits already in the report");
       sub.add_option("-o,--out", o->out, "HDF5 report (docs/formats.md)")->capture_default_str();
-      sub.add_option("--json", o->json, "also write the parameters as JSON");
+      sub.add_option("--json", o->json,
+                     "also write the parameters as JSON (- for standard output)");
       sub.add_flag("--no-timings", o->no_timings,
                    "leave timings out of the report (byte-identical reruns)");
       sub.add_flag("-q,--quiet", o->quiet, "no table, no progress bar");
@@ -450,6 +461,7 @@ Registrar reg{
           "Examples:\n"
           "  brdfit fit mats/*.binary --model ggx,beckmann,ward -o fits.h5 --jobs 2\n"
           "  brdfit fit gold.binary --model ggx --budget random:4000 --json gold.json\n"
+          "  brdfit fit gold.binary --model ggx --json - | jq '.fits[0].params'\n"
           "  brdfit fit gold.binary --model ggx:2,lafortune:3 --loss cbrt --multistart 4\n"
           "  brdfit fit nbrdf:all --model ggx,beckmann,ward -j 2 -o nbrdf-fits.h5");
       return [o] { return RunFit(*o); };

@@ -117,6 +117,7 @@ Registrar reg{"info", "Describe a table: format, grid, valid cells, value ranges
                 sub.add_option("file", opts->path, "MERL .binary or brdfit .h5 table")->required();
                 sub.add_flag("--json", opts->json, "machine-readable output");
                 sub.footer(
+                    "Exit codes: 0 ok, 2 bad input (the file and the problem are named).\n"
                     "The format is detected from the content, not the name.\n"
                     "Examples:\n  brdfit info gold-paint.binary\n  brdfit info t.h5 --json");
                 return [opts] { return RunInfo(*opts); };

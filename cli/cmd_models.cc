@@ -100,6 +100,7 @@ Registrar reg{"models", "List every model with its parameters and bounds", [](CL
                 sub.add_option("names", opts->names, "only these models (default: all)");
                 sub.add_flag("--json", opts->json, "machine-readable output");
                 sub.footer(
+                    "Exit codes: 0 ok, 2 unknown model name.\n"
                     "Examples:\n  brdfit models\n  brdfit models lambert+ggx cook-torrance\n"
                     "  brdfit models --json > models.json");
                 return [opts] { return RunModels(*opts); };

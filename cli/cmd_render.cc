@@ -73,8 +73,8 @@ int RunRender(const RenderOptions& o) {
   preview::Image linear, display;
   if (o.compare) {
     preview::ComparisonStats stats;
-    display = preview::RenderComparison(renderer, scene, materials, scene.width, scene.height,
-                                        &log, &stats);
+    display = preview::RenderComparison(renderer, scene, materials, scene.width, scene.height, &log,
+                                        &stats);
     linear = display;  // an EXR of a comparison holds its display values
   } else {
     linear = renderer.RenderLinear(scene, materials, &log);
@@ -90,24 +90,26 @@ int RunRender(const RenderOptions& o) {
   return kExitOk;
 }
 
-Registrar reg{"render", "Render a scene with the GLSL preview (headless)", [](CLI::App& sub) {
-                auto opts = std::make_shared<RenderOptions>();
-                sub.add_option("scene", opts->scene, "scene file (docs/scenes.md)")->required();
-                sub.add_option("-o,--out", opts->out, "output image: .png (display) or .exr (linear)")
-                    ->required();
-                sub.add_flag("--explain", opts->explain,
-                             "print what was loaded, computed, reused and skipped");
-                sub.add_option("--size", opts->size, "image size WxH (overrides the scene)");
-                sub.add_option("--cache", opts->cache,
-                               "cache folder for computed fits and factorizations "
-                               "(default $BRDFIT_CACHE_DIR or ~/.cache/brdfit)");
-                sub.add_flag("--compare", opts->compare,
-                             "measured | fitted | factored | error panels (scene 'comparison')");
-                sub.footer(
-                    "Examples:\n  brdfit render data/scenes/seed000_ggx.json -o ggx.png\n"
-                    "  brdfit render scene.json -o cmp.png --compare --size 512x512 --explain");
-                return [opts] { return RunRender(*opts); };
-              }};
+Registrar reg{
+    "render", "Render a scene with the GLSL preview (headless)", [](CLI::App& sub) {
+      auto opts = std::make_shared<RenderOptions>();
+      sub.add_option("scene", opts->scene, "scene file (docs/scenes.md)")->required();
+      sub.add_option("-o,--out", opts->out, "output image: .png (display) or .exr (linear)")
+          ->required();
+      sub.add_flag("--explain", opts->explain,
+                   "print what was loaded, computed, reused and skipped");
+      sub.add_option("--size", opts->size, "image size WxH (overrides the scene)");
+      sub.add_option("--cache", opts->cache,
+                     "cache folder for computed fits and factorizations "
+                     "(default $BRDFIT_CACHE_DIR or ~/.cache/brdfit)");
+      sub.add_flag("--compare", opts->compare,
+                   "measured | fitted | factored | error panels (scene 'comparison')");
+      sub.footer(
+          "Exit codes: 0 written, 2 bad scene or input (also a fit the scene needs that fails).\n"
+          "Examples:\n  brdfit render data/scenes/seed000_ggx.json -o ggx.png\n"
+          "  brdfit render scene.json -o cmp.png --compare --size 512x512 --explain");
+      return [opts] { return RunRender(*opts); };
+    }};
 
 // Demo step 40: a comparison of the first demo table against a fit and a factorization.
 int DemoRender(DemoContext& ctx) {
@@ -128,8 +130,8 @@ int DemoRender(DemoContext& ctx) {
       {"objects", {{{"name", "ball"}, {"material", name}}}},
       {"comparison", {{"measured", name}, {"fitted", "fit"}}}};
   if (preview::FactorizationAvailable()) {
-    s["materials"]["factored"] = {{"type", "factored"}, {"table", table.string()},
-                                  {"resolution", ctx.quick ? 16 : 32}};
+    s["materials"]["factored"] = {
+        {"type", "factored"}, {"table", table.string()}, {"resolution", ctx.quick ? 16 : 32}};
     s["comparison"]["factored"] = "factored";
   }
   const auto scene_path = ctx.out_dir / "compare_scene.json";

@@ -13,8 +13,8 @@
 #include "cli/progress.h"
 #include "fit/factor_export.h"
 #include "fit/metrics.h"
-#include "io/error.h"
 #include "io/atomic_file.h"
+#include "io/error.h"
 #include "io/html_report.h"
 #include "io/report_inputs.h"
 #include "io/report_slices.h"
@@ -41,8 +41,9 @@ struct ReportCliOptions {
 void AddSlices(const report::ReportSources& src, const ReportCliOptions& o, report::Material* m) {
   const auto t = src.tables.find(m->name);
   if (t == src.tables.end()) {
-    m->notes.push_back("No θh slices: the table of this material was not given and the results "
-                       "do not name a readable one.");
+    m->notes.push_back(
+        "No θh slices: the table of this material was not given and the results "
+        "do not name a readable one.");
     return;
   }
   const Table table = LoadTable(t->second);
@@ -89,8 +90,9 @@ int RunReport(const ReportCliOptions& o) {
   if (!o.title.empty()) r.title = o.title;
   r.metric_definition = MetricsDefinition();
   if (r.materials.empty() && r.bench.empty() && r.renders.empty()) {
-    throw InputError("nothing to report: no fit report, factorization, bench CSV, render or table "
-                     "among the inputs");
+    throw InputError(
+        "nothing to report: no fit report, factorization, bench CSV, render or table "
+        "among the inputs");
   }
   if (!o.no_slices) {
     Progress bar(r.materials.size(), "slices", !o.quiet);
@@ -164,6 +166,7 @@ int DemoReport(DemoContext& ctx) {
   const int code = RunReport(o);
   if (code == kExitOk) {
     ctx.outputs.push_back(o.out);
+    ctx.report = o.out;
     fmt::print("report: {}\n", fs::absolute(o.out).string());
   }
   return code;

@@ -227,6 +227,7 @@ Registrar reg{
       sub.add_option("--format", o->format, "merl or h5 (default: from the extension)");
       sub.add_option("-o,--out", o->out, "output file (.binary = MERL, .h5 = HDF5)");
       sub.footer(
+          "Exit codes: 0 written, 2 bad model, parameter or output.\n"
           "Cells are evaluated at their centres; cells below the horizon are masked.\n"
           "Examples:\n"
           "  brdfit synth --model lambert+ggx --param ggx.alpha=0.1 --param kd_r=0.6 -o t.binary\n"

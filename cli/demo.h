@@ -14,6 +14,7 @@ struct DemoContext {
   std::filesystem::path out_dir;
   std::vector<std::filesystem::path> tables;   // synthetic tables written by the synth step
   std::vector<std::filesystem::path> outputs;  // everything written, for the final summary
+  std::filesystem::path report;                // the HTML report, printed last
   bool quick = false;                          // smaller grids / budgets (tests)
 };
 

@@ -75,7 +75,7 @@ class BlockCost final : public ceres::CostFunction {
       for (int ch = 0; ch < 3; ++ch) {
         for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
           const double w = l_.sqrt_w[o];
-          const double e = l_.inv[3 * o + ch] *
+          const double e = l_.Inv(o, ch) *
                            (LossTransform(l_.kind, rgb[ch] * l_.mult[o]) - l_.target[3 * o + ch]);
           double term, rs, js;
           Robustify(robust_, e, &term, &rs, &js);
@@ -111,7 +111,7 @@ class BlockCost final : public ceres::CostFunction {
       for (int ch = 0; ch < 3; ++ch) {
         double saa = 0, sab = 0;
         for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
-          const double c = l_.mult[o], w = l_.sqrt_w[o], inv = l_.inv[3 * o + ch];
+          const double c = l_.mult[o], w = l_.sqrt_w[o], inv = l_.Inv(o, ch);
           const Slope t = LossTransform(l_.kind, Slope(rgb[ch].a * c, 0));
           const double e = inv * (t.a - l_.target[3 * o + ch]);
           double term, rs, js;

@@ -11,7 +11,7 @@ FitMetrics ScoreFactorization(const Table& table, const FactoredBrdf& brdf,
     const auto f = brdf.Eval(g.wi, g.wo);
     for (int c = 0; c < 3; ++c) per_sample[3 * s + c] = f[c];
   }
-  return ComputeMetrics(samples, ExpandToObservations(samples, per_sample));
+  return ComputeMetricsPerSample(samples, per_sample);
 }
 
 }  // namespace brdfit

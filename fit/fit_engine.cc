@@ -258,8 +258,7 @@ FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& lo
   for (std::size_t s = 0; s < metric.NumSamples(); ++s) {
     ops.eval(r.params.data(), metric.geometry[s], &pred[3 * s]);
   }
-  const std::vector<double> per_obs = ExpandToObservations(metric, pred);
-  r.metrics = ComputeMetrics(metric, per_obs);
+  r.metrics = ComputeMetricsPerSample(metric, pred);
   r.times.metrics = MsSince(t0);
   r.times.metrics_cpu = ThreadCpuMs() - c0;
   if (!r.metrics.ok) {

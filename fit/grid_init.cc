@@ -77,7 +77,7 @@ GridInitializer::GridInitializer(const Samples& s, const LossData& l, const Para
   for (std::size_t o = 0; o < n; ++o) {
     for (int ch = 0; ch < 3; ++ch) {
       const double m = s.value[3 * o + ch];
-      const double d = l.inv[3 * o + ch] * Slope(m * l.mult[o]) * l.mult[o];
+      const double d = l.Inv(o, ch) * Slope(m * l.mult[o]) * l.mult[o];
       w_data_[3 * o + ch] = l.sqrt_w[o] * l.sqrt_w[o] * d * d;
       y_data_[3 * o + ch] = m;
     }
@@ -257,7 +257,7 @@ void GridInitializer::Relinearize(std::vector<double>* p) {
     for (int ch = 0; ch < 3; ++ch) {
       const double f0 = Predict(*p, s, ch);
       for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
-        const double c = l_.mult[o], inv = l_.inv[3 * o + ch];
+        const double c = l_.mult[o], inv = l_.Inv(o, ch);
         const double e0 = inv * (LossTransform(l_.kind, f0 * c) - l_.target[3 * o + ch]);
         const double d = inv * Slope(f0 * c) * c;
         if (!(std::abs(d) > 0) || !std::isfinite(e0)) continue;
@@ -283,7 +283,7 @@ double GridInitializer::Score(const std::vector<double>& p) const {
       const double f = Predict(p, s, ch);
       for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
         const double e =
-            l_.inv[3 * o + ch] * (LossTransform(l_.kind, f * l_.mult[o]) - l_.target[3 * o + ch]);
+            l_.Inv(o, ch) * (LossTransform(l_.kind, f * l_.mult[o]) - l_.target[3 * o + ch]);
         double term = e * e;
         if (robust_ != nullptr) {
           double rho[3];

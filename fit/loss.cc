@@ -56,7 +56,7 @@ LossData PrepareLoss(const Samples& samples, const FitOptions& options) {
   d.mult.resize(n);
   d.sqrt_w.resize(n);
   d.target.resize(3 * n);
-  d.inv.resize(3 * n);
+  if (options.loss == LossKind::kRel) d.inv.resize(3 * n);
   const double norm = samples.total_weight > 0 ? 1.0 / (3.0 * samples.total_weight) : 0.0;
   for (std::size_t o = 0; o < n; ++o) {
     // The relative loss is scale-free: the cosine would cancel, so it is not applied.
@@ -66,7 +66,7 @@ LossData PrepareLoss(const Samples& samples, const FitOptions& options) {
     for (int ch = 0; ch < 3; ++ch) {
       const double m = samples.value[3 * o + ch];
       d.target[3 * o + ch] = LossTransform(options.loss, m * c);
-      d.inv[3 * o + ch] = options.loss == LossKind::kRel ? 1.0 / (std::abs(m) + kRelEpsilon) : 1.0;
+      if (!d.inv.empty()) d.inv[3 * o + ch] = 1.0 / (std::abs(m) + kRelEpsilon);
     }
   }
   return d;

@@ -8,11 +8,12 @@
 
 namespace brdfit {
 
-FitMetrics ComputeMetrics(const Samples& samples, std::span<const double> predicted_rgb) {
+namespace {
+
+// predicted(o) returns the 3 predictions of observation o; observations are visited in order.
+template <class Predicted>
+FitMetrics Score(const Samples& samples, Predicted predicted) {
   const std::size_t n = samples.NumObservations();
-  if (predicted_rgb.size() != 3 * n) {
-    throw std::invalid_argument("ComputeMetrics: expected 3 predictions per observation");
-  }
   FitMetrics m;
   m.weighting = ToString(samples.options.weighting);
   m.cutoff_deg = samples.options.cutoff_deg;
@@ -22,26 +23,29 @@ FitMetrics ComputeMetrics(const Samples& samples, std::span<const double> predic
     m.problem = "no samples to score";
     return m;
   }
-  for (double v : predicted_rgb) {
-    if (!std::isfinite(v)) {
-      m.problem = "non-finite prediction";
-      return m;
-    }
-  }
-  const bool pre = samples.metric_log.size() == 3 * n && samples.metric_cbrt.size() == 3 * n;
   double log_sum = 0, cbrt_sum = 0, num = 0, den = 0;
   double worst = -1;
   for (std::size_t o = 0; o < n; ++o) {
+    const double* f_rgb = predicted(o);
+    if (!(std::isfinite(f_rgb[0]) && std::isfinite(f_rgb[1]) && std::isfinite(f_rgb[2]))) {
+      FitMetrics bad;
+      bad.weighting = m.weighting;
+      bad.cutoff_deg = m.cutoff_deg;
+      bad.cells = m.cells;
+      bad.total_weight = m.total_weight;
+      bad.problem = "non-finite prediction";
+      return bad;
+    }
     const double w = samples.weight[o];
     const double c = samples.cos_i[o];
     double cell_worst = 0;
     for (int ch = 0; ch < 3; ++ch) {
-      const double f = predicted_rgb[3 * o + ch];
+      const double f = f_rgb[ch];
       const double v = samples.value[3 * o + ch];
-      const double dl =
-          GuardedLog1p(f * c) - (pre ? samples.metric_log[3 * o + ch] : GuardedLog1p(v * c));
-      const double dc =
-          GuardedCbrt(f * c) - (pre ? samples.metric_cbrt[3 * o + ch] : GuardedCbrt(v * c));
+      // The measured side is recomputed at each call rather than stored (48 bytes per
+      // observation; docs/reliability.md, "Memory").
+      const double dl = GuardedLog1p(f * c) - GuardedLog1p(v * c);
+      const double dc = GuardedCbrt(f * c) - GuardedCbrt(v * c);
       log_sum += w * dl * dl;
       cbrt_sum += w * dc * dc;
       num += w * c * c * (f - v) * (f - v);
@@ -54,7 +58,7 @@ FitMetrics ComputeMetrics(const Samples& samples, std::span<const double> predic
       m.worst.log_error = cell_worst;
       for (int ch = 0; ch < 3; ++ch) {
         m.worst.measured[ch] = samples.value[3 * o + ch];
-        m.worst.predicted[ch] = predicted_rgb[3 * o + ch];
+        m.worst.predicted[ch] = f_rgb[ch];
       }
       m.worst.theta_i_deg = std::acos(std::clamp(samples.cos_i[o], -1.0, 1.0)) * 180.0 / kPi;
       m.worst.theta_o_deg = std::acos(std::clamp(samples.cos_o[o], -1.0, 1.0)) * 180.0 / kPi;
@@ -76,6 +80,27 @@ FitMetrics ComputeMetrics(const Samples& samples, std::span<const double> predic
     m.log_rmse = m.cbrt_rmse = m.rel_l2 = 0;
   }
   return m;
+}
+
+}  // namespace
+
+FitMetrics ComputeMetrics(const Samples& samples, std::span<const double> predicted_rgb) {
+  if (predicted_rgb.size() != 3 * samples.NumObservations()) {
+    throw std::invalid_argument("ComputeMetrics: expected 3 predictions per observation");
+  }
+  return Score(samples, [&](std::size_t o) { return &predicted_rgb[3 * o]; });
+}
+
+FitMetrics ComputeMetricsPerSample(const Samples& samples, std::span<const double> per_sample_rgb) {
+  if (per_sample_rgb.size() != 3 * samples.NumSamples()) {
+    throw std::invalid_argument("ComputeMetricsPerSample: expected 3 predictions per sample");
+  }
+  // Observations are stored sample by sample: advance s as o leaves its range.
+  std::size_t s = 0;
+  return Score(samples, [&](std::size_t o) {
+    while (o >= samples.obs_begin[s + 1]) ++s;
+    return &per_sample_rgb[3 * s];
+  });
 }
 
 }  // namespace brdfit

@@ -56,6 +56,12 @@ struct FitMetrics {
 // Throws std::invalid_argument if the size does not match.
 FitMetrics ComputeMetrics(const Samples& samples, std::span<const double> predicted_rgb);
 
+// The same metrics (bit-identical) from 3 predictions per *sample*: an observation takes its
+// sample's prediction (a cell and its phi_d mirror share one model evaluation), so no
+// per-observation copy is made (22 MB on a full MERL table). Throws std::invalid_argument if
+// the size does not match.
+FitMetrics ComputeMetricsPerSample(const Samples& samples, std::span<const double> per_sample_rgb);
+
 // One line describing the metric definitions, for reports (inline: io/fit_report.cc uses it
 // without linking the fit library).
 inline const char* MetricsDefinition() {

@@ -29,24 +29,22 @@ bool ParseCount(const std::string& s, std::size_t* out) {
 }
 
 // A sample before selection: a cell and its optional phi_d mirror.
+// 24 bytes: a full MERL table has 729,000 of them alive while its samples are built.
 struct Unit {
-  int ih, id, ip;
-  std::uint32_t cells[2];
-  int members;
+  std::uint32_t primary;   // table index of (ih, id, ip), ip in the first half (member or not)
+  std::uint32_t cells[2];  // the members: the primary cell and/or its mirror, whichever are usable
+  std::uint8_t members;
   double weight;  // sum of the members' cell weights
 };
 
-void FillMetricTargets(Samples* s) {
-  const std::size_t n = s->NumObservations();
-  s->metric_log.resize(3 * n);
-  s->metric_cbrt.resize(3 * n);
-  for (std::size_t o = 0; o < n; ++o) {
-    for (int ch = 0; ch < 3; ++ch) {
-      const double x = s->value[3 * o + ch] * s->cos_i[o];
-      s->metric_log[3 * o + ch] = GuardedLog1p(x);
-      s->metric_cbrt[3 * o + ch] = GuardedCbrt(x);
-    }
-  }
+struct UnitAxes {
+  int ih, id, ip;
+};
+
+UnitAxes AxesOf(const Grid& g, const Unit& u) {
+  UnitAxes a;
+  g.Unindex(u.primary, &a.ih, &a.id, &a.ip);
+  return a;
 }
 
 }  // namespace
@@ -132,6 +130,7 @@ Samples PrepareSamples(const Table& table, const SampleOptions& options) {
   const int half = pair ? (g.n_phi_d + 1) / 2 : g.n_phi_d;
 
   std::vector<Unit> units;
+  units.reserve(static_cast<std::size_t>(g.n_theta_h) * g.n_theta_d * half);
   for (int ih = 0; ih < g.n_theta_h; ++ih) {
     for (int id = 0; id < g.n_theta_d; ++id) {
       const double w_cell =
@@ -141,7 +140,7 @@ Samples PrepareSamples(const Table& table, const SampleOptions& options) {
         const double ci = ch[ih] * cd[id] - sh[ih] * sd[id] * cp[ip];
         const double co = 2.0 * cd[id] * ch[ih] - ci;
         const bool inside = ci >= cos_cut && co >= cos_cut;
-        Unit u{ih, id, ip, {0, 0}, 0, 0.0};
+        Unit u{static_cast<std::uint32_t>(g.Index(ih, id, ip)), {0, 0}, 0, 0.0};
         const int mirror = g.n_phi_d - 1 - ip;
         const int n_members = (pair && mirror != ip) ? 2 : 1;
         for (int m = 0; m < n_members; ++m) {
@@ -183,14 +182,15 @@ Samples PrepareSamples(const Table& table, const SampleOptions& options) {
     while (row_begin < units.size()) {
       std::size_t row_end = row_begin;
       double all = 0, sel = 0;
-      while (row_end < units.size() && units[row_end].ih == units[row_begin].ih &&
-             units[row_end].id == units[row_begin].id) {
+      // Cells of one (theta_h, theta_d) row share primary / n_phi_d (io/table.h, Index).
+      const std::size_t row = units[row_begin].primary / g.n_phi_d;
+      while (row_end < units.size() && units[row_end].primary / g.n_phi_d == row) {
         all += units[row_end].weight;
-        if (units[row_end].ip % b.stride == offset) sel += units[row_end].weight;
+        if (AxesOf(g, units[row_end]).ip % b.stride == offset) sel += units[row_end].weight;
         ++row_end;
       }
       for (std::size_t i = row_begin; i < row_end; ++i) {
-        if (units[i].ip % b.stride == offset) {
+        if (AxesOf(g, units[i]).ip % b.stride == offset) {
           kept.push_back(i);
           factor.push_back(all / sel);
         }
@@ -202,7 +202,7 @@ Samples PrepareSamples(const Table& table, const SampleOptions& options) {
     std::vector<int> stratum(units.size());
     std::vector<double> weight(units.size());
     for (std::size_t i = 0; i < units.size(); ++i) {
-      stratum[i] = units[i].ih;
+      stratum[i] = AxesOf(g, units[i]).ih;
       weight[i] = units[i].weight;
     }
     Selection s = SelectStratified(stratum, weight, b.count, options.seed, kAllocationPower);
@@ -210,7 +210,15 @@ Samples PrepareSamples(const Table& table, const SampleOptions& options) {
     factor = std::move(s.factor);
   }
 
-  // Geometry and observations of the kept samples only.
+  // Geometry and observations of the kept samples only, in exactly sized arrays (a full MERL
+  // table has 1.1 M observations: growth by doubling would hold up to twice that).
+  std::size_t n_obs = 0;
+  for (std::size_t k : kept) n_obs += static_cast<std::size_t>(units[k].members);
+  out.cell.reserve(n_obs);
+  out.value.reserve(3 * n_obs);
+  out.weight.reserve(n_obs);
+  out.cos_i.reserve(n_obs);
+  out.cos_o.reserve(n_obs);
   out.geometry.reserve(kept.size());
   out.obs_begin.reserve(kept.size() + 1);
   out.obs_begin.push_back(0);
@@ -218,19 +226,20 @@ Samples PrepareSamples(const Table& table, const SampleOptions& options) {
     const Unit& u = units[kept[k]];
     // Same operations as FromHalfDiff(CellCentre(ih, id, ip), phi_h = 0), from the tables
     // (bit-identical; tested).
-    const Vec3 d{sd[u.id] * cp[u.ip], sd[u.id] * sp[u.ip], cd[u.id]};
-    const Vec3 wi{ch[u.ih] * d.x + sh[u.ih] * d.z, d.y, -sh[u.ih] * d.x + ch[u.ih] * d.z};
-    const Vec3 h{sh[u.ih], 0.0, ch[u.ih]};
+    const UnitAxes a = AxesOf(g, u);
+    const Vec3 d{sd[a.id] * cp[a.ip], sd[a.id] * sp[a.ip], cd[a.id]};
+    const Vec3 wi{ch[a.ih] * d.x + sh[a.ih] * d.z, d.y, -sh[a.ih] * d.x + ch[a.ih] * d.z};
+    const Vec3 h{sh[a.ih], 0.0, ch[a.ih]};
     const Vec3 wo = 2.0 * Dot(wi, h) * h - wi;
     const Geometry geo = MakeGeometry(wi, wo);
     out.geometry.push_back(geo);
     const double w_cell =
-        options.weighting == Weighting::kBinMeasure ? CellMeasure(g, u.ih, u.id, 0) : 1.0;
+        options.weighting == Weighting::kBinMeasure ? CellMeasure(g, a.ih, a.id, 0) : 1.0;
     for (int m = 0; m < u.members; ++m) {
       const std::uint32_t idx = u.cells[m];
       int ih, id, ip;
       g.Unindex(idx, &ih, &id, &ip);
-      const bool is_mirror = ip != u.ip;
+      const bool is_mirror = ip != a.ip;
       out.cell.push_back(idx);
       const double* v = table.Value(idx);
       out.value.insert(out.value.end(), v, v + 3);
@@ -244,7 +253,6 @@ Samples PrepareSamples(const Table& table, const SampleOptions& options) {
     out.obs_begin.push_back(static_cast<std::uint32_t>(out.cell.size()));
   }
   out.counts.selected = out.cell.size();
-  FillMetricTargets(&out);
   return out;
 }
 
@@ -281,7 +289,6 @@ Samples Subsample(const Samples& samples, std::size_t n, std::uint64_t seed) {
     out.obs_begin.push_back(static_cast<std::uint32_t>(out.cell.size()));
   }
   out.counts.selected = out.cell.size();
-  FillMetricTargets(&out);
   return out;
 }
 

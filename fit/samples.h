@@ -82,9 +82,6 @@ struct Samples {
   std::vector<double> cos_i;        // cos theta_i of this cell (mirrors swap theta_i, theta_o)
   std::vector<double> cos_o;
   double total_weight = 0;  // sum of weight
-  // Measured side of the metrics (fit/metrics.h), 3 per observation: ln(1 + m cos_i) and
-  // cbrt(m cos_i) (guarded), computed once here; ComputeMetrics recomputes them if absent.
-  std::vector<double> metric_log, metric_cbrt;
 
   std::size_t NumSamples() const { return geometry.size(); }
   std::size_t NumObservations() const { return cell.size(); }

@@ -99,6 +99,28 @@ TEST(Metrics, MatchIndependentBruteForce) {
   EXPECT_EQ(fm.worst.measured[0], t.Value(fm.worst.cell)[0]);
 }
 
+TEST(Metrics, PerSamplePredictionsGiveBitIdenticalMetrics) {
+  const Table t = SynthModel("lambert+ggx", Params("lambert+ggx", {}), SmallGrid(), 0.05, 0.2, 5);
+  const ModelInfo& m = *FindModel("lambert+ggx");
+  const std::vector<double> p = Params("lambert+ggx", {"ggx.alpha=0.2"});
+  const Samples s = PrepareSamples(t, SampleOptions{});
+  ASSERT_LT(s.NumSamples(), s.NumObservations());  // mirrors share samples
+  std::vector<double> per_sample(3 * s.NumSamples());
+  for (std::size_t k = 0; k < s.NumSamples(); ++k)
+    m.eval(p.data(), s.geometry[k], &per_sample[3 * k]);
+  const FitMetrics a = ComputeMetrics(s, ExpandToObservations(s, per_sample));
+  const FitMetrics b = ComputeMetricsPerSample(s, per_sample);
+  ASSERT_TRUE(a.ok && b.ok);
+  EXPECT_EQ(a.log_rmse, b.log_rmse);
+  EXPECT_EQ(a.cbrt_rmse, b.cbrt_rmse);
+  EXPECT_EQ(a.rel_l2, b.rel_l2);
+  EXPECT_EQ(a.worst.cell, b.worst.cell);
+  EXPECT_EQ(a.worst.predicted[1], b.worst.predicted[1]);
+  per_sample[4] = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(ComputeMetricsPerSample(s, per_sample).ok);
+  EXPECT_THROW(ComputeMetricsPerSample(s, std::vector<double>(3)), std::invalid_argument);
+}
+
 TEST(Metrics, PerfectAndScaledPredictions) {
   const Table t = SynthModel("lambert+ggx", Params("lambert+ggx", {}), SmallGrid());
   const Samples s = PrepareSamples(t, SampleOptions{});

@@ -235,7 +235,7 @@ TEST_F(Cli, ReportOnAFitReportDrawsSlicesFromItsTables) {
 }
 
 // Manners: every subcommand's --help shows examples.
-TEST_F(Cli, EveryCommandHelpHasExamples) {
+TEST_F(Cli, EveryCommandHelpHasExamplesAndExitCodes) {
   const CliRun top = Brdfit("--help");
   ASSERT_EQ(top.code, 0);
   const std::regex sub(R"(^\s{2}([a-z][a-z-]*)\s{2,})");
@@ -253,6 +253,8 @@ TEST_F(Cli, EveryCommandHelpHasExamples) {
     const CliRun h = Brdfit(n + " --help");
     EXPECT_EQ(h.code, 0) << n;
     EXPECT_NE(h.out.find("Example"), std::string::npos) << "brdfit " << n << " --help has no examples";
+    EXPECT_NE(h.out.find("Exit codes: 0"), std::string::npos)
+        << "brdfit " << n << " --help does not state its exit codes";
   }
 }
 
