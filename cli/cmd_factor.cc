@@ -13,6 +13,7 @@
 
 #include "cli/command.h"
 #include "cli/demo.h"
+#include "cli/inputs.h"
 #include "fit/factor.h"
 #include "fit/factor_export.h"
 #include "fit/factor_metrics.h"
@@ -57,7 +58,8 @@ nlohmann::json MetricsJson(const FitMetrics& m, double ln_rmse) {
 
 nlohmann::json SourceJson(const fs::path& file, const Table& t) {
   const Provenance& p = t.provenance;
-  return {{"file", fs::absolute(file).string()},
+  const std::string name = file.string();
+  return {{"file", IsNbrdf(name) ? name : fs::absolute(file).string()},
           {"grid",
            {{"n_theta_h", t.grid.n_theta_h},
             {"n_theta_d", t.grid.n_theta_d},
@@ -90,9 +92,9 @@ FactorOptions CheckOptions(const FactorCliOptions& o) {
     throw InputError(fmt::format("--lambda {} must be a positive number", o.lambda));
   }
   std::map<std::string, std::string> stems;
-  for (const std::string& file : o.files) {
-    CheckInputFile(file);
-    const std::string stem = fs::path(file).stem().string() + o.suffix;
+  for (const std::string& file : ExpandInputs(o.files)) {
+    if (!IsNbrdf(file)) CheckInputFile(file);
+    const std::string stem = MaterialOf(file) + o.suffix;
     if (auto [it, fresh] = stems.emplace(stem, file); !fresh) {
       throw InputError(file, fmt::format("writes the same outputs ({}.*) as {}", stem, it->second));
     }
@@ -111,9 +113,9 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
     fmt::print("{:<28} {:<8} {:>4} {:>8} {:>7} {:>10} {:>9} {:>9} {:>8} {:>9}\n", "table", "param",
                "res", "cells", "f<=0", "ln-rmse", "E2-log", "cbrt", "system", "time");
   }
-  for (const std::string& file : o.files) {
+  for (const std::string& file : ExpandInputs(o.files)) {
     try {
-      const Table table = LoadTable(file);
+      const Table table = LoadInput(file);
       Factorization r;
       try {
         r = Factor(table, options, &cache);
@@ -122,7 +124,7 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
       }
       const double ln_rmse = FactorLogRmse(table, r.brdf, options.max_theta);
       const FitMetrics m = ScoreFactorization(table, r.brdf, metric_samples);
-      const std::string stem = fs::path(file).stem().string() + o.suffix;
+      const std::string stem = MaterialOf(file) + o.suffix;
       const FactorPaths paths = SaveFactorization(
           r, o.out_dir, stem,
           {{"source", SourceJson(file, table)}, {"metrics", MetricsJson(m, ln_rmse)}});
@@ -155,7 +157,10 @@ Registrar reg{
     "factor", "Factor tables into two textures (McCool 2001 homomorphic factorization)",
     [](CLI::App& sub) {
       auto o = std::make_shared<FactorCliOptions>();
-      sub.add_option("files", o->files, "tables (MERL .binary or brdfit .h5)")->required();
+      sub.add_option("files", o->files,
+                     "tables (MERL .binary or brdfit .h5); nbrdf:NAME or nbrdf:all tabulates the "
+                     "NBRDF networks of ../shared/data/merl_nbrdf.zip on the MERL grid")
+          ->required();
       sub.add_option("-o,--out", o->out_dir, "output folder")->required();
       sub.add_option("--param", o->param,
                      "mccool: f = p(wi) q(wh) p(wo); halfdiff: f = p(wh) q(theta_d, phi_d)")
@@ -179,7 +184,8 @@ Registrar reg{
           "DIR/<stem>.factor.json per table\n(docs/formats.md, docs/factorization.md).\n"
           "Examples:\n"
           "  brdfit factor gold-paint.binary -o out\n"
-          "  brdfit factor mats/*.binary --param halfdiff --res 32 --lambda 1e-4 -o out");
+          "  brdfit factor mats/*.binary --param halfdiff --res 32 --lambda 1e-4 -o out\n"
+          "  brdfit factor nbrdf:all --res 32 -o nbrdf-factors");
       return [o] { return RunFactor(*o); };
     }};
 

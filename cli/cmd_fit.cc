@@ -23,6 +23,7 @@
 
 #include "cli/command.h"
 #include "cli/demo.h"
+#include "cli/inputs.h"
 #include "cli/progress.h"
 #include "fit/fitter.h"
 #include "io/atomic_file.h"
@@ -99,57 +100,6 @@ std::vector<std::string> ResolveModels(const std::vector<std::string>& requested
   }
   if (out.empty()) throw InputError("--model: no model given");
   return out;
-}
-
-// NBRDF inputs ("nbrdf:NAME", "nbrdf:all"): the networks of ../shared/data/merl_nbrdf.zip
-// tabulated on the MERL grid in memory (io/nbrdf.h). The archive: $BRDFIT_NBRDF_ZIP, else
-// ../shared/data/merl_nbrdf.zip from the working directory or beside an ancestor of the
-// executable's folder.
-constexpr const char* kNbrdfPrefix = "nbrdf:";
-
-bool IsNbrdf(const std::string& input) {
-  return input.rfind(kNbrdfPrefix, 0) == 0;
-}
-
-fs::path NbrdfArchive() {
-  if (const char* env = std::getenv("BRDFIT_NBRDF_ZIP"); env && *env) return env;
-  std::vector<fs::path> candidates = {fs::path("..") / "shared" / "data" / "merl_nbrdf.zip"};
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    for (fs::path d = exe.parent_path(); !d.empty() && d != d.root_path(); d = d.parent_path()) {
-      candidates.push_back(d.parent_path() / "shared" / "data" / "merl_nbrdf.zip");
-    }
-  }
-  for (const auto& c : candidates) {
-    if (fs::is_regular_file(c, ec)) return c;
-  }
-  return candidates.front();
-}
-
-std::vector<std::string> ExpandInputs(const std::vector<std::string>& inputs) {
-  std::vector<std::string> out;
-  for (const std::string& in : inputs) {
-    if (in == std::string(kNbrdfPrefix) + "all") {
-      for (const auto& m : ListNbrdfMaterials(NbrdfArchive())) out.push_back(kNbrdfPrefix + m);
-    } else {
-      out.push_back(in);
-    }
-  }
-  return out;
-}
-
-std::string MaterialOf(const std::string& input) {
-  return IsNbrdf(input) ? input.substr(std::string(kNbrdfPrefix).size())
-                        : fs::path(input).stem().string();
-}
-
-Table LoadInput(const std::string& input) {
-  if (!IsNbrdf(input)) return LoadTable(input);
-  const NbrdfNetwork net = ReadNbrdf(NbrdfArchive(), MaterialOf(input));
-  Table t = TabulateNbrdf(net, Grid::Merl(), 1).table;
-  t.provenance.source = input;
-  return t;
 }
 
 struct Task {

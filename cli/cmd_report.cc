@@ -10,6 +10,7 @@
 
 #include "cli/command.h"
 #include "cli/demo.h"
+#include "cli/inputs.h"
 #include "cli/progress.h"
 #include "fit/factor_export.h"
 #include "fit/metrics.h"
@@ -46,7 +47,7 @@ void AddSlices(const report::ReportSources& src, const ReportCliOptions& o, repo
         "do not name a readable one.");
     return;
   }
-  const Table table = LoadTable(t->second);
+  const Table table = LoadInput(t->second);
   std::vector<report::NamedPredictor> predictors;
   for (const Entry& e : m->entries) {
     if (e.kind != Entry::Kind::kFit || e.Failed() || e.params.empty()) continue;

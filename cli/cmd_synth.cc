@@ -14,6 +14,7 @@
 
 #include "cli/command.h"
 #include "cli/demo.h"
+#include "cli/inputs.h"
 #include "io/atomic_file.h"
 #include "io/error.h"
 #include "io/model_params.h"
@@ -68,26 +69,6 @@ Grid ParseGrid(const std::string& text, const std::string& mapping) {
   g.n_phi_d = static_cast<int>(n[2]);
   g.theta_h_mapping = ThetaHMappingFromString(mapping);
   return g;
-}
-
-// The NBRDF archive: --nbrdf-zip, else $BRDFIT_NBRDF_ZIP, else ../shared/data/merl_nbrdf.zip
-// beside the checkout (relative to the working directory or to the executable's build folder).
-fs::path FindNbrdfZip(const std::string& given) {
-  if (!given.empty()) return given;
-  if (const char* env = std::getenv("BRDFIT_NBRDF_ZIP"); env && *env) return env;
-  std::vector<fs::path> candidates = {fs::path("..") / "shared" / "data" / "merl_nbrdf.zip"};
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    for (fs::path dir = exe.parent_path(); !dir.empty() && dir != dir.root_path();
-         dir = dir.parent_path()) {
-      candidates.push_back(dir.parent_path() / "shared" / "data" / "merl_nbrdf.zip");
-    }
-  }
-  for (const auto& c : candidates) {
-    if (fs::is_regular_file(c, ec)) return c;
-  }
-  return candidates.front();  // missing: the reader reports "no such file" with this path
 }
 
 std::string Grouped(std::size_t n) {
@@ -161,7 +142,7 @@ void PrintSummary(const fs::path& out, TableFormat f, const SynthResult& r) {
 
 int RunSynth(const SynthCliOptions& o) {
   if (o.list_nbrdf) {
-    for (const auto& m : ListNbrdfMaterials(FindNbrdfZip(o.nbrdf_zip))) fmt::print("{}\n", m);
+    for (const auto& m : ListNbrdfMaterials(NbrdfArchive(o.nbrdf_zip))) fmt::print("{}\n", m);
     return kExitOk;
   }
   if (o.model.empty() == o.nbrdf.empty()) {
@@ -196,7 +177,7 @@ int RunSynth(const SynthCliOptions& o) {
     if (!m) throw InputError("unknown model '" + o.model + "'; known models: " + ModelNames());
     r = SynthesizeFromModel(*m, ResolveModelParams(*m, o.params), grid, so);
   } else {
-    r = SynthesizeFromNbrdf(FindNbrdfZip(o.nbrdf_zip), o.nbrdf, grid, so);
+    r = SynthesizeFromNbrdf(NbrdfArchive(o.nbrdf_zip), o.nbrdf, grid, so);
   }
   SaveTable(r.table, out, *format);
   PrintSummary(out, *format, r);
@@ -288,7 +269,7 @@ int DemoSynth(DemoContext& ctx) {
     emit(mat.name, SynthesizeFromModel(*m, ResolveModelParams(*m, mat.params), grid,
                                        {mat.noise, mat.missing, 1}));
   }
-  const fs::path zip = FindNbrdfZip("");
+  const fs::path zip = NbrdfArchive("");
   if (fs::is_regular_file(zip)) {
     emit("nbrdf-gold-metallic-paint", SynthesizeFromNbrdf(zip, "gold-metallic-paint", grid, {}));
   } else {

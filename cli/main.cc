@@ -22,8 +22,9 @@ std::vector<DemoStep>& DemoSteps() {
 
 int main(int argc, char** argv) {
   using namespace brdfit::cli;
-  CLI::App app{"brdfit: fit analytic models to tabulated isotropic BRDFs, factor them, preview "
-               "and report.\nRun 'brdfit <command> --help' for a command's options and examples."};
+  CLI::App app{
+      "brdfit: fit analytic models to tabulated isotropic BRDFs, factor them, preview "
+      "and report.\nRun 'brdfit <command> --help' for a command's options and examples."};
   app.set_version_flag("--version", "brdfit 0.1.0");
   app.require_subcommand(1);
   std::map<CLI::App*, RunFn> runs;

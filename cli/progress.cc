@@ -19,7 +19,9 @@ Progress::Progress(std::size_t total, std::string what, bool enabled)
       active_(enabled && total > 0 && ProgressWanted()),
       start_(std::chrono::steady_clock::now()) {}
 
-Progress::~Progress() { Done(); }
+Progress::~Progress() {
+  Done();
+}
 
 void Progress::Step(const std::string& label) {
   if (!active_) return;

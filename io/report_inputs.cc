@@ -20,7 +20,8 @@ using nlohmann::json;
 namespace {
 
 bool EndsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 std::string Lower(std::string s) {
@@ -58,13 +59,19 @@ double Get(const json& j, const char* key, double fallback = 0) {
 
 }  // namespace
 
-std::string MaterialName(const fs::path& table) { return table.stem().string(); }
+// A material's name: the table file's stem, or NAME for an NBRDF input "nbrdf:NAME".
+std::string MaterialName(const fs::path& table) {
+  const std::string text = table.string();
+  if (text.rfind("nbrdf:", 0) == 0) return text.substr(6);
+  return table.stem().string();
+}
 
 Entry FactorEntry(const fs::path& sidecar, std::string* material, std::string* table) {
   const json j = ReadJson(sidecar);
   if (j.value("format", "") != "brdfit-factorization") {
-    throw InputError(sidecar, "not a brdfit factorization sidecar (no format "
-                              "\"brdfit-factorization\")");
+    throw InputError(sidecar,
+                     "not a brdfit factorization sidecar (no format "
+                     "\"brdfit-factorization\")");
   }
   Entry e;
   e.kind = Entry::Kind::kFactor;
@@ -90,8 +97,7 @@ Entry FactorEntry(const fs::path& sidecar, std::string* material, std::string* t
     e.status = "failed";
     e.message = fm.value("problem", std::string("no metrics in the sidecar"));
   }
-  const std::string file =
-      j.value("source", json::object()).value("file", std::string());
+  const std::string file = j.value("source", json::object()).value("file", std::string());
   *table = file;
   // The stem of the sidecar minus the ".factor" part, when the sidecar names no source.
   *material = file.empty() ? MaterialName(fs::path(sidecar.stem()).stem()) : MaterialName(file);
@@ -147,8 +153,8 @@ Entry FitEntry(const FitReportEntry& f) {
   e.metrics.cutoff_deg = r.metrics.cutoff_deg;
   if (!e.metrics.ok && e.message.empty()) e.message = r.metrics.problem;
   const FitTimes& t = r.times;
-  e.times_ms = {{"prepare", t.prepare}, {"init", t.init}, {"solve", t.solve},
-                {"metrics", t.metrics}};
+  e.times_ms = {
+      {"prepare", t.prepare}, {"init", t.init}, {"solve", t.solve}, {"metrics", t.metrics}};
   e.time_ms = t.prepare + t.init + t.solve;
   return e;
 }
@@ -281,8 +287,9 @@ void AddInput(const fs::path& p, bool explicit_input, ReportSources* out) {
     }
     case Kind::kUnknown:
       if (explicit_input) {
-        throw InputError(p, "not a known report input (fit report, .factor.json, bench .csv, "
-                            ".png render, table)");
+        throw InputError(p,
+                         "not a known report input (fit report, .factor.json, bench .csv, "
+                         ".png render, table)");
       }
       break;
   }

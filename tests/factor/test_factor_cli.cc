@@ -120,5 +120,21 @@ TEST_F(FactorCli, BadInputsExitTwoNamingTheFile) {
   EXPECT_NE(r.err.find("same outputs"), std::string::npos) << r.err;
 }
 
+// NBRDF inputs, as `brdfit fit` takes them: named by material, sidecar naming the input.
+TEST_F(FactorCli, FactorsNbrdfInputsByName) {
+  const fs::path zip = fs::path(BRDFIT_SHARED_DATA) / "merl_nbrdf.zip";
+  if (!fs::exists(zip)) GTEST_SKIP() << zip << " not found: NBRDF inputs not tested";
+  const fs::path out = dir_ / "out";
+  const CliRun r = Brdfit({"factor", "nbrdf:pink-felt", "--res", "8", "-o", out.string()}, dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out / "pink-felt.p.exr"));
+  EXPECT_TRUE(fs::exists(out / "pink-felt.q.exr"));
+  const std::string sidecar = Slurp(out / "pink-felt.factor.json");
+  EXPECT_NE(sidecar.find("\"file\": \"nbrdf:pink-felt\""), std::string::npos) << sidecar;
+  const CliRun bad = Brdfit({"factor", "nbrdf:no-such-material", "-o", out.string()}, dir_);
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("no-such-material"), std::string::npos) << bad.err;
+}
+
 }  // namespace
 }  // namespace brdfit
