@@ -17,12 +17,15 @@
 #include "preview/loader.h"
 #include "preview/renderer.h"
 #include "preview/scene.h"
+#include "preview/window.h"
 
 // LeakSanitizer (make test-asan): Mesa/LLVM and HDF5 keep process-lifetime allocations that
 // are not ours to free. Suppressed by library name only.
 extern "C" const char* __lsan_default_suppressions() {
   return "leak:libLLVM\nleak:libgallium\nleak:swrast_dri\nleak:libEGL_mesa\nleak:libglapi\n"
-         "leak:libdrm\nleak:dri_\nleak:libhdf5_serial.so\n";
+         "leak:libdrm\nleak:dri_\nleak:libhdf5_serial.so\n"
+         // --window: X11, GLX and GLFW keep per-process state until exit.
+         "leak:libX11\nleak:libGLX\nleak:libglfw\nleak:libxcb\n";
 }
 
 namespace brdfit::cli {
@@ -35,6 +38,8 @@ struct RenderOptions {
   std::string cache;
   bool explain = false;
   bool compare = false;
+  bool window = false;
+  int frames = 0;
 };
 
 void ParseSize(const std::string& s, int* w, int* h) {
@@ -53,8 +58,29 @@ void ParseSize(const std::string& s, int* w, int* h) {
   }
 }
 
+// --window: the interactive preview; with -o the last frame shown is also written.
+int RunWindow(const RenderOptions& o, const preview::Scene& scene,
+              const preview::MaterialSet& materials, preview::ExplainLog* log) {
+  preview::WindowOptions wo;
+  wo.compare = o.compare;
+  wo.max_frames = o.frames;
+  wo.capture_screen = !o.out.empty();
+  const preview::WindowResult r = preview::RunPreviewWindow(scene, materials, wo, log);
+  if (!o.out.empty() && r.renders > 0) {
+    // A PNG holds what the window showed (read back from it); an EXR the linear frame.
+    preview::WriteImageByExtension(o.out, r.last_linear,
+                                   r.last_screen.width > 0 ? r.last_screen : r.last_display);
+  }
+  if (o.explain) fmt::print("{}", log->Format());
+  if (!o.out.empty() && r.renders > 0) fmt::print("wrote {}\n", o.out);
+  return kExitOk;
+}
+
 int RunRender(const RenderOptions& o) {
   using Clock = std::chrono::steady_clock;
+  if (o.out.empty() && !o.window) {
+    throw InputError("an output image is needed: -o out.png (or --window)");
+  }
   preview::Scene scene = preview::LoadScene(o.scene);
   if (!o.size.empty()) ParseSize(o.size, &scene.width, &scene.height);
   if (o.compare && !scene.has_comparison) {
@@ -67,6 +93,7 @@ int RunRender(const RenderOptions& o) {
   const preview::MaterialSet materials =
       preview::LoadMaterials(scene, preview::UsedMaterials(scene, o.compare), lo, &log);
   const auto t1 = Clock::now();
+  if (o.window) return RunWindow(o, scene, materials, &log);
   preview::HeadlessGlContext context;
   log.Add("note", "OpenGL: " + context.Description());
   preview::Renderer renderer;
@@ -91,23 +118,30 @@ int RunRender(const RenderOptions& o) {
 }
 
 Registrar reg{
-    "render", "Render a scene with the GLSL preview (headless)", [](CLI::App& sub) {
+    "render", "Render a scene with the GLSL preview (headless, or in a window)", [](CLI::App& sub) {
       auto opts = std::make_shared<RenderOptions>();
       sub.add_option("scene", opts->scene, "scene file (docs/scenes.md)")->required();
-      sub.add_option("-o,--out", opts->out, "output image: .png (display) or .exr (linear)")
-          ->required();
+      sub.add_option("-o,--out", opts->out,
+                     "output image: .png (display) or .exr (linear); required without --window");
       sub.add_flag("--explain", opts->explain,
                    "print what was loaded, computed, reused and skipped");
       sub.add_option("--size", opts->size, "image size WxH (overrides the scene)");
       sub.add_option("--cache", opts->cache,
                      "cache folder for computed fits and factorizations "
                      "(default $BRDFIT_CACHE_DIR or ~/.cache/brdfit)");
+      sub.add_flag("--window", opts->window,
+                   "show the preview in a window (needs a display): left-drag orbits, the wheel "
+                   "zooms, R resets, Esc closes; with -o the last frame shown is written");
+      sub.add_option("--frames", opts->frames,
+                     "with --window: close after N frames (scripts, tests)")
+          ->check(CLI::NonNegativeNumber);
       sub.add_flag("--compare", opts->compare,
                    "measured | fitted | factored | error panels (scene 'comparison')");
       sub.footer(
           "Exit codes: 0 written, 2 bad scene or input (also a fit the scene needs that fails).\n"
           "Examples:\n  brdfit render data/scenes/seed000_ggx.json -o ggx.png\n"
-          "  brdfit render scene.json -o cmp.png --compare --size 512x512 --explain");
+          "  brdfit render scene.json -o cmp.png --compare --size 512x512 --explain\n"
+          "  brdfit render data/scenes/seed000_ggx_spot.json --window");
       return [opts] { return RunRender(*opts); };
     }};
 

@@ -3,6 +3,7 @@
 // input exits 2 with the file named.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -39,16 +40,18 @@ CliRun RunCli(const std::string& args) {
 
 int Count(const std::string& text, const std::string& needle) {
   int n = 0;
-  for (auto pos = text.find(needle); pos != std::string::npos; pos = text.find(needle, pos + 1)) ++n;
+  for (auto pos = text.find(needle); pos != std::string::npos; pos = text.find(needle, pos + 1))
+    ++n;
   return n;
 }
 
 class RenderCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("brdfit_render_cli_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-            "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ =
+        fs::temp_directory_path() /
+        ("brdfit_render_cli_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+         "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     // Three small synthetic tables (lambert+ggx with different roughness).
@@ -114,7 +117,7 @@ TEST_F(RenderCli, CullsLightsThatReachNothing) {
     "objects": [{"name": "ball", "material": "m"}]
   })");
   const CliRun r = RunCli("render " + (dir_ / "scene.json").string() + " -o " +
-                       (dir_ / "out.exr").string() + " --explain");
+                          (dir_ / "out.exr").string() + " --explain");
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("skip: light 'far' for object 'ball': out of range"), std::string::npos)
       << r.out;
@@ -141,9 +144,9 @@ TEST_F(RenderCli, FourPanelComparison512) {
     "objects": [{"material": "meas"}],
     "comparison": {"measured": "meas", "fitted": ["fit"], "factored": "fac"}
   })");
-  const CliRun r = RunCli("render " + (dir_ / "scene.json").string() + " -o " +
-                          (dir_ / "cmp.png").string() + " --compare --size 512x512 --explain --cache " +
-                          (dir_ / "cache").string());
+  const CliRun r =
+      RunCli("render " + (dir_ / "scene.json").string() + " -o " + (dir_ / "cmp.png").string() +
+             " --compare --size 512x512 --explain --cache " + (dir_ / "cache").string());
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_EQ(Count(r.out, "load: table"), 1) << r.out;  // one table file, loaded once
   EXPECT_EQ(Count(r.out, "compute: fit ggx"), 1) << r.out;
@@ -163,13 +166,64 @@ TEST_F(RenderCli, FourPanelComparison512) {
 TEST_F(RenderCli, BadInputExitsTwoNamingTheFile) {
   WriteScene(R"({"materials": {"m": {"type": "measured", "table": "missing.binary"}},
                  "objects": [{"material": "m"}]})");
-  const CliRun r = RunCli("render " + (dir_ / "scene.json").string() + " -o " +
-                       (dir_ / "out.png").string());
+  const CliRun r =
+      RunCli("render " + (dir_ / "scene.json").string() + " -o " + (dir_ / "out.png").string());
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.out.find("missing.binary"), std::string::npos) << r.out;
   const CliRun s = RunCli("render " + (dir_ / "scene.json").string() + " -o x.png --size 12");
   EXPECT_EQ(s.code, 2);
   EXPECT_NE(s.out.find("--size"), std::string::npos) << s.out;
+}
+
+// --window without a display: a clear error and exit 2, nothing written.
+TEST_F(RenderCli, WindowWithoutDisplayExitsTwo) {
+  const std::string scene = std::string(BRDFIT_SOURCE_DIR) + "/data/scenes/seed000_ggx_point.json";
+  const CliRun n = RunCli("render " + scene + " --size 64x64");
+  EXPECT_EQ(n.code, 2);
+  EXPECT_NE(n.out.find("-o out.png (or --window)"), std::string::npos) << n.out;
+  const std::string no_display = "env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(BRDFIT_EXE) +
+                                 " render " + scene + " --window --frames 1 -o " +
+                                 (dir_ / "w.png").string() + " 2>&1";
+  std::unique_ptr<FILE, int (*)(FILE*)> p(popen(no_display.c_str(), "r"), pclose);
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), p.get())) out += buf.data();
+  const int status = pclose(p.release());
+  EXPECT_EQ(WEXITSTATUS(status), 2) << out;
+  EXPECT_NE(out.find("no window"), std::string::npos) << out;
+  EXPECT_FALSE(fs::exists(dir_ / "w.png"));
+}
+
+// --window on a virtual X display (xvfb-run, installed by scripts/setup-deps.sh): the pixels
+// read back from the window are the headless render of the same scene (same renderer, same
+// Mesa llvmpipe; within one 8-bit step: the window's 8-bit conversion rounds on its own).
+TEST_F(RenderCli, WindowFrameMatchesTheHeadlessRender) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "xvfb-run not installed: window mode not tested (scripts/setup-deps.sh)";
+  }
+  const std::string scene = std::string(BRDFIT_SOURCE_DIR) + "/data/scenes/seed000_ggx_spot.json";
+  const CliRun h = RunCli("render " + scene + " --size 128x96 -o " + (dir_ / "h.png").string());
+  ASSERT_EQ(h.code, 0) << h.out;
+  const std::string cmd = "xvfb-run -a -s '-screen 0 640x480x24' " + std::string(BRDFIT_EXE) +
+                          " render " + scene + " --window --frames 3 --explain --size 128x96 -o " +
+                          (dir_ / "w.png").string() + " 2>&1";
+  std::unique_ptr<FILE, int (*)(FILE*)> p(popen(cmd.c_str(), "r"), pclose);
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), p.get())) out += buf.data();
+  const int status = pclose(p.release());
+  ASSERT_EQ(WEXITSTATUS(status), 0) << out;
+  EXPECT_NE(out.find("window: 3 frames shown, 1 rendered"), std::string::npos) << out;
+  const Image a = ReadPng(dir_ / "h.png"), b = ReadPng(dir_ / "w.png");
+  ASSERT_EQ(a.width, b.width);
+  ASSERT_EQ(a.height, b.height);
+  float worst = 0;
+  for (std::size_t i = 0; i < a.rgba.size(); ++i)
+    worst = std::max(worst, std::abs(a.rgba[i] - b.rgba[i]));
+  EXPECT_LE(worst, 1.0f / 255.0f + 1e-6f);
+  float sum = 0;
+  for (float v : b.rgba) sum += v;
+  EXPECT_GT(sum, 0.0f);  // something was drawn
 }
 
 }  // namespace
