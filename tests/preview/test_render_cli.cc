@@ -28,14 +28,19 @@ struct CliRun {
   std::string out;
 };
 
-CliRun RunCli(const std::string& args) {
-  const std::string cmd = std::string(BRDFIT_EXE) + " " + args + " 2>&1";
+// Runs a shell command line; its exit code and its stdout + stderr.
+CliRun RunShell(const std::string& command_line) {
+  const std::string cmd = command_line + " 2>&1";
   std::unique_ptr<FILE, int (*)(FILE*)> p(popen(cmd.c_str(), "r"), pclose);
   std::string out;
   std::array<char, 4096> buf{};
   while (fgets(buf.data(), buf.size(), p.get())) out += buf.data();
   const int status = pclose(p.release());
   return {WEXITSTATUS(status), out};
+}
+
+CliRun RunCli(const std::string& args) {
+  return RunShell(std::string(BRDFIT_EXE) + " " + args);
 }
 
 int Count(const std::string& text, const std::string& needle) {
@@ -181,16 +186,11 @@ TEST_F(RenderCli, WindowWithoutDisplayExitsTwo) {
   const CliRun n = RunCli("render " + scene + " --size 64x64");
   EXPECT_EQ(n.code, 2);
   EXPECT_NE(n.out.find("-o out.png (or --window)"), std::string::npos) << n.out;
-  const std::string no_display = "env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(BRDFIT_EXE) +
-                                 " render " + scene + " --window --frames 1 -o " +
-                                 (dir_ / "w.png").string() + " 2>&1";
-  std::unique_ptr<FILE, int (*)(FILE*)> p(popen(no_display.c_str(), "r"), pclose);
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), p.get())) out += buf.data();
-  const int status = pclose(p.release());
-  EXPECT_EQ(WEXITSTATUS(status), 2) << out;
-  EXPECT_NE(out.find("no window"), std::string::npos) << out;
+  const CliRun w =
+      RunShell("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(BRDFIT_EXE) + " render " + scene +
+               " --window --frames 1 -o " + (dir_ / "w.png").string());
+  EXPECT_EQ(w.code, 2) << w.out;
+  EXPECT_NE(w.out.find("no window"), std::string::npos) << w.out;
   EXPECT_FALSE(fs::exists(dir_ / "w.png"));
 }
 
@@ -204,16 +204,11 @@ TEST_F(RenderCli, WindowFrameMatchesTheHeadlessRender) {
   const std::string scene = std::string(BRDFIT_SOURCE_DIR) + "/data/scenes/seed000_ggx_spot.json";
   const CliRun h = RunCli("render " + scene + " --size 128x96 -o " + (dir_ / "h.png").string());
   ASSERT_EQ(h.code, 0) << h.out;
-  const std::string cmd = "xvfb-run -a -s '-screen 0 640x480x24' " + std::string(BRDFIT_EXE) +
-                          " render " + scene + " --window --frames 3 --explain --size 128x96 -o " +
-                          (dir_ / "w.png").string() + " 2>&1";
-  std::unique_ptr<FILE, int (*)(FILE*)> p(popen(cmd.c_str(), "r"), pclose);
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), p.get())) out += buf.data();
-  const int status = pclose(p.release());
-  ASSERT_EQ(WEXITSTATUS(status), 0) << out;
-  EXPECT_NE(out.find("window: 3 frames shown, 1 rendered"), std::string::npos) << out;
+  const CliRun w = RunShell(
+      "xvfb-run -a -s '-screen 0 640x480x24' " + std::string(BRDFIT_EXE) + " render " + scene +
+      " --window --frames 3 --explain --size 128x96 -o " + (dir_ / "w.png").string());
+  ASSERT_EQ(w.code, 0) << w.out;
+  EXPECT_NE(w.out.find("window: 3 frames shown, 1 rendered"), std::string::npos) << w.out;
   const Image a = ReadPng(dir_ / "h.png"), b = ReadPng(dir_ / "w.png");
   ASSERT_EQ(a.width, b.width);
   ASSERT_EQ(a.height, b.height);
