@@ -95,6 +95,20 @@ TEST_F(FitCli, SameOutputWithOneOrTwoJobsAndResumes) {
   EXPECT_EQ(ReadFitReport(P("r1.h5")).size(), 5u);
 }
 
+// `--json -`: the parameters JSON is the standard output (the same bytes as --json FILE); the
+// table goes to stderr.
+TEST_F(FitCli, JsonDashWritesTheParametersToStdout) {
+  const std::string in = P("b.h5") + " --model beckmann --no-timings --no-progress";
+  ASSERT_EQ(RunCli("fit " + in + " -o " + P("r1.h5") + " --json " + P("j1.json")), 0);
+  const std::string out = P("stdout.json");
+  const int status = std::system((std::string(BRDFIT_EXE) + " fit " + in + " --force -o " +
+                                  P("r2.h5") + " --json - > " + out + " 2> " + P("stderr.txt"))
+                                     .c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << Slurp(P("stderr.txt"));
+  EXPECT_EQ(Slurp(out), Slurp(P("j1.json")));
+  EXPECT_NE(Slurp(P("stderr.txt")).find("lambert+beckmann"), std::string::npos);
+}
+
 TEST_F(FitCli, FailedFitExitsOneAndBadInputTwo) {
   SaveTable(Table::Empty(SmallGrid()), dir_ / "empty.h5");
   std::string log;
