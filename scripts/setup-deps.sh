@@ -10,7 +10,7 @@ PACKAGES=(
   libcli11-dev nlohmann-json3-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libegl-dev libgl-dev libegl1-mesa-dev libgl1-mesa-dri libglfw3-dev
-  libjs-chart.js chromium xvfb xauth
+  libjs-chart.js chromium xvfb xauth time
 )
 # Extra packages for the sanitizer / fuzzing build (clang's runtimes).
 if [[ "${BRDFIT_WITH_CLANG:-0}" == 1 ]]; then
