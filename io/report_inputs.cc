@@ -59,6 +59,13 @@ double Get(const json& j, const char* key, double fallback = 0) {
 
 }  // namespace
 
+// A table the report can load for the theta_h slices: a file, or an NBRDF input "nbrdf:NAME"
+// (tabulated by the CLI's loader, cli/inputs.h).
+bool LoadableTable(const std::string& source) {
+  std::error_code ec;
+  return source.rfind("nbrdf:", 0) == 0 || fs::is_regular_file(source, ec);
+}
+
 // A material's name: the table file's stem, or NAME for an NBRDF input "nbrdf:NAME".
 std::string MaterialName(const fs::path& table) {
   const std::string text = table.string();
@@ -164,8 +171,7 @@ void AddFitReport(const std::vector<FitReportEntry>& entries, ReportSources* out
   for (const FitReportEntry& f : entries) {
     const std::string material = f.material.empty() ? MaterialName(f.source) : f.material;
     AddEntry(out->report, material, f.source, FitEntry(f));
-    std::error_code ec;
-    if (!f.source.empty() && !out->tables.count(material) && fs::is_regular_file(f.source, ec)) {
+    if (!f.source.empty() && !out->tables.count(material) && LoadableTable(f.source)) {
       out->tables[material] = f.source;
     }
   }
@@ -207,8 +213,7 @@ bool AddFitParamsJson(const fs::path& p, ReportSources* out) {
     const std::string source = f.value("source", std::string());
     const std::string material = f.value("material", MaterialName(source));
     AddEntry(out->report, material, source, std::move(e));
-    std::error_code ec;
-    if (!source.empty() && !out->tables.count(material) && fs::is_regular_file(source, ec)) {
+    if (!source.empty() && !out->tables.count(material) && LoadableTable(source)) {
       out->tables[material] = source;
     }
   }
@@ -224,7 +229,7 @@ void AddInput(const fs::path& p, bool explicit_input, ReportSources* out) {
       Entry e = FactorEntry(p, &material, &table);
       Material& m = r.GetOrAddMaterial(material);
       if (m.source.empty()) m.source = table;
-      if (!table.empty() && !out->tables.count(material) && fs::is_regular_file(table)) {
+      if (!table.empty() && !out->tables.count(material) && LoadableTable(table)) {
         out->tables[material] = table;
       }
       // Two factorizations with the same name and budget (e.g. --suffix runs): keep both apart.

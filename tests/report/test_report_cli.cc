@@ -234,6 +234,20 @@ TEST_F(Cli, ReportOnAFitReportDrawsSlicesFromItsTables) {
   EXPECT_NE(html.find("ggx.alpha"), std::string::npos);  // parameters listed
 }
 
+// Fits of NBRDF inputs ("nbrdf:NAME") get their slices too: the report tabulates the network.
+TEST_F(Cli, ReportOnNbrdfFitsDrawsSlices) {
+  const fs::path zip = fs::path(BRDFIT_SHARED_DATA) / "merl_nbrdf.zip";
+  if (!fs::exists(zip)) GTEST_SKIP() << zip << " not found: NBRDF inputs not tested";
+  const CliRun f = Brdfit("fit nbrdf:pink-felt --model lambert --budget stride:32 -q -o " +
+                          P("fits.h5"));
+  ASSERT_EQ(f.code, 0) << f.err;
+  const CliRun r = Brdfit("report " + P("fits.h5") + " -o " + P("r.html") + " --theta-d 30");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string html = ReadText(dir_ / "r.html");
+  EXPECT_NE(html.find("pink-felt: θd = 29.5°"), std::string::npos);  // the cell centre nearest 30°
+  EXPECT_EQ(html.find("No θh slices"), std::string::npos);
+}
+
 // Manners: every subcommand's --help shows examples.
 TEST_F(Cli, EveryCommandHelpHasExamplesAndExitCodes) {
   const CliRun top = Brdfit("--help");
