@@ -21,9 +21,12 @@ void Blit(const Image& src, Image* dst, int x0, int y0) {
   }
 }
 
-// Label on a dark band at the top of a panel; scale 2 when it fits, else 1.
+// Label on a dark band at the top of a panel. One size for every panel of an image (it depends
+// on the panel width, not on the text: labels of different lengths look alike); a label too long
+// for it drops to scale 1.
 void Label(Image* img, int x0, int y0, int w, const std::string& text) {
-  const int scale = TextWidth(text, 2) + 8 <= w ? 2 : 1;
+  int scale = w >= 400 ? 2 : 1;
+  if (TextWidth(text, scale) + 8 > w) scale = 1;
   FillRect(img, x0, y0, w, kGlyphHeight * scale + 6, kLabelBand);
   DrawText(img, x0 + 4, y0 + 3, text, scale, kLabelInk);
 }
