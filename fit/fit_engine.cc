@@ -132,7 +132,16 @@ LmRun RunLm(const ModelOps& ops, const Samples& s, const LossData& l,
       const bool at_lower = x[i] == layout.lower_opt[i];
       if (at_lower ? gradient[i] >= 0 : gradient[i] <= 0) next.push_back(i);
     }
-    if (next == held) return run;
+    if (next == held) {
+      if (static_cast<int>(held.size()) == P) {
+        // Every parameter on a bound with the gradient pointing out of the box: a KKT point.
+        // Ceres ran no iteration (max_num_iterations = 0) and calls that NO_CONVERGENCE.
+        run.summary.termination_type = ceres::CONVERGENCE;
+        run.summary.message =
+            "every parameter on a bound, the gradient pointing out of the box (KKT point)";
+      }
+      return run;
+    }
     held = next;
     if (run.iterations >= opt.max_iterations) return run;
   }

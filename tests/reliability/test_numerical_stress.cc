@@ -202,6 +202,11 @@ TEST(NumericalStress, AllZeroTableWithEveryLoss) {
     fo.loss = loss;
     FitAll(t, kModels, std::string("all zero, loss ") + ToString(loss), {}, fo);
   }
+  // Lambert's weights all end at their lower bound 0, where the gradient points out of the
+  // box: a KKT point, reported as converged (not as "no convergence after 0 iterations").
+  const FitResult r = FitTable("lambert", t, {}, StressOptions());
+  EXPECT_EQ(r.status, FitStatus::kConverged) << r.message;
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(r.params[c], 0.0);
 }
 
 TEST(NumericalStress, ConstantTableWithEveryLoss) {
