@@ -19,6 +19,8 @@
 #include "fit/factor_metrics.h"
 #include "io/error.h"
 #include "io/input_file.h"
+#include "io/nbrdf.h"
+#include "io/report_inputs.h"
 #include "io/table_io.h"
 
 namespace brdfit::cli {
@@ -59,7 +61,7 @@ nlohmann::json MetricsJson(const FitMetrics& m, double ln_rmse) {
 nlohmann::json SourceJson(const fs::path& file, const Table& t) {
   const Provenance& p = t.provenance;
   const std::string name = file.string();
-  return {{"file", IsNbrdf(name) ? name : fs::absolute(file).string()},
+  return {{"file", IsNbrdfInput(name) ? name : fs::absolute(file).string()},
           {"grid",
            {{"n_theta_h", t.grid.n_theta_h},
             {"n_theta_d", t.grid.n_theta_d},
@@ -93,8 +95,8 @@ FactorOptions CheckOptions(const FactorCliOptions& o) {
   }
   std::map<std::string, std::string> stems;
   for (const std::string& file : ExpandInputs(o.files)) {
-    if (!IsNbrdf(file)) CheckInputFile(file);
-    const std::string stem = MaterialOf(file) + o.suffix;
+    if (!IsNbrdfInput(file)) CheckInputFile(file);
+    const std::string stem = report::MaterialName(file) + o.suffix;
     if (auto [it, fresh] = stems.emplace(stem, file); !fresh) {
       throw InputError(file, fmt::format("writes the same outputs ({}.*) as {}", stem, it->second));
     }
@@ -124,7 +126,7 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
       }
       const double ln_rmse = FactorLogRmse(table, r.brdf, options.max_theta);
       const FitMetrics m = ScoreFactorization(table, r.brdf, metric_samples);
-      const std::string stem = MaterialOf(file) + o.suffix;
+      const std::string stem = report::MaterialName(file) + o.suffix;
       const FactorPaths paths = SaveFactorization(
           r, o.out_dir, stem,
           {{"source", SourceJson(file, table)}, {"metrics", MetricsJson(m, ln_rmse)}});

@@ -30,6 +30,7 @@
 #include "io/error.h"
 #include "io/fit_report.h"
 #include "io/nbrdf.h"
+#include "io/report_inputs.h"
 #include "io/table_io.h"
 
 namespace brdfit::cli {
@@ -257,7 +258,7 @@ int RunFit(const FitCliOptions& o) {
       FileState& fs_ = *states[t.file];
       {
         std::lock_guard<std::mutex> lock(mu);
-        bar.Step(fmt::format("{} {}", MaterialOf(files[t.file]), t.model));
+        bar.Step(fmt::format("{} {}", report::MaterialName(files[t.file]), t.model));
       }
       {
         std::lock_guard<std::mutex> lock(fs_.mu);
@@ -289,7 +290,7 @@ int RunFit(const FitCliOptions& o) {
         }
         r.times.load = fs_.load_ms;
         r.times.prepare = fs_.prepare_ms;
-        FitReportEntry e{files[t.file], MaterialOf(files[t.file]), options, std::move(r)};
+        FitReportEntry e{files[t.file], report::MaterialName(files[t.file]), options, std::move(r)};
         std::lock_guard<std::mutex> lock(mu);
         summary.fresh.push_back(std::move(e));
         if (MsSince(last_write) > 5000) write_report(false);  // checkpoint for resuming

@@ -3,15 +3,12 @@
 #include <cstdlib>
 
 #include "io/nbrdf.h"
+#include "io/report_inputs.h"
 #include "io/table_io.h"
 
 namespace brdfit::cli {
 
 namespace fs = std::filesystem;
-
-bool IsNbrdf(const std::string& input) {
-  return input.rfind(kNbrdfPrefix, 0) == 0;
-}
 
 fs::path NbrdfArchive(const std::string& given) {
   if (!given.empty()) return given;
@@ -33,8 +30,10 @@ fs::path NbrdfArchive(const std::string& given) {
 std::vector<std::string> ExpandInputs(const std::vector<std::string>& inputs) {
   std::vector<std::string> out;
   for (const std::string& in : inputs) {
-    if (in == std::string(kNbrdfPrefix) + "all") {
-      for (const auto& m : ListNbrdfMaterials(NbrdfArchive())) out.push_back(kNbrdfPrefix + m);
+    if (in == std::string(kNbrdfInputPrefix) + "all") {
+      for (const auto& m : ListNbrdfMaterials(NbrdfArchive())) {
+        out.push_back(std::string(kNbrdfInputPrefix) + m);
+      }
     } else {
       out.push_back(in);
     }
@@ -42,14 +41,9 @@ std::vector<std::string> ExpandInputs(const std::vector<std::string>& inputs) {
   return out;
 }
 
-std::string MaterialOf(const std::string& input) {
-  return IsNbrdf(input) ? input.substr(std::string(kNbrdfPrefix).size())
-                        : fs::path(input).stem().string();
-}
-
 Table LoadInput(const std::string& input) {
-  if (!IsNbrdf(input)) return LoadTable(input);
-  const NbrdfNetwork net = ReadNbrdf(NbrdfArchive(), MaterialOf(input));
+  if (!IsNbrdfInput(input)) return LoadTable(input);
+  const NbrdfNetwork net = ReadNbrdf(NbrdfArchive(), report::MaterialName(input));
   Table t = TabulateNbrdf(net, Grid::Merl(), 1).table;
   t.provenance.source = input;
   return t;

@@ -28,13 +28,9 @@ FitMetrics Score(const Samples& samples, Predicted predicted) {
   for (std::size_t o = 0; o < n; ++o) {
     const double* f_rgb = predicted(o);
     if (!(std::isfinite(f_rgb[0]) && std::isfinite(f_rgb[1]) && std::isfinite(f_rgb[2]))) {
-      FitMetrics bad;
-      bad.weighting = m.weighting;
-      bad.cutoff_deg = m.cutoff_deg;
-      bad.cells = m.cells;
-      bad.total_weight = m.total_weight;
-      bad.problem = "non-finite prediction";
-      return bad;
+      m.worst = WorstCell{};  // nothing of the partial sums is reported
+      m.problem = "non-finite prediction";
+      return m;
     }
     const double w = samples.weight[o];
     const double c = samples.cos_i[o];

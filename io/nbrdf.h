@@ -13,11 +13,19 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "io/table.h"
 
 namespace brdfit {
+
+// An input that names a network of the archive instead of a file: "nbrdf:NAME" (the CLI
+// tabulates it on the MERL grid, cli/inputs.h; its material is NAME, io/report_inputs.h).
+inline constexpr std::string_view kNbrdfInputPrefix = "nbrdf:";
+inline bool IsNbrdfInput(std::string_view input) {
+  return input.starts_with(kNbrdfInputPrefix);
+}
 
 struct NbrdfNetwork {
   std::string material;

@@ -10,6 +10,7 @@
 #include "io/bench_csv.h"
 #include "io/error.h"
 #include "io/fit_report.h"
+#include "io/nbrdf.h"
 #include "io/table_io.h"
 
 namespace brdfit::report {
@@ -57,19 +58,18 @@ double Get(const json& j, const char* key, double fallback = 0) {
   return it != j.end() && it->is_number() ? it->get<double>() : fallback;
 }
 
-}  // namespace
-
 // A table the report can load for the theta_h slices: a file, or an NBRDF input "nbrdf:NAME"
 // (tabulated by the CLI's loader, cli/inputs.h).
 bool LoadableTable(const std::string& source) {
   std::error_code ec;
-  return source.rfind("nbrdf:", 0) == 0 || fs::is_regular_file(source, ec);
+  return IsNbrdfInput(source) || fs::is_regular_file(source, ec);
 }
 
-// A material's name: the table file's stem, or NAME for an NBRDF input "nbrdf:NAME".
+}  // namespace
+
 std::string MaterialName(const fs::path& table) {
   const std::string text = table.string();
-  if (text.rfind("nbrdf:", 0) == 0) return text.substr(6);
+  if (IsNbrdfInput(text)) return text.substr(kNbrdfInputPrefix.size());
   return table.stem().string();
 }
 

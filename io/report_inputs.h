@@ -39,12 +39,12 @@ ReportSources ReadReportInputs(const std::vector<std::filesystem::path>& inputs)
 // entry per point, keyed like any fit (model | loss | budget).
 void AddBenchEntries(Report* report);
 
-// The material a table path stands for: its file name without the extension.
+// The material a table input stands for: its file name without the extension, or NAME for an
+// NBRDF input "nbrdf:NAME" (io/nbrdf.h). Reports, fit reports and factor outputs use it.
 std::string MaterialName(const std::filesystem::path& table);
 
 // One factorization sidecar as a report entry (exposed for tests). Sets *material from the
 // sidecar's source.file.
-Entry FactorEntry(const std::filesystem::path& sidecar, std::string* material,
-                  std::string* table);
+Entry FactorEntry(const std::filesystem::path& sidecar, std::string* material, std::string* table);
 
 }  // namespace brdfit::report
