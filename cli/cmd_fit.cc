@@ -29,7 +29,6 @@
 #include "io/atomic_file.h"
 #include "io/error.h"
 #include "io/fit_report.h"
-#include "io/nbrdf.h"
 #include "io/report_inputs.h"
 #include "io/table_io.h"
 

@@ -148,7 +148,9 @@ class GlfwWindow {
   }
   GlfwWindow(const GlfwWindow&) = delete;
   GlfwWindow& operator=(const GlfwWindow&) = delete;
-  GLFWwindow* get() const { return window_; }
+  GLFWwindow* get() const {
+    return window_;
+  }
 
  private:
   GLFWwindow* window_ = nullptr;
@@ -225,8 +227,8 @@ bool WindowSupported() {
 WindowResult RunPreviewWindow(Scene scene, const MaterialSet& materials,
                               const WindowOptions& options, ExplainLog* log) {
   using Clock = std::chrono::steady_clock;
-  GlfwWindow window(scene.width, scene.height,
-                    options.compare ? "brdfit: comparison" : "brdfit: preview");
+  const std::string title = options.compare ? "brdfit: comparison" : "brdfit: preview";
+  GlfwWindow window(scene.width, scene.height, title);
   log->Add("note", std::string("window: OpenGL ") +
                        reinterpret_cast<const char*>(glGetString(GL_VERSION)) + ", " +
                        reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
@@ -242,18 +244,18 @@ WindowResult RunPreviewWindow(Scene scene, const MaterialSet& materials,
   {
     Renderer renderer;  // its GL objects go before the context
     Presenter presenter;
-    ExplainLog frame_log;  // only the first frame's details reach the caller's log
     while (!glfwWindowShouldClose(window.get()) &&
            (options.max_frames <= 0 || result.frames < options.max_frames)) {
       int fb_width = 0, fb_height = 0;
       glfwGetFramebufferSize(window.get(), &fb_width, &fb_height);
       if (fb_width != scene.width || fb_height != scene.height) view.dirty = true;
-      if (view.dirty && fb_width > 0 && fb_height > 0) {
+      const bool render = view.dirty && fb_width > 0 && fb_height > 0;
+      if (render) {
         const auto t0 = Clock::now();
         scene.camera = view.camera;
         scene.width = fb_width;
         scene.height = fb_height;
-        ExplainLog* l = result.renders == 0 ? log : &frame_log;
+        ExplainLog* l = result.renders == 0 ? log : nullptr;  // only the first frame is explained
         if (options.compare) {
           ComparisonStats stats;
           result.last_display =
@@ -268,14 +270,14 @@ WindowResult RunPreviewWindow(Scene scene, const MaterialSet& materials,
         view.dirty = false;
         ++result.renders;
         const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-        const std::string title =
-            std::string(options.compare ? "brdfit: comparison" : "brdfit: preview") + " - " +
-            std::to_string(fb_width) + "x" + std::to_string(fb_height) + ", " +
-            std::to_string(static_cast<int>(std::lround(ms))) + " ms";
-        glfwSetWindowTitle(window.get(), title.c_str());
+        const std::string status = title + " - " + std::to_string(fb_width) + "x" +
+                                   std::to_string(fb_height) + ", " +
+                                   std::to_string(static_cast<int>(std::lround(ms))) + " ms";
+        glfwSetWindowTitle(window.get(), status.c_str());
       }
       presenter.Draw(fb_width, fb_height);
-      if (options.capture_screen) result.last_screen = ReadWindow(fb_width, fb_height);
+      // The window shows the same pixels until the next render: read them back once per render.
+      if (options.capture_screen && render) result.last_screen = ReadWindow(fb_width, fb_height);
       glfwSwapBuffers(window.get());
       ++result.frames;
       if (options.max_frames > 0) {

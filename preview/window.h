@@ -15,7 +15,7 @@ namespace brdfit::preview {
 struct WindowOptions {
   bool compare = false;  // show the comparison panels (scene 'comparison') instead of the scene
   int max_frames = 0;    // close after this many frames (0: when the user closes the window)
-  bool capture_screen = false;  // read each shown frame back from the window (last_screen)
+  bool capture_screen = false;  // read the window back after each render (last_screen)
 };
 
 struct WindowResult {
