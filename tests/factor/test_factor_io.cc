@@ -8,19 +8,12 @@
 #include "fit/factor_export.h"
 #include "io/error.h"
 #include "tests/factor/factor_test_util.h"
+#include "tests/scratch_dir.h"
 
 namespace brdfit {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path TempDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() /
-                     ("brdfit_test_factor_io_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
 
 Factorization Small(FactorParam param) {
   FactorOptions o;
@@ -33,7 +26,8 @@ Factorization Small(FactorParam param) {
 }
 
 TEST(FactorIo, SaveLoadEvaluatesIdentically) {
-  const fs::path dir = TempDir("roundtrip");
+  const ScratchDir scratch("roundtrip");
+  const fs::path& dir = scratch.path();
   for (FactorParam param : {FactorParam::kMcCool, FactorParam::kHalfDiff}) {
     const Factorization r = Small(param);
     const FactorPaths paths =
@@ -86,7 +80,8 @@ void ExpectInputError(const fs::path& json, const fs::path& named, const std::st
 }
 
 TEST(FactorIo, InconsistentFilesAreInputErrors) {
-  const fs::path dir = TempDir("bad");
+  const ScratchDir scratch("bad");
+  const fs::path& dir = scratch.path();
   const FactorPaths paths = SaveFactorization(Small(FactorParam::kMcCool), dir, "m");
   const FactorPaths hd = SaveFactorization(Small(FactorParam::kHalfDiff), dir, "h");
 

@@ -31,11 +31,19 @@ std::string Slurp(const fs::path& p) {
   return ss.str();
 }
 
+// The log file is per process and test: CTest runs the tests of this file in parallel, and a
+// shared log once let one test read another's output.
 int RunCli(const std::string& args, std::string* out = nullptr) {
-  const std::string log = (fs::temp_directory_path() / "brdfit_fit_cli.log").string();
+  const std::string log =
+      (fs::temp_directory_path() /
+       ("brdfit_fit_cli_" + std::to_string(::getpid()) + "_" +
+        ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".log"))
+          .string();
   const int status =
       std::system((std::string(BRDFIT_EXE) + " " + args + " > " + log + " 2>&1").c_str());
   if (out) *out = Slurp(log);
+  std::error_code ec;
+  fs::remove(log, ec);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 

@@ -15,33 +15,13 @@
 #include <vector>
 
 #include "io/table.h"
+#include "tests/scratch_dir.h"
 
 namespace brdfit::testing_io {
 
 namespace fs = std::filesystem;
 
-// A scratch folder removed at the end of the test.
-class ScratchDir {
- public:
-  ScratchDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = "brdfit-io-";
-    if (info) name += std::string(info->test_suite_name()) + "-" + info->name() + "-";
-    name += std::to_string(::getpid());
-    path_ = fs::temp_directory_path() / name;
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  fs::path operator/(const std::string& name) const { return path_ / name; }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using brdfit::ScratchDir;
 
 inline std::vector<char> ReadBytes(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);

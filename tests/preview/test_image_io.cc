@@ -5,22 +5,17 @@
 
 #include "io/error.h"
 #include "preview/image_io.h"
+#include "tests/scratch_dir.h"
 
 namespace brdfit::preview {
 namespace {
-
-std::filesystem::path TempDir() {
-  auto d = std::filesystem::temp_directory_path() /
-           ("brdfit_preview_io_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
-  std::filesystem::create_directories(d);
-  return d;
-}
 
 TEST(ImageIo, ExrRoundTripIsExact) {
   Image img(5, 3);
   for (std::size_t i = 0; i < img.rgba.size(); ++i) img.rgba[i] = 1e-6f * i * i + 0.1f * i;
   img.At(4, 2)[0] = 1234.5f;
-  const auto path = TempDir() / "a.exr";
+  const ScratchDir scratch;
+  const auto path = scratch / "a.exr";
   WriteExr(path, img);
   const Image back = ReadExr(path);
   ASSERT_EQ(back.width, 5);
@@ -35,7 +30,8 @@ TEST(ImageIo, PngQuantizesAndClamps) {
   img.At(2, 1)[2] = -1.0f;  // clamped -> 0
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 4; ++x) img.At(x, y)[3] = 1.0f;
-  const auto path = TempDir() / "a.png";
+  const ScratchDir scratch;
+  const auto path = scratch / "a.png";
   WritePng(path, img);
   const Image back = ReadPng(path);
   ASSERT_EQ(back.width, 4);
@@ -46,7 +42,8 @@ TEST(ImageIo, PngQuantizesAndClamps) {
 }
 
 TEST(ImageIo, BadInputsNameTheFile) {
-  const auto path = TempDir() / "not_an_image.png";
+  const ScratchDir scratch;
+  const auto path = scratch / "not_an_image.png";
   {
     std::FILE* f = std::fopen(path.c_str(), "wb");
     std::fputs("hello", f);
@@ -58,7 +55,7 @@ TEST(ImageIo, BadInputsNameTheFile) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("not_an_image.png"), std::string::npos);
   }
-  EXPECT_THROW(WriteImageByExtension(TempDir() / "x.jpg", Image(1, 1), Image(1, 1)), InputError);
+  EXPECT_THROW(WriteImageByExtension(scratch / "x.jpg", Image(1, 1), Image(1, 1)), InputError);
 }
 
 }  // namespace

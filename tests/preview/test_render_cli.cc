@@ -2,6 +2,7 @@
 // computed fit is cached on disk and reused by the next render (read from --explain); bad
 // input exits 2 with the file named.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -55,7 +56,7 @@ class RenderCli : public ::testing::Test {
   void SetUp() override {
     dir_ =
         fs::temp_directory_path() /
-        ("brdfit_render_cli_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+        ("brdfit_render_cli_" + std::to_string(::getpid()) +
          "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);

@@ -20,19 +20,12 @@
 #include "io/synth.h"
 #include "models/registry.h"
 #include "tests/report/report_fixture.h"
+#include "tests/scratch_dir.h"
 
 namespace brdfit::report {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path TempDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() /
-                     ("brdfit-report-unit-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
 
 void WriteFile(const fs::path& p, const std::string& text) {
   std::ofstream out(p, std::ios::binary);
@@ -179,7 +172,8 @@ TEST(Slices, ModelPredictorRejectsUnknownModelsAndWrongParameterCounts) {
 // ---- bench CSV ------------------------------------------------------------------------------
 
 TEST(BenchCsv, RoundTripsEveryFieldIncludingQuotedText) {
-  const fs::path dir = TempDir("csv");
+  const ScratchDir scratch("csv");
+  const fs::path& dir = scratch.path();
   BenchPoint b;
   b.material = "gold, \"metallic\"";
   b.table = "/x/gold.binary";
@@ -218,7 +212,8 @@ TEST(BenchCsv, RoundTripsEveryFieldIncludingQuotedText) {
 }
 
 TEST(BenchCsv, ErrorsNameTheFileAndLine) {
-  const fs::path dir = TempDir("csvbad");
+  const ScratchDir scratch("csvbad");
+  const fs::path& dir = scratch.path();
   WriteFile(dir / "nocol.csv", "material,model\nx,y\n");
   try {
     ReadBenchCsv(dir / "nocol.csv");
@@ -325,7 +320,8 @@ TEST(Compare, MetricChoice) {
 // ---- inputs ---------------------------------------------------------------------------------
 
 TEST(Inputs, FactorSidecarBecomesAnEntryOfItsTablesMaterial) {
-  const fs::path dir = TempDir("sidecar");
+  const ScratchDir scratch("sidecar");
+  const fs::path& dir = scratch.path();
   const nlohmann::json j = {
       {"format", "brdfit-factorization"},
       {"parameterization", "halfdiff"},
@@ -352,7 +348,8 @@ TEST(Inputs, FactorSidecarBecomesAnEntryOfItsTablesMaterial) {
 }
 
 TEST(Inputs, FoldersKeepKnownKindsAndExplicitUnknownFilesAreErrors) {
-  const fs::path dir = TempDir("inputs");
+  const ScratchDir scratch("inputs");
+  const fs::path& dir = scratch.path();
   BenchPoint b;
   b.material = "m";
   b.model = "ggx";
@@ -392,7 +389,8 @@ Report OneMaterialForHtml() {
 }
 
 TEST(Html, StructureOfTheFixtureReport) {
-  const fs::path dir = TempDir("html");
+  const ScratchDir scratch("html");
+  const fs::path& dir = scratch.path();
   const Report r = testing::MakeFixtureReport(dir);
   const std::string html = RenderHtml(r, "/* Chart stand-in */");
   std::smatch m;
