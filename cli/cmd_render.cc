@@ -81,12 +81,12 @@ int RunRender(const RenderOptions& o) {
   if (o.out.empty() && !o.window) {
     throw InputError("an output image is needed: -o out.png (or --window)");
   }
-  preview::Scene scene = preview::LoadScene(o.scene);
+  preview::ExplainLog log;
+  preview::Scene scene = preview::LoadScene(o.scene, &log);
   if (!o.size.empty()) ParseSize(o.size, &scene.width, &scene.height);
   if (o.compare && !scene.has_comparison) {
     throw InputError(o.scene, "--compare needs a 'comparison' section (docs/scenes.md)");
   }
-  preview::ExplainLog log;
   preview::LoadOptions lo;
   lo.cache_dir = o.cache;
   const auto t0 = Clock::now();

@@ -89,6 +89,7 @@ int FuzzExr(const std::uint8_t* data, std::size_t size);
 int FuzzFactorSidecar(const std::uint8_t* data, std::size_t size);
 int FuzzScene(const std::uint8_t* data, std::size_t size);
 int FuzzFitReport(const std::uint8_t* data, std::size_t size);
+int FuzzMesh(const std::uint8_t* data, std::size_t size);
 
 }  // namespace brdfit::fuzz
 

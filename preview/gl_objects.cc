@@ -97,6 +97,9 @@ void Program::Set(const std::string& name, float x, float y, float z) {
 void Program::SetMat4(const std::string& name, const float* m) {
   if (GLint l = Uniform(name); l >= 0) glUniformMatrix4fv(l, 1, GL_FALSE, m);
 }
+void Program::SetMat3(const std::string& name, const float* m) {
+  if (GLint l = Uniform(name); l >= 0) glUniformMatrix3fv(l, 1, GL_FALSE, m);
+}
 void Program::SetArray(const std::string& name, const std::vector<float>& v) {
   if (v.empty()) return;
   if (GLint l = Uniform(name + "[0]"); l >= 0) {
@@ -152,8 +155,8 @@ Image Framebuffer::ReadRgba() const {
   return img;
 }
 
-Mesh::Mesh(const std::vector<float>& vertices, const std::vector<int>& attribute_sizes,
-           const std::vector<unsigned>& indices) {
+GpuMesh::GpuMesh(const std::vector<float>& vertices, const std::vector<int>& attribute_sizes,
+              const std::vector<unsigned>& indices) {
   int stride = 0;
   for (int s : attribute_sizes) stride += s;
   glGenVertexArrays(1, &vao_);
@@ -184,13 +187,13 @@ Mesh::Mesh(const std::vector<float>& vertices, const std::vector<int>& attribute
   CheckGl("mesh upload");
 }
 
-Mesh::~Mesh() {
+GpuMesh::~GpuMesh() {
   glDeleteBuffers(1, &vbo_);
   if (ebo_) glDeleteBuffers(1, &ebo_);
   glDeleteVertexArrays(1, &vao_);
 }
 
-void Mesh::Draw() const {
+void GpuMesh::Draw() const {
   glBindVertexArray(vao_);
   if (indexed_) {
     glDrawElements(GL_TRIANGLES, count_, GL_UNSIGNED_INT, nullptr);

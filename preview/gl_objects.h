@@ -28,6 +28,7 @@ class Program {
   void Set(const std::string& name, float x, float y);
   void Set(const std::string& name, float x, float y, float z);
   void SetMat4(const std::string& name, const float* column_major);
+  void SetMat3(const std::string& name, const float* column_major);
   void SetArray(const std::string& name, const std::vector<float>& v);
 
  private:
@@ -57,13 +58,13 @@ class Framebuffer {
 
 // A vertex array with one interleaved float buffer (attribute i: sizes[i] floats) and
 // optional 32-bit indices.
-class Mesh {
+class GpuMesh {
  public:
-  Mesh(const std::vector<float>& vertices, const std::vector<int>& attribute_sizes,
+  GpuMesh(const std::vector<float>& vertices, const std::vector<int>& attribute_sizes,
        const std::vector<unsigned>& indices);
-  ~Mesh();
-  Mesh(const Mesh&) = delete;
-  Mesh& operator=(const Mesh&) = delete;
+  ~GpuMesh();
+  GpuMesh(const GpuMesh&) = delete;
+  GpuMesh& operator=(const GpuMesh&) = delete;
   void Draw() const;
 
  private:

@@ -9,6 +9,62 @@
 
 namespace brdfit::preview {
 
+namespace {
+
+// Ray (o + t d, |d| = 1) against a sphere: the nearer root t > 0 with the stable quadratic
+// (Haines et al. 2019, "Precision Improvements for Ray/Sphere Intersection", Ray Tracing Gems
+// ch. 7, eq. 7.5 and 7.7), or +inf. *normal: the outward unit normal at the hit.
+double IntersectSphere(const Vec3& centre, double radius, const Vec3& o, const Vec3& d,
+                       Vec3* normal) {
+  const Vec3 oc = centre - o;
+  const double b = Dot(d, oc);
+  const Vec3 q = oc - b * d;
+  const double disc = radius * radius - Dot(q, q);
+  if (disc < 0 || b <= 0) return std::numeric_limits<double>::infinity();
+  const double t = (Dot(oc, oc) - radius * radius) / (b + std::sqrt(disc));
+  *normal = (1.0 / radius) * (o + t * d - centre);
+  return t;
+}
+
+// Ray against every triangle (Moller & Trumbore 1997, "Fast, Minimum Storage Ray/Triangle
+// Intersection", JGT 2(1)), both sides, nearest t in (0, t_max); +inf when none. *normal: the
+// barycentric mix of the vertex normals, normalized. Brute force: meshes in tests are small.
+double IntersectMesh(const Mesh& m, const Vec3& o, const Vec3& d, double t_max, Vec3* normal) {
+  const double inf = std::numeric_limits<double>::infinity();
+  Vec3 n_sphere;
+  if (!std::isfinite(
+          IntersectSphere(m.bound_centre, m.bound_radius * (1 + 1e-9), o, d, &n_sphere)) &&
+      Length(o - m.bound_centre) > m.bound_radius) {
+    return inf;
+  }
+  double best = t_max;
+  bool found = false;
+  for (std::size_t i = 0; i + 2 < m.indices.size(); i += 3) {
+    const Vec3& p0 = m.positions[m.indices[i]];
+    const Vec3 e1 = m.positions[m.indices[i + 1]] - p0, e2 = m.positions[m.indices[i + 2]] - p0;
+    const Vec3 pv = Cross(d, e2);
+    const double det = Dot(e1, pv);
+    if (std::abs(det) < 1e-300) continue;  // ray parallel to the triangle
+    const double inv = 1.0 / det;
+    const Vec3 tv = o - p0;
+    const double u = Dot(tv, pv) * inv;
+    if (u < 0 || u > 1) continue;
+    const Vec3 qv = Cross(tv, e1);
+    const double v = Dot(d, qv) * inv;
+    if (v < 0 || u + v > 1) continue;
+    const double t = Dot(e2, qv) * inv;
+    if (t <= 0 || t >= best) continue;
+    best = t;
+    found = true;
+    const Vec3 mix = (1 - u - v) * m.normals[m.indices[i]] + u * m.normals[m.indices[i + 1]] +
+                     v * m.normals[m.indices[i + 2]];
+    *normal = Normalize(mix);
+  }
+  return found ? best : inf;
+}
+
+}  // namespace
+
 Image RenderReference(const Scene& scene, const MaterialSet& materials, int width, int height,
                       ReferenceExtras* extras) {
   const Camera& cam = scene.camera;
@@ -40,26 +96,28 @@ Image RenderReference(const Scene& scene, const MaterialSet& materials, int widt
       const double nx = (2.0 * (x + 0.5) / width - 1.0) * th * aspect;
       const double ny = (1.0 - 2.0 * (y + 0.5) / height) * th;
       const Vec3 d = Normalize(nx * s + ny * u + f);
-      // Nearest sphere hit: |o + t d - c|^2 = r^2 with the stable root (Haines et al. 2019).
+      // Nearest hit over the objects: the normal is the sphere's, or the mesh's vertex normals
+      // interpolated at the hit (what the rasterizer's perspective-correct interpolation gives).
       double best = std::numeric_limits<double>::infinity();
       int hit = -1;
+      Vec3 n;
       for (std::size_t k = 0; k < scene.objects.size(); ++k) {
         const Object& o = scene.objects[k];
-        const Vec3 oc = o.centre - cam.position;
-        const double b = Dot(d, oc);
-        const Vec3 q = oc - b * d;
-        const double disc = o.radius * o.radius - Dot(q, q);
-        if (disc < 0 || b <= 0) continue;
-        const double t = (Dot(oc, oc) - o.radius * o.radius) / (b + std::sqrt(disc));
+        Vec3 n_k;
+        if (o.shape == ObjectShape::kMesh && !o.mesh) {
+          throw std::logic_error("object '" + o.name + "': its mesh was not loaded");
+        }
+        const double t = o.shape == ObjectShape::kMesh
+                             ? IntersectMesh(*o.mesh, cam.position, d, best, &n_k)
+                             : IntersectSphere(o.centre, o.radius, cam.position, d, &n_k);
         if (t > 0 && t < best) {
           best = t;
           hit = static_cast<int>(k);
+          n = n_k;
         }
       }
       if (hit < 0) continue;
-      const Object& o = scene.objects[static_cast<std::size_t>(hit)];
       const Vec3 p = cam.position + best * d;
-      const Vec3 n = (1.0 / o.radius) * (p - o.centre);
       const Vec3 v = -1.0 * d;
       // Tangent frame: Duff et al. 2017 (JCGT 6(1)), Listing 3, as the shader, but in world
       // space. Analytic and tabulated isotropic BRDFs do not depend on it; a factorization's

@@ -1,8 +1,8 @@
-// CPU reference renderer in double precision: the same scene (spheres, seed 000 lights,
+// CPU reference renderer in double precision: the same scene (spheres and meshes, seed 000 lights,
 // analytic or measured materials) evaluated with the C++ models and Table::LookupTrilinear.
 // It is the oracle of the GPU path (GLSL <-> C++ parity) and of the light semantics. It shares
-// no code with the shaders: rays, sphere hits, frames and lights are computed independently,
-// in world space.
+// no code with the shaders: rays, sphere and triangle hits, frames and lights are computed
+// independently, in world space.
 #pragma once
 
 #include "preview/image.h"
@@ -11,7 +11,7 @@
 
 namespace brdfit::preview {
 
-// Linear radiance per pixel centre; alpha 1 where a sphere is hit. `edge` (optional) receives
+// Linear radiance per pixel centre; alpha 1 where an object is hit. `edge` (optional) receives
 // per pixel the smallest n.v and 1 if the pixel is within one pixel of a silhouette, for tests
 // that exclude silhouettes. Factored materials use their CPU evaluator (and, like the GPU
 // path, ignore spot lights).

@@ -33,7 +33,9 @@ std::array<float, 4> SphereRect(const Eigen::Matrix4d& view, const Eigen::Matrix
   return {cl(x0), cl(y0), cl(x1), cl(y1)};
 }
 
-Vec3 Scaled(const Light& l) { return l.intensity * l.colour; }
+Vec3 Scaled(const Light& l) {
+  return l.intensity * l.colour;
+}
 
 }  // namespace
 
@@ -42,7 +44,9 @@ Renderer::Renderer() {
   CheckGl("renderer setup");
 }
 
-Renderer::~Renderer() { glDeleteVertexArrays(1, &empty_vao_); }
+Renderer::~Renderer() {
+  glDeleteVertexArrays(1, &empty_vao_);
+}
 
 Program& Renderer::ShadeProgram(const ShaderVariant& v, ExplainLog* log) {
   const std::string key = v.Key();
@@ -52,7 +56,7 @@ Program& Renderer::ShadeProgram(const ShaderVariant& v, ExplainLog* log) {
     return *it->second;
   }
   if (log) log->Add("compute", "shader [" + key + "]");
-  auto p = std::make_unique<Program>(ShadeVertexSource(), ShadeFragmentSource(v));
+  auto p = std::make_unique<Program>(ShadeVertexSource(v), ShadeFragmentSource(v));
   return *programs_.emplace(key, std::move(p)).first->second;
 }
 
@@ -104,6 +108,25 @@ const Texture& Renderer::FactorTexture(const std::shared_ptr<const FactorTexture
   return *textures_.emplace(&img, CachedTexture{f, std::move(tex)}).first->second.texture;
 }
 
+const GpuMesh& Renderer::MeshBuffers(const std::shared_ptr<const Mesh>& mesh, ExplainLog* log) {
+  auto it = meshes_.find(mesh.get());
+  if (it != meshes_.end()) return *it->second.buffers;
+  // Interleaved position, normal (attributes 0 and 1 of object.vert), world space.
+  std::vector<float> vertices;
+  vertices.reserve(6 * mesh->positions.size());
+  for (std::size_t i = 0; i < mesh->positions.size(); ++i) {
+    const Vec3& p = mesh->positions[i];
+    const Vec3& n = mesh->normals[i];
+    for (double x : {p.x, p.y, p.z, n.x, n.y, n.z}) vertices.push_back(static_cast<float>(x));
+  }
+  const std::vector<unsigned> indices(mesh->indices.begin(), mesh->indices.end());
+  auto buffers = std::make_unique<GpuMesh>(vertices, std::vector<int>{3, 3}, indices);
+  CheckGl("mesh upload");
+  if (log)
+    log->Add("compute", "vertex buffers (" + std::to_string(mesh->NumTriangles()) + " triangles)");
+  return *meshes_.emplace(mesh.get(), CachedMesh{mesh, std::move(buffers)}).first->second.buffers;
+}
+
 Image Renderer::RenderLinear(const Scene& scene, const MaterialSet& materials, ExplainLog* log,
                              int width, int height) {
   if (width <= 0) width = scene.width;
@@ -129,11 +152,15 @@ Image Renderer::RenderLinear(const Scene& scene, const MaterialSet& materials, E
       throw std::logic_error("material '" + obj.material + "' was not resolved");
     }
     const ResolvedMaterial& mat = mit->second;
+    const bool is_mesh = obj.shape == ObjectShape::kMesh;
+    if (is_mesh && !obj.mesh) {
+      throw InputError(scene.source, "object '" + obj.name + "': its mesh was not loaded");
+    }
     // Lights that reach this object; the rest are culled before the shader is generated.
     std::vector<const Light*> dir, point, spot;
     for (const Light& l : scene.lights) {
       std::string why;
-      if (!LightReachesSphere(l, obj.centre, obj.radius, &why)) {
+      if (!LightReachesSphere(l, obj.BoundCentre(), obj.BoundRadius(), &why)) {
         if (log) log->Add("skip", "light '" + l.name + "' for object '" + obj.name + "': " + why);
         continue;
       }
@@ -146,7 +173,9 @@ Image Renderer::RenderLinear(const Scene& scene, const MaterialSet& materials, E
         }
         continue;
       }
-      (l.type == LightType::kDirectional ? dir : l.type == LightType::kPoint ? point : spot)
+      (l.type == LightType::kDirectional ? dir
+       : l.type == LightType::kPoint     ? point
+                                         : spot)
           .push_back(&l);
     }
     ShaderVariant v;
@@ -158,18 +187,29 @@ Image Renderer::RenderLinear(const Scene& scene, const MaterialSet& materials, E
     v.num_point = static_cast<int>(point.size());
     v.num_spot = static_cast<int>(spot.size());
     v.punctual_pi = scene.punctual_pi;
+    v.mesh = is_mesh;
     Program& prog = ShadeProgram(v, log);
     prog.Use();
 
     prog.Set("uViewport", static_cast<float>(width), static_cast<float>(height));
     prog.Set("uTanHalfFov", static_cast<float>(th * width / height), static_cast<float>(th));
     prog.SetMat4("uProjection", projf.data());
-    const Vec3 c = Transform(view, obj.centre, 1.0);
-    prog.Set("uSphereCentre", static_cast<float>(c.x), static_cast<float>(c.y),
-             static_cast<float>(c.z));
-    prog.Set("uSphereRadius", static_cast<float>(obj.radius));
-    const auto rect = SphereRect(view, proj, obj.centre, obj.radius, scene.camera.near);
-    if (GLint l = prog.Uniform("uRect"); l >= 0) glUniform4f(l, rect[0], rect[1], rect[2], rect[3]);
+    if (is_mesh) {
+      // World-space vertices: the model-view matrix is the view; its rotation (orthonormal)
+      // is its own inverse transpose, seed 000's normal matrix.
+      const Eigen::Matrix4f viewf = view.cast<float>();
+      const Eigen::Matrix3f normal_matrix = viewf.topLeftCorner<3, 3>();
+      prog.SetMat4("uModelView", viewf.data());
+      prog.SetMat3("uNormalMatrix", normal_matrix.data());
+    } else {
+      const Vec3 c = Transform(view, obj.centre, 1.0);
+      prog.Set("uSphereCentre", static_cast<float>(c.x), static_cast<float>(c.y),
+               static_cast<float>(c.z));
+      prog.Set("uSphereRadius", static_cast<float>(obj.radius));
+      const auto rect = SphereRect(view, proj, obj.centre, obj.radius, scene.camera.near);
+      if (GLint l = prog.Uniform("uRect"); l >= 0)
+        glUniform4f(l, rect[0], rect[1], rect[2], rect[3]);
+    }
 
     auto set3 = [&](const std::string& n, const Vec3& x) {
       prog.Set(n, static_cast<float>(x.x), static_cast<float>(x.y), static_cast<float>(x.z));
@@ -214,7 +254,12 @@ Image Renderer::RenderLinear(const Scene& scene, const MaterialSet& materials, E
         prog.Set("uFactorQ", 2);
         break;
     }
-    glDrawArrays(GL_TRIANGLES, 0, 6);
+    if (is_mesh) {
+      MeshBuffers(obj.mesh, log).Draw();
+      glBindVertexArray(empty_vao_);
+    } else {
+      glDrawArrays(GL_TRIANGLES, 0, 6);
+    }
     CheckGl("draw");
     if (log) {
       log->Add("draw", "object '" + obj.name + "' (" + ToString(mat.kind) + " '" + mat.name +
@@ -228,7 +273,8 @@ Image Renderer::RenderLinear(const Scene& scene, const MaterialSet& materials, E
 
 Image Renderer::ToDisplay(const Image& linear, const Scene& scene) {
   const DisplaySettings& d = scene.display;
-  const std::string key = std::string("tonemap ") + ToString(d.tone_map) + " " + ToString(d.encoding);
+  const std::string key =
+      std::string("tonemap ") + ToString(d.tone_map) + " " + ToString(d.encoding);
   auto it = programs_.find(key);
   if (it == programs_.end()) {
     it = programs_

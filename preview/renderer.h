@@ -37,6 +37,13 @@ class Renderer {
     std::shared_ptr<const void> owner;
     std::unique_ptr<Texture> texture;
   };
+  // Vertex buffers of a mesh, cached (and co-owned) like the textures.
+  const GpuMesh& MeshBuffers(const std::shared_ptr<const Mesh>& mesh, ExplainLog* log);
+  struct CachedMesh {
+    std::shared_ptr<const Mesh> owner;
+    std::unique_ptr<GpuMesh> buffers;
+  };
+  std::map<const Mesh*, CachedMesh> meshes_;
   std::map<std::string, std::unique_ptr<Program>> programs_;
   std::map<const void*, CachedTexture> textures_;
   GLuint empty_vao_ = 0;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -13,18 +14,24 @@ namespace brdfit::preview {
 
 const char* ToString(LightType t) {
   switch (t) {
-    case LightType::kDirectional: return "directional";
-    case LightType::kPoint: return "point";
-    case LightType::kSpot: return "spot";
+    case LightType::kDirectional:
+      return "directional";
+    case LightType::kPoint:
+      return "point";
+    case LightType::kSpot:
+      return "spot";
   }
   return "?";
 }
 
 const char* ToString(MaterialKind k) {
   switch (k) {
-    case MaterialKind::kAnalytic: return "analytic";
-    case MaterialKind::kMeasured: return "measured";
-    case MaterialKind::kFactored: return "factored";
+    case MaterialKind::kAnalytic:
+      return "analytic";
+    case MaterialKind::kMeasured:
+      return "measured";
+    case MaterialKind::kFactored:
+      return "factored";
   }
   return "?";
 }
@@ -291,7 +298,14 @@ Object ParseObject(Reader r, int index) {
   Object o;
   o.name = r.String("name", "object" + std::to_string(index));
   const std::string shape = r.String("shape", "sphere");
-  if (shape != "sphere") r.Fail("unknown shape '" + shape + "' (expected sphere)");
+  if (shape == "mesh") {
+    o.shape = ObjectShape::kMesh;
+    o.mesh_file = r.Path("file");
+    if (o.mesh_file.empty()) r.Fail("a mesh object needs 'file' (a Wavefront .obj)");
+    o.mesh_normalize = r.Bool("normalize", true);
+  } else if (shape != "sphere") {
+    r.Fail("unknown shape '" + shape + "' (expected sphere or mesh)");
+  }
   o.centre = r.Vector("centre", o.centre);
   o.radius = r.Positive("radius", 1.0);
   o.material = r.RequiredString("material");
@@ -407,12 +421,40 @@ std::set<std::string> UsedMaterials(const Scene& scene, bool comparison) {
   return used;
 }
 
-Scene LoadScene(const std::filesystem::path& path) {
+void LoadSceneMeshes(Scene* scene, ExplainLog* log) {
+  std::map<std::filesystem::path, std::shared_ptr<const Mesh>> files;
+  for (Object& o : scene->objects) {
+    if (o.shape != ObjectShape::kMesh) continue;
+    auto it = files.find(o.mesh_file);
+    if (it == files.end()) {
+      auto mesh = std::make_shared<const Mesh>(LoadObj(o.mesh_file));
+      if (log) {
+        std::string what = "mesh " + o.mesh_file.string() + " (" +
+                           std::to_string(mesh->NumTriangles()) + " triangles, " +
+                           std::to_string(mesh->positions.size()) + " vertices";
+        if (mesh->computed_normals) what += ", normals computed";
+        if (mesh->dropped_triangles) {
+          what += ", " + std::to_string(mesh->dropped_triangles) + " zero-area triangles left out";
+        }
+        log->Add("load", what + ")");
+      }
+      it = files.emplace(o.mesh_file, std::move(mesh)).first;
+    } else if (log) {
+      log->Add("reuse", "mesh " + o.mesh_file.string() + " for object '" + o.name + "'");
+    }
+    o.mesh =
+        std::make_shared<const Mesh>(PlaceMesh(*it->second, o.centre, o.radius, o.mesh_normalize));
+  }
+}
+
+Scene LoadScene(const std::filesystem::path& path, ExplainLog* log) {
   std::ifstream in(path);
   if (!in) throw InputError(path, "cannot open scene file");
   std::stringstream ss;
   ss << in.rdbuf();
-  return ParseScene(ss.str(), path);
+  Scene scene = ParseScene(ss.str(), path);
+  LoadSceneMeshes(&scene, log);
+  return scene;
 }
 
 }  // namespace brdfit::preview

@@ -4,11 +4,14 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "models/geometry.h"
+#include "preview/explain.h"
+#include "preview/mesh.h"
 #include "preview/tonemap.h"
 
 namespace brdfit::preview {
@@ -60,21 +63,30 @@ struct MaterialSpec {
   std::string factor_param = "mccool";
 };
 
-enum class ObjectShape { kSphere };
+enum class ObjectShape { kSphere, kMesh };
 
 struct Object {
   std::string name;
   ObjectShape shape = ObjectShape::kSphere;
+  // Sphere: its centre and radius. Mesh: where its bounding sphere goes (mesh_normalize), or
+  // a translation and a uniform scale of the file's coordinates.
   Vec3 centre{0, 0, 0};
   double radius = 1.0;
   std::string material;
+  std::filesystem::path mesh_file;  // kMesh: an OBJ file
+  bool mesh_normalize = true;
+  std::shared_ptr<const Mesh> mesh;  // kMesh: in world space, set by LoadSceneMeshes
+
+  // The sphere, or the placed mesh's bounding sphere (light culling).
+  Vec3 BoundCentre() const { return mesh ? mesh->bound_centre : centre; }
+  double BoundRadius() const { return mesh ? mesh->bound_radius : radius; }
 };
 
 // Panels of `brdfit render --compare`: the scene's objects drawn with each material in turn.
 struct ComparisonSpec {
-  std::string measured;              // a measured material
-  std::vector<std::string> fitted;   // analytic materials (the first one is the error panel's)
-  std::string factored;              // a factored material, or empty
+  std::string measured;             // a measured material
+  std::vector<std::string> fitted;  // analytic materials (the first one is the error panel's)
+  std::string factored;             // a factored material, or empty
 };
 
 struct Scene {
@@ -99,7 +111,11 @@ std::set<std::string> UsedMaterials(const Scene& scene, bool comparison);
 
 // Parses and validates a scene file; relative paths resolve against the file's folder.
 // Throws InputError naming the file and the problem.
-Scene LoadScene(const std::filesystem::path& path);
+// Reads a scene file and loads the meshes its objects use (each file once; logged to `log`).
+Scene LoadScene(const std::filesystem::path& path, ExplainLog* log = nullptr);
+
+// Loads and places the meshes of a parsed scene (InputError naming the OBJ file).
+void LoadSceneMeshes(Scene* scene, ExplainLog* log);
 Scene ParseScene(const std::string& json_text, const std::filesystem::path& source);
 
 }  // namespace brdfit::preview

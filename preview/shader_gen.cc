@@ -60,12 +60,13 @@ std::string ShaderVariant::Key() const {
   if (material == MaterialKind::kMeasured) k += std::string(":") + ToString(theta_h_mapping);
   if (material == MaterialKind::kFactored) k += ":" + factor_param;
   k += " dir=" + std::to_string(num_directional) + " point=" + std::to_string(num_point) +
-       " spot=" + std::to_string(num_spot) + (punctual_pi ? " pi" : "");
+       " spot=" + std::to_string(num_spot) + (punctual_pi ? " pi" : "") + (mesh ? " mesh" : "");
   return k;
 }
 
-std::string ShadeVertexSource() {
-  return kVersion + std::string(GlslSource("preview/glsl/sphere.vert"));
+std::string ShadeVertexSource(const ShaderVariant& v) {
+  return kVersion +
+         std::string(GlslSource(v.mesh ? "preview/glsl/object.vert" : "preview/glsl/sphere.vert"));
 }
 
 std::string FullscreenVertexSource() {
@@ -76,7 +77,7 @@ std::string ShadeFragmentSource(const ShaderVariant& v) {
   std::string src = kVersion;
   src += Define("NUM_DIR_LIGHTS", v.num_directional) + Define("NUM_POINT_LIGHTS", v.num_point) +
          Define("NUM_SPOT_LIGHTS", v.num_spot) + Define("PUNCTUAL_PI", v.punctual_pi ? 1 : 0) +
-         Define("OBJECT_SPHERE", 1);
+         Define("OBJECT_SPHERE", v.mesh ? 0 : 1);
   src += "// ---- preview/glsl/common.glsl\n" + std::string(GlslSource("preview/glsl/common.glsl"));
   switch (v.material) {
     case MaterialKind::kAnalytic:

@@ -12,16 +12,18 @@ namespace brdfit::preview {
 
 struct ShaderVariant {
   MaterialKind material = MaterialKind::kAnalytic;
-  std::string model;  // kAnalytic: registry name
+  std::string model;                                     // kAnalytic: registry name
   ThetaHMapping theta_h_mapping = ThetaHMapping::kSqrt;  // kMeasured
   std::string factor_param = "mccool";                   // kFactored
   int num_directional = 0, num_point = 0, num_spot = 0;
   bool punctual_pi = true;
+  bool mesh = false;  // a triangle mesh (object.vert), else an analytic sphere (sphere.vert)
 
   std::string Key() const;  // cache key, also printed by --explain
 };
 
-std::string ShadeVertexSource();  // sphere: a screen rectangle (glsl/sphere.vert)
+// Sphere: a screen rectangle (glsl/sphere.vert); mesh: seed 000's vertex stage (object.vert).
+std::string ShadeVertexSource(const ShaderVariant& v);
 std::string ShadeFragmentSource(const ShaderVariant& v);
 std::string ToneMapFragmentSource(ToneMap t, Encoding e);
 std::string FullscreenVertexSource();

@@ -9,7 +9,7 @@ PACKAGES=(
   libopenexr-dev libhdf5-dev libzip-dev libpng-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libegl-dev libgl-dev libegl1-mesa-dev libgl1-mesa-dri libglfw3-dev
+  libegl-dev libgl-dev libegl1-mesa-dev libgl1-mesa-dri libglfw3-dev libtinyobjloader-dev
   libjs-chart.js chromium xvfb xauth time
 )
 # Extra packages for the sanitizer / fuzzing build (clang's runtimes).

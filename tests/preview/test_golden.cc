@@ -5,6 +5,8 @@
 //     range, decay, cone and penumbra; the pi punctual convention.
 //   seed004_steps: seed 004's spheres from Lambert to PBR (3, 5, 6, 12, 13, 14, 15) under
 //     Unity's default directional light, seed 004's parameters, no pi factor.
+//   mesh_torus: a triangle mesh (data/scenes/torus.obj, scripts/make_torus_obj.py) with
+//     lambert+ggx under a directional and a point light.
 // Origin: rendered by this renderer (Mesa llvmpipe, EGL surfaceless), inspected by eye, and
 // cross-checked numerically by the parity tests (GPU vs the C++ models). Update after an
 // intended change with BRDFIT_UPDATE_GOLDEN=1 (the test then writes the PNGs and passes).
@@ -75,7 +77,7 @@ TEST_P(Golden, MatchesStoredImage) {
 
 INSTANTIATE_TEST_SUITE_P(Seeds, Golden,
                          ::testing::Values("seed000_ggx_directional", "seed000_ggx_point",
-                                           "seed000_ggx_spot", "seed004_steps"));
+                                           "seed000_ggx_spot", "seed004_steps", "mesh_torus"));
 
 }  // namespace
 }  // namespace brdfit::preview

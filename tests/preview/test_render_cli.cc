@@ -54,10 +54,9 @@ int Count(const std::string& text, const std::string& needle) {
 class RenderCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ =
-        fs::temp_directory_path() /
-        ("brdfit_render_cli_" + std::to_string(::getpid()) +
-         "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = fs::temp_directory_path() /
+           ("brdfit_render_cli_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     // Three small synthetic tables (lambert+ggx with different roughness).
@@ -179,6 +178,42 @@ TEST_F(RenderCli, BadInputExitsTwoNamingTheFile) {
   const CliRun s = RunCli("render " + (dir_ / "scene.json").string() + " -o x.png --size 12");
   EXPECT_EQ(s.code, 2);
   EXPECT_NE(s.out.find("--size"), std::string::npos) << s.out;
+}
+
+// A mesh object (`"shape": "mesh"`): the OBJ is loaded once for two objects, the image is
+// written; a broken OBJ exits 2 naming it and writes nothing.
+TEST_F(RenderCli, MeshObjectsRenderAndABrokenMeshIsNamed) {
+  { std::ofstream(dir_ / "quad.obj") << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n"; }
+  WriteScene(R"({"materials": {"m": {"type": "analytic", "model": "lambert",
+                                     "params": {"kd_r": 1, "kd_g": 1, "kd_b": 1}}},
+                 "lights": [{"type": "directional", "direction": [0, 0, 1]}],
+                 "objects": [{"name": "a", "shape": "mesh", "file": "quad.obj", "material": "m",
+                              "centre": [-1, 0, 0], "radius": 0.8},
+                             {"name": "b", "shape": "mesh", "file": "quad.obj", "material": "m",
+                              "centre": [1, 0, 0], "radius": 0.8}]})");
+  const CliRun r = RunCli("render " + (dir_ / "scene.json").string() + " --size 64x32 -o " +
+                          (dir_ / "quads.exr").string() + " --explain");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(Count(r.out, "load: mesh"), 1) << r.out;
+  EXPECT_NE(r.out.find("(2 triangles, 4 vertices, normals computed)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("reuse: mesh"), std::string::npos) << r.out;
+  EXPECT_EQ(Count(r.out, "draw: object"), 2) << r.out;
+  // A white Lambert quad facing a unit directional light along its normal shows the light
+  // colour (pi convention): radiance 1 inside both quads.
+  const Image img = ReadExr(dir_ / "quads.exr");
+  const float* left = img.At(16, 16);
+  const float* right = img.At(48, 16);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(left[c], 1.0f, 1e-5f);
+    EXPECT_NEAR(right[c], 1.0f, 1e-5f);
+  }
+
+  { std::ofstream(dir_ / "quad.obj") << "v 0 0 0\nf 1 2 3\n"; }
+  const CliRun bad =
+      RunCli("render " + (dir_ / "scene.json").string() + " -o " + (dir_ / "bad.png").string());
+  EXPECT_EQ(bad.code, 2) << bad.out;
+  EXPECT_NE(bad.out.find("quad.obj"), std::string::npos) << bad.out;
+  EXPECT_FALSE(fs::exists(dir_ / "bad.png"));
 }
 
 // --window without a display: a clear error and exit 2, nothing written.

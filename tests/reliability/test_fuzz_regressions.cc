@@ -35,6 +35,7 @@ constexpr Harnesses kHarnesses[] = {
     {"factor_sidecar", FuzzFactorSidecar},
     {"scene", FuzzScene},
     {"fit_report", FuzzFitReport},
+    {"mesh", FuzzMesh},
 };
 
 struct Input {
