@@ -84,8 +84,11 @@ Mesh ParseObj(const std::string& text, const std::filesystem::path& source) {
         if (fresh) {
           const std::size_t v = static_cast<std::size_t>(c.vertex_index);
           const Vec3 p{a.vertices[3 * v], a.vertices[3 * v + 1], a.vertices[3 * v + 2]};
-          if (!Finite(p))
-            throw InputError(source, "vertex " + std::to_string(v + 1) + " is not finite");
+          if (!Finite(p) || std::abs(p.x) > kMaxMeshCoordinate ||
+              std::abs(p.y) > kMaxMeshCoordinate || std::abs(p.z) > kMaxMeshCoordinate) {
+            throw InputError(source,
+                             "vertex " + std::to_string(v + 1) + " is not finite or beyond 1e100");
+          }
           Vec3 nrm{0, 0, 0};
           if (c.normal_index >= 0) {
             const std::size_t ni = static_cast<std::size_t>(c.normal_index);
@@ -169,6 +172,10 @@ Mesh PlaceMesh(const Mesh& mesh, const Vec3& centre, double radius, bool normali
   for (Vec3& p : out.positions) p = centre + scale * (p - origin);
   // A uniform scale and a translation leave unit normals unchanged.
   ComputeBounds(&out);
+  if (!Finite(out.bound_centre) || !std::isfinite(out.bound_radius) || !(out.bound_radius > 0)) {
+    throw InputError("placing the mesh (radius " + std::to_string(radius) +
+                     ") gives coordinates out of range");
+  }
   return out;
 }
 

@@ -28,15 +28,18 @@ struct Mesh {
 
 // Parses OBJ text (v, vn, f; polygons are triangulated; materials and texture coordinates are
 // ignored). Throws InputError naming `source` for text that is not a usable mesh: no triangle,
-// non-finite coordinates, out-of-range indices, more than kMaxMeshVertices vertices.
+// coordinates that are not finite or beyond kMaxMeshCoordinate (products of two must not
+// overflow), out-of-range indices, more than kMaxMeshVertices vertices.
 inline constexpr std::size_t kMaxMeshVertices = 20'000'000;
+inline constexpr double kMaxMeshCoordinate = 1e100;
 Mesh ParseObj(const std::string& text, const std::filesystem::path& source);
 
 // Reads and parses an OBJ file (InputError for a missing or unreadable file).
 Mesh LoadObj(const std::filesystem::path& path);
 
 // The mesh in world space. normalize: its bounding sphere becomes (centre, radius). Otherwise
-// the file's coordinates are kept, scaled by `radius` and moved by `centre`.
+// the file's coordinates are kept, scaled by `radius` and moved by `centre`. Throws
+// InputError when the placed coordinates overflow.
 Mesh PlaceMesh(const Mesh& mesh, const Vec3& centre, double radius, bool normalize);
 
 }  // namespace brdfit::preview

@@ -442,8 +442,12 @@ void LoadSceneMeshes(Scene* scene, ExplainLog* log) {
     } else if (log) {
       log->Add("reuse", "mesh " + o.mesh_file.string() + " for object '" + o.name + "'");
     }
-    o.mesh =
-        std::make_shared<const Mesh>(PlaceMesh(*it->second, o.centre, o.radius, o.mesh_normalize));
+    try {
+      o.mesh = std::make_shared<const Mesh>(
+          PlaceMesh(*it->second, o.centre, o.radius, o.mesh_normalize));
+    } catch (const InputError& e) {
+      throw InputError(scene->source, "object '" + o.name + "': " + e.what());
+    }
   }
 }
 

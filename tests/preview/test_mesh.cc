@@ -94,6 +94,11 @@ TEST(MeshObj, BadFilesAreNamedWithTheProblem) {
   EXPECT_FALSE(bad_normal.empty());
   const std::string huge = ErrorOf("v 0 0 0\nv 1e400 0 0\nv 0 1 0\nf 1 2 3\n");
   EXPECT_FALSE(huge.empty()) << "an overflowing coordinate must not become a vertex";
+  // Finite but so large that squared distances overflow (fuzz/regressions/mesh).
+  const std::string large = ErrorOf("v 0 0 0\nv 1e300 0 0\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_NE(large.find("beyond 1e100"), std::string::npos) << large;
+  // Placement that overflows is refused too.
+  EXPECT_THROW(PlaceMesh(ParseObj(CubeObj(), "cube.obj"), {0, 0, 0}, 1e300, false), InputError);
   try {
     LoadObj("/nonexistent/brdfit/mesh.obj");
     FAIL() << "expected InputError";
