@@ -13,6 +13,7 @@
 #include "fit/metrics.h"
 #include "io/atomic_file.h"
 #include "io/error.h"
+#include "io/hdf5_storage.h"
 
 namespace brdfit {
 
@@ -215,6 +216,9 @@ class Reader {
     hsize_t n = 0;
     space.getSimpleExtentDims(&n);
     if (n > max) Fail(fmt::format("dataset {}/{} is too long", where, name));
+    if (const std::string why = DamagedStorage(ds); !why.empty()) {
+      Fail(fmt::format("dataset {}/{} is damaged: {}", where, name, why));
+    }
     std::vector<double> v(n);
     if (n > 0) ds.read(v.data(), H5::PredType::NATIVE_DOUBLE);
     for (double x : v) {
@@ -273,6 +277,9 @@ class Reader {
     if (ab.getTypeClass() != H5T_INTEGER || ab.getDataType().getSize() > 8 ||
         ab.getSpace().getSimpleExtentNpoints() != static_cast<hssize_t>(r.params.size())) {
       Fail(fmt::format("{}/at_bound must be {} integers", where, r.params.size()));
+    }
+    if (const std::string why = DamagedStorage(ab); !why.empty()) {
+      Fail(fmt::format("{}/at_bound is damaged: {}", where, why));
     }
     std::vector<std::uint8_t> b(r.params.size());
     if (!b.empty()) ab.read(b.data(), H5::PredType::NATIVE_UINT8);

@@ -11,6 +11,7 @@
 
 #include "io/atomic_file.h"
 #include "io/error.h"
+#include "io/hdf5_storage.h"
 #include "io/input_file.h"
 
 namespace brdfit {
@@ -158,6 +159,13 @@ class Reader {
     }
   }
 
+  // Before reading a dataset: its storage must hold every element (io/hdf5_storage.h).
+  void CheckStored(const H5::DataSet& ds, const std::string& what) const {
+    if (const std::string why = DamagedStorage(ds); !why.empty()) {
+      Fail(what + " is damaged: " + why);
+    }
+  }
+
   std::string StringAttr(const H5::H5Object& obj, const std::string& where,
                          const char* name) const {
     H5::Attribute a = Attr(obj, where, name);
@@ -262,6 +270,8 @@ class Reader {
     }
 
     Table t = Table::Empty(g);
+    CheckStored(values, "dataset /values");
+    CheckStored(valid, "dataset /valid");
     values.read(t.rgb.data(), H5::PredType::NATIVE_DOUBLE);
     valid.read(t.valid.data(), H5::PredType::NATIVE_UINT8);
     for (std::size_t i = 0; i < g.NumCells(); ++i) {
@@ -315,6 +325,7 @@ class Reader {
   template <class F>
   void CheckAxis(const H5::Group& axes, const char* name, int n, F angle_at) const {
     H5::DataSet ds = ReadAxisDataset(axes, name, n);
+    CheckStored(ds, std::string("dataset /axes/") + name);
     std::vector<double> c(n);
     ds.read(c.data(), H5::PredType::NATIVE_DOUBLE);
     for (int i = 0; i < n; ++i) {

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "io/error.h"
+#include "io/hdf5_storage.h"
 #include "io/input_file.h"
 
 namespace brdfit {
@@ -105,6 +106,9 @@ Eigen::MatrixXd ReadWeights(const fs::path& path, const std::string& member, con
   }
   const hsize_t r = std::max<hsize_t>(rows, 1);
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> m(r, cols);
+  if (const std::string why = DamagedStorage(ds); !why.empty()) {
+    throw InputError(path, member + ": dataset " + name + " is damaged: " + why);
+  }
   ds.read(m.data(), H5::PredType::NATIVE_DOUBLE);
   if (!m.allFinite()) throw InputError(path, member + ": non-finite weight in " + name);
   return m;
