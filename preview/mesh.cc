@@ -4,11 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <map>
-#include <sstream>
 
 #include "io/error.h"
+#include "io/input_file.h"
 
 namespace brdfit::preview {
 namespace {
@@ -156,13 +155,8 @@ Mesh ParseObj(const std::string& text, const std::filesystem::path& source) {
 }
 
 Mesh LoadObj(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "no such mesh file");
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in.good() && !in.eof()) throw InputError(path, "cannot read the mesh file");
-  return ParseObj(text.str(), path);
+  const std::vector<char> bytes = ReadWholeFile(path);  // InputError naming the file
+  return ParseObj(std::string(bytes.begin(), bytes.end()), path);
 }
 
 Mesh PlaceMesh(const Mesh& mesh, const Vec3& centre, double radius, bool normalize) {

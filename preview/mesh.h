@@ -34,7 +34,7 @@ inline constexpr std::size_t kMaxMeshVertices = 20'000'000;
 inline constexpr double kMaxMeshCoordinate = 1e100;
 Mesh ParseObj(const std::string& text, const std::filesystem::path& source);
 
-// Reads and parses an OBJ file (InputError for a missing or unreadable file).
+// Reads and parses an OBJ file (io/input_file.h: InputError for a missing or unreadable file).
 Mesh LoadObj(const std::filesystem::path& path);
 
 // The mesh in world space. normalize: its bounding sphere becomes (centre, radius). Otherwise

@@ -31,12 +31,11 @@ double IntersectSphere(const Vec3& centre, double radius, const Vec3& o, const V
 // barycentric mix of the vertex normals, normalized. Brute force: meshes in tests are small.
 double IntersectMesh(const Mesh& m, const Vec3& o, const Vec3& d, double t_max, Vec3* normal) {
   const double inf = std::numeric_limits<double>::infinity();
-  Vec3 n_sphere;
-  if (!std::isfinite(
-          IntersectSphere(m.bound_centre, m.bound_radius * (1 + 1e-9), o, d, &n_sphere)) &&
-      Length(o - m.bound_centre) > m.bound_radius) {
-    return inf;
-  }
+  // The ray's line passes farther from the bounding sphere's centre than its radius: no hit.
+  const Vec3 oc = m.bound_centre - o;
+  const Vec3 off_axis = oc - Dot(d, oc) * d;
+  const double r = m.bound_radius * (1 + 1e-9);
+  if (Dot(off_axis, off_axis) > r * r) return inf;
   double best = t_max;
   bool found = false;
   for (std::size_t i = 0; i + 2 < m.indices.size(); i += 3) {
@@ -80,6 +79,9 @@ Image RenderReference(const Scene& scene, const MaterialSet& materials, int widt
   };
   std::vector<Eval> evals;
   for (const Object& o : scene.objects) {
+    if (o.shape == ObjectShape::kMesh && !o.mesh) {
+      throw std::logic_error("object '" + o.name + "': its mesh was not loaded");
+    }
     const ResolvedMaterial& m = materials.at(o.material);
     Eval e{nullptr, &m};
     if (m.kind == MaterialKind::kAnalytic) e.model = FindModel(m.model);
@@ -104,9 +106,6 @@ Image RenderReference(const Scene& scene, const MaterialSet& materials, int widt
       for (std::size_t k = 0; k < scene.objects.size(); ++k) {
         const Object& o = scene.objects[k];
         Vec3 n_k;
-        if (o.shape == ObjectShape::kMesh && !o.mesh) {
-          throw std::logic_error("object '" + o.name + "': its mesh was not loaded");
-        }
         const double t = o.shape == ObjectShape::kMesh
                              ? IntersectMesh(*o.mesh, cam.position, d, best, &n_k)
                              : IntersectSphere(o.centre, o.radius, cam.position, d, &n_k);

@@ -119,8 +119,7 @@ const GpuMesh& Renderer::MeshBuffers(const std::shared_ptr<const Mesh>& mesh, Ex
     const Vec3& n = mesh->normals[i];
     for (double x : {p.x, p.y, p.z, n.x, n.y, n.z}) vertices.push_back(static_cast<float>(x));
   }
-  const std::vector<unsigned> indices(mesh->indices.begin(), mesh->indices.end());
-  auto buffers = std::make_unique<GpuMesh>(vertices, std::vector<int>{3, 3}, indices);
+  auto buffers = std::make_unique<GpuMesh>(vertices, std::vector<int>{3, 3}, mesh->indices);
   CheckGl("mesh upload");
   if (log)
     log->Add("compute", "vertex buffers (" + std::to_string(mesh->NumTriangles()) + " triangles)");
@@ -153,8 +152,8 @@ Image Renderer::RenderLinear(const Scene& scene, const MaterialSet& materials, E
     }
     const ResolvedMaterial& mat = mit->second;
     const bool is_mesh = obj.shape == ObjectShape::kMesh;
-    if (is_mesh && !obj.mesh) {
-      throw InputError(scene.source, "object '" + obj.name + "': its mesh was not loaded");
+    if (is_mesh && !obj.mesh) {  // LoadScene / LoadSceneMeshes were not called
+      throw std::logic_error("object '" + obj.name + "': its mesh was not loaded");
     }
     // Lights that reach this object; the rest are culled before the shader is generated.
     std::vector<const Light*> dir, point, spot;

@@ -14,6 +14,7 @@
 #include "preview/reference_render.h"
 #include "preview/renderer.h"
 #include "tests/preview/gl_test_env.h"
+#include "tests/preview/reference_compare.h"
 
 namespace brdfit::preview {
 namespace {
@@ -51,21 +52,9 @@ std::shared_ptr<Table> Synth(ThetaHMapping mapping, double missing) {
       grid, [&](const Geometry& g, double rgb[3]) { m->eval(p.data(), g, rgb); }, opt));
 }
 
-// Relative error per pixel, n.v >= 0.1 (silhouette excluded).
+// Relative error per pixel, n.v >= 0.1 (silhouette excluded), floor 1e-4 of the peak.
 double MaxRel(const Image& gpu, const Image& cpu, const ReferenceExtras& ex) {
-  double peak = 0, worst = 0;
-  for (float v : cpu.rgba) peak = std::max(peak, double(v));
-  for (int y = 0; y < cpu.height; ++y) {
-    for (int x = 0; x < cpu.width; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * cpu.width + x;
-      if (!ex.hit[i] || ex.cos_view[i] < 0.1) continue;
-      for (int c = 0; c < 3; ++c) {
-        const double r = cpu.At(x, y)[c], g = gpu.At(x, y)[c];
-        worst = std::max(worst, std::abs(g - r) / std::max(std::abs(r), 1e-4 * peak));
-      }
-    }
-  }
-  return worst;
+  return testing::CompareToReference(gpu, cpu, ex, 1e-4, false).max_rel;
 }
 
 // The same 1e-3 as the analytic parity: llvmpipe filters RGBA32F textures with float weights
@@ -89,8 +78,8 @@ TEST(Measured, GpuTextureMatchesTableLookupTrilinear) {
       ReferenceExtras ex;
       const Image cpu = RenderReference(scene, mats, scene.width, scene.height, &ex);
       const double err = MaxRel(gpu, cpu, ex);
-      std::printf("measured %s missing %.1f: max relative error %.3g\n", ToString(mapping),
-                  missing, err);
+      std::printf("measured %s missing %.1f: max relative error %.3g\n", ToString(mapping), missing,
+                  err);
       EXPECT_LT(err, kTextureTolerance);
     }
   }

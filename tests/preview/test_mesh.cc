@@ -14,12 +14,15 @@
 #include "preview/renderer.h"
 #include "tests/preview/gl_test_env.h"
 #include "tests/preview/mesh_test_util.h"
+#include "tests/preview/reference_compare.h"
 #include "tests/scratch_dir.h"
 
 namespace brdfit::preview {
 namespace {
 
+using testing::CompareToReference;
 using testing::CubeObj;
+using testing::ReferenceComparison;
 using testing::UvSphereObj;
 
 std::string ErrorOf(const std::string& obj_text) {
@@ -109,36 +112,6 @@ TEST(MeshObj, BadFilesAreNamedWithTheProblem) {
 
 // ---- GPU against the CPU reference ------------------------------------------------------------
 
-struct ParityResult {
-  double max_rel = 0;
-  long compared = 0;
-};
-
-// Pixels whose centre sees the surface at n.v >= 0.1 in the reference, away from silhouettes.
-ParityResult Compare(const Image& gpu, const Image& cpu, const ReferenceExtras& ex) {
-  ParityResult r;
-  double peak = 0;
-  for (float v : cpu.rgba) peak = std::max(peak, static_cast<double>(v));
-  for (int y = 1; y + 1 < cpu.height; ++y) {
-    for (int x = 1; x + 1 < cpu.width; ++x) {
-      bool interior = true;
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          interior &= ex.hit[static_cast<std::size_t>(y + dy) * cpu.width + x + dx] != 0;
-        }
-      }
-      const std::size_t i = static_cast<std::size_t>(y) * cpu.width + x;
-      if (!interior || ex.cos_view[i] < 0.1) continue;
-      for (int ch = 0; ch < 3; ++ch) {
-        const double g = gpu.At(x, y)[ch], c = cpu.At(x, y)[ch];
-        r.max_rel = std::max(r.max_rel, std::abs(g - c) / std::max(std::abs(c), 1e-6 * peak));
-      }
-      ++r.compared;
-    }
-  }
-  return r;
-}
-
 Scene MeshScene(const std::string& obj_text, bool normalize, MaterialSet* mats) {
   Scene s;
   s.camera.position = {0.5, 1.2, 4.0};
@@ -185,7 +158,7 @@ TEST(MeshRender, GpuMatchesCpuReferenceOnSmoothAndFlatMeshes) {
     const Image gpu = renderer.RenderLinear(scene, mats, &log);
     ReferenceExtras ex;
     const Image cpu = RenderReference(scene, mats, scene.width, scene.height, &ex);
-    const ParityResult r = Compare(gpu, cpu, ex);
+    const ReferenceComparison r = CompareToReference(gpu, cpu, ex, 1e-6, true);
     std::printf("mesh parity %-28s max relative error %.3g over %ld pixels\n", c.name, r.max_rel,
                 r.compared);
     EXPECT_GT(r.compared, 96 * 96 / 8);
@@ -211,7 +184,7 @@ TEST(MeshRender, TessellatedSphereLooksLikeTheAnalyticSphere) {
   const Image sphere = renderer.RenderLinear(scene, mats, nullptr);
   ReferenceExtras ex;
   RenderReference(scene, mats, scene.width, scene.height, &ex);
-  const ParityResult r = Compare(mesh, sphere, ex);
+  const ReferenceComparison r = CompareToReference(mesh, sphere, ex, 1e-6, true);
   std::printf("tessellated vs analytic sphere: max relative difference %.3g over %ld pixels\n",
               r.max_rel, r.compared);
   EXPECT_GT(r.compared, 96 * 96 / 4);

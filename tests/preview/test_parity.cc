@@ -12,6 +12,7 @@
 #include "preview/reference_render.h"
 #include "preview/renderer.h"
 #include "tests/preview/gl_test_env.h"
+#include "tests/preview/reference_compare.h"
 
 namespace brdfit::preview {
 namespace {
@@ -44,32 +45,6 @@ Scene ParityScene(const std::string& model, const std::vector<double>& params, M
   return s;
 }
 
-struct Comparison {
-  double max_rel = 0;
-  long compared = 0;
-};
-
-Comparison Compare(const Image& gpu, const Image& cpu, const ReferenceExtras& ex) {
-  Comparison c;
-  double peak = 0;
-  for (float v : cpu.rgba) peak = std::max(peak, static_cast<double>(v));
-  for (int y = 0; y < cpu.height; ++y) {
-    for (int x = 0; x < cpu.width; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * cpu.width + x;
-      if (!ex.hit[i] || ex.cos_view[i] < 0.1) continue;
-      for (int ch = 0; ch < 3; ++ch) {
-        const double g = gpu.At(x, y)[ch], r = cpu.At(x, y)[ch];
-        // Relative to the reference; values below 1e-6 of the image peak (float denormal range
-        // of a lobe's tail) are compared against that floor instead of themselves.
-        const double denom = std::max(std::abs(r), 1e-6 * peak);
-        c.max_rel = std::max(c.max_rel, std::abs(g - r) / denom);
-      }
-      ++c.compared;
-    }
-  }
-  return c;
-}
-
 // Parameter sets: the defaults, and one with every parameter at 30 % of its range (log-scale
 // parameters geometrically, kept above 0.02 so a lobe spans several pixels).
 std::vector<std::vector<double>> ParamSets(const ModelInfo& m) {
@@ -96,7 +71,9 @@ TEST(Parity, EveryModelGpuMatchesCpuReference) {
       const Image gpu = renderer.RenderLinear(scene, mats, nullptr);
       ReferenceExtras ex;
       const Image cpu = RenderReference(scene, mats, scene.width, scene.height, &ex);
-      const Comparison c = Compare(gpu, cpu, ex);
+      // Values below 1e-6 of the image peak (float denormal range of a lobe's tail) are
+      // compared against that floor.
+      const testing::ReferenceComparison c = testing::CompareToReference(gpu, cpu, ex, 1e-6, false);
       EXPECT_GT(c.compared, scene.width * scene.height / 4);
       EXPECT_LE(c.max_rel, kTolerance);
       std::printf("parity %-20s set %d: max relative error %.3g over %ld pixels\n",
