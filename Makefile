@@ -45,7 +45,7 @@ bench: build
 	for b in $(BUILD)/bench/bench_*; do $$b; done
 
 format:
-	find models io fit preview cli tests bench -name '*.h' -o -name '*.cc' | xargs clang-format -i
+	find models core io fit factor report preview pipeline cli tests bench -name '*.h' -o -name '*.cc' | xargs clang-format -i
 
 clean:
 	rm -rf $(BUILD) $(BUILD_ASAN)

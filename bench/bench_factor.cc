@@ -9,9 +9,9 @@
 #include <filesystem>
 #include <string>
 
-#include "fit/factor.h"
+#include "factor/factor.h"
 #include "io/nbrdf.h"
-#include "io/synth.h"
+#include "core/synth.h"
 #include "models/registry.h"
 
 namespace brdfit {

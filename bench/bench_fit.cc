@@ -7,7 +7,7 @@
 //   bench_fit --csv FILE [--models a,b] [--budgets full,stride:32,...] [--nbrdf all|m1,m2]
 //             [--repeats N]   the sweep: every (table, model, budget) fit, median times and the
 //                             metrics relative to the model's full-budget fit, as CSV
-//                             (fit/bench_sweep.h), plus a summary of medians on stdout.
+//                             (pipeline/bench_sweep.h), plus a summary of medians on stdout.
 #include <benchmark/benchmark.h>
 #include <fmt/core.h>
 
@@ -19,12 +19,12 @@
 #include <string>
 #include <vector>
 
-#include "fit/bench_sweep.h"
+#include "pipeline/bench_sweep.h"
 #include "fit/fitter.h"
 #include "io/atomic_file.h"
 #include "io/model_params.h"
 #include "io/nbrdf.h"
-#include "io/synth.h"
+#include "core/synth.h"
 #include "models/registry.h"
 
 namespace {

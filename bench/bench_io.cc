@@ -11,9 +11,9 @@
 #include "io/hdf5_table.h"
 #include "io/merl.h"
 #include "io/nbrdf.h"
-#include "io/synth.h"
+#include "core/synth.h"
 #include "io/table_io.h"
-#include "io/table_stats.h"
+#include "core/table_stats.h"
 #include "models/registry.h"
 
 namespace brdfit {

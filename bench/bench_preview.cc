@@ -6,7 +6,7 @@
 
 #include <memory>
 
-#include "io/synth.h"
+#include "core/synth.h"
 #include "models/registry.h"
 #include "preview/comparison.h"
 #include "preview/gl_context.h"

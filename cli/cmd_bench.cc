@@ -1,6 +1,6 @@
 // `brdfit bench FILES... --models ... --budgets ... --losses ...`: the run time against error
 // benchmark on the user's own tables. Sweeps tables x losses x budgets x models, writes one CSV
-// row per fit (io/bench_csv.h) and an HTML page with the Pareto plots (io/html_report.h).
+// row per fit (report/bench_csv.h) and an HTML page with the Pareto plots (report/html_report.h).
 // Also demo step 80 (two demo tables).
 #include <fmt/core.h>
 
@@ -16,9 +16,9 @@
 #include "fit/fitter.h"
 #include "fit/metrics.h"
 #include "io/atomic_file.h"
-#include "io/bench_csv.h"
-#include "io/error.h"
-#include "io/html_report.h"
+#include "report/bench_csv.h"
+#include "core/error.h"
+#include "report/html_report.h"
 #include "io/input_file.h"
 #include "io/table_io.h"
 

@@ -1,15 +1,15 @@
 // `brdfit compare OLD NEW`: per material and approximation, the metric deltas between two sets
 // of results (fit reports, factorizations, bench CSVs, or folders of them), a summary, and an
-// exit code that gates CI: 1 when anything regressed beyond the threshold (io/compare.h).
+// exit code that gates CI: 1 when anything regressed beyond the threshold (report/compare.h).
 #include <fmt/core.h>
 
 #include <filesystem>
 #include <string>
 
 #include "cli/command.h"
-#include "io/compare.h"
-#include "io/error.h"
-#include "io/report_inputs.h"
+#include "report/compare.h"
+#include "core/error.h"
+#include "report/report_inputs.h"
 
 namespace brdfit::cli {
 namespace {

@@ -1,5 +1,5 @@
 // `brdfit factor FILES... -o DIR`: rank-1 homomorphic factorization of each table into two
-// float32 OpenEXR textures plus a JSON sidecar (fit/factor.h, docs/factorization.md). The
+// float32 OpenEXR textures plus a JSON sidecar (factor/factor.h, docs/factorization.md). The
 // factored system is built once per grid and mask and reused for every further file.
 #include <fmt/core.h>
 
@@ -13,14 +13,14 @@
 
 #include "cli/command.h"
 #include "cli/demo.h"
-#include "cli/inputs.h"
-#include "fit/factor.h"
-#include "fit/factor_export.h"
-#include "fit/factor_metrics.h"
-#include "io/error.h"
+#include "pipeline/inputs.h"
+#include "factor/factor.h"
+#include "pipeline/factor_export.h"
+#include "factor/factor_metrics.h"
+#include "core/error.h"
 #include "io/input_file.h"
 #include "io/nbrdf.h"
-#include "io/report_inputs.h"
+#include "report/report_inputs.h"
 #include "io/table_io.h"
 
 namespace brdfit::cli {
@@ -94,7 +94,7 @@ FactorOptions CheckOptions(const FactorCliOptions& o) {
     throw InputError(fmt::format("--lambda {} must be a positive number", o.lambda));
   }
   std::map<std::string, std::string> stems;
-  for (const std::string& file : ExpandInputs(o.files)) {
+  for (const std::string& file : pipeline::ExpandInputs(o.files)) {
     if (!IsNbrdfInput(file)) CheckInputFile(file);
     const std::string stem = report::MaterialName(file) + o.suffix;
     if (auto [it, fresh] = stems.emplace(stem, file); !fresh) {
@@ -115,9 +115,9 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
     fmt::print("{:<28} {:<8} {:>4} {:>8} {:>7} {:>10} {:>9} {:>9} {:>8} {:>9}\n", "table", "param",
                "res", "cells", "f<=0", "ln-rmse", "E2-log", "cbrt", "system", "time");
   }
-  for (const std::string& file : ExpandInputs(o.files)) {
+  for (const std::string& file : pipeline::ExpandInputs(o.files)) {
     try {
-      const Table table = LoadInput(file);
+      const Table table = pipeline::LoadInput(file);
       Factorization r;
       try {
         r = Factor(table, options, &cache);

@@ -23,13 +23,13 @@
 
 #include "cli/command.h"
 #include "cli/demo.h"
-#include "cli/inputs.h"
+#include "pipeline/inputs.h"
 #include "cli/progress.h"
 #include "fit/fitter.h"
 #include "io/atomic_file.h"
-#include "io/error.h"
+#include "core/error.h"
 #include "io/fit_report.h"
-#include "io/report_inputs.h"
+#include "report/report_inputs.h"
 #include "io/table_io.h"
 
 namespace brdfit::cli {
@@ -175,7 +175,7 @@ void PrintSummary(std::FILE* out, const std::vector<FitReportEntry>& entries,
 }
 
 int RunFit(const FitCliOptions& o) {
-  const std::vector<std::string> files = ExpandInputs(o.files);
+  const std::vector<std::string> files = pipeline::ExpandInputs(o.files);
   if (files.empty()) throw InputError("no input files");
   if (o.jobs < 1 || o.jobs > 256) throw InputError("--jobs must be in [1, 256]");
   if (o.threads < 1 || o.threads > 256) throw InputError("--threads must be in [1, 256]");
@@ -264,7 +264,7 @@ int RunFit(const FitCliOptions& o) {
         if (!fs_.ready) {
           try {
             auto t0 = Clock::now();
-            Table table = LoadInput(files[t.file]);
+            Table table = pipeline::LoadInput(files[t.file]);
             fs_.load_ms = MsSince(t0);
             t0 = Clock::now();
             fs_.prepared.emplace(PrepareTable(std::move(table), so, fo));

@@ -1,6 +1,6 @@
 // `brdfit info FILE [--json]`: format, grid and mapping, valid/invalid counts (below the
 // horizon vs holes), per-channel min/median/max and a directional-albedo estimate
-// (io/table_stats.h), plus the provenance a brdfit HDF5 table carries.
+// (core/table_stats.h), plus the provenance a brdfit HDF5 table carries.
 #include <fmt/core.h>
 
 #include <cmath>
@@ -10,7 +10,7 @@
 
 #include "cli/command.h"
 #include "io/table_io.h"
-#include "io/table_stats.h"
+#include "core/table_stats.h"
 
 namespace brdfit::cli {
 namespace {

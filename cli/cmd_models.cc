@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "cli/command.h"
-#include "io/error.h"
+#include "core/error.h"
 #include "models/registry.h"
 
 namespace brdfit::cli {

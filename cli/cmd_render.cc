@@ -10,11 +10,11 @@
 
 #include "cli/command.h"
 #include "cli/demo.h"
-#include "io/error.h"
+#include "core/error.h"
 #include "preview/comparison.h"
 #include "preview/gl_context.h"
-#include "preview/image_io.h"
-#include "preview/loader.h"
+#include "io/image_io.h"
+#include "pipeline/material_loader.h"
 #include "preview/renderer.h"
 #include "preview/scene.h"
 #include "preview/window.h"
@@ -68,7 +68,7 @@ int RunWindow(const RenderOptions& o, const preview::Scene& scene,
   const preview::WindowResult r = preview::RunPreviewWindow(scene, materials, wo, log);
   if (!o.out.empty() && r.renders > 0) {
     // A PNG holds what the window showed (read back from it); an EXR the linear frame.
-    preview::WriteImageByExtension(o.out, r.last_linear,
+    WriteImageByExtension(o.out, r.last_linear,
                                    r.last_screen.width > 0 ? r.last_screen : r.last_display);
   }
   if (o.explain) fmt::print("{}", log->Format());
@@ -87,17 +87,17 @@ int RunRender(const RenderOptions& o) {
   if (o.compare && !scene.has_comparison) {
     throw InputError(o.scene, "--compare needs a 'comparison' section (docs/scenes.md)");
   }
-  preview::LoadOptions lo;
+  pipeline::LoadOptions lo;
   lo.cache_dir = o.cache;
   const auto t0 = Clock::now();
   const preview::MaterialSet materials =
-      preview::LoadMaterials(scene, preview::UsedMaterials(scene, o.compare), lo, &log);
+      pipeline::LoadMaterials(scene, preview::UsedMaterials(scene, o.compare), lo, &log);
   const auto t1 = Clock::now();
   if (o.window) return RunWindow(o, scene, materials, &log);
   preview::HeadlessGlContext context;
   log.Add("note", "OpenGL: " + context.Description());
   preview::Renderer renderer;
-  preview::Image linear, display;
+  Image linear, display;
   if (o.compare) {
     preview::ComparisonStats stats;
     display = preview::RenderComparison(renderer, scene, materials, scene.width, scene.height, &log,
@@ -108,7 +108,7 @@ int RunRender(const RenderOptions& o) {
     display = renderer.ToDisplay(linear, scene);
   }
   const auto t2 = Clock::now();
-  preview::WriteImageByExtension(o.out, linear, display);
+  WriteImageByExtension(o.out, linear, display);
   auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
   log.Add("note", fmt::format("materials {:.1f} ms, render {:.1f} ms ({}x{})", ms(t0, t1),
                               ms(t1, t2), scene.width, scene.height));
@@ -163,11 +163,9 @@ int DemoRender(DemoContext& ctx) {
         {"fit", {{"type", "analytic"}, {"model", "lambert+ggx"}, {"fit_table", table.string()}}}}},
       {"objects", {{{"name", "ball"}, {"material", name}}}},
       {"comparison", {{"measured", name}, {"fitted", "fit"}}}};
-  if (preview::FactorizationAvailable()) {
-    s["materials"]["factored"] = {
-        {"type", "factored"}, {"table", table.string()}, {"resolution", ctx.quick ? 16 : 32}};
-    s["comparison"]["factored"] = "factored";
-  }
+  s["materials"]["factored"] = {
+      {"type", "factored"}, {"table", table.string()}, {"resolution", ctx.quick ? 16 : 32}};
+  s["comparison"]["factored"] = "factored";
   const auto scene_path = ctx.out_dir / "compare_scene.json";
   {
     std::ofstream out(scene_path);

@@ -1,5 +1,5 @@
 // `brdfit report RESULTS... -o report.html`: one self-contained HTML page from fit reports,
-// factorizations, bench CSVs, renders and tables (io/report_inputs.h, io/html_report.h), with
+// factorizations, bench CSVs, renders and tables (report/report_inputs.h, report/html_report.h), with
 // θh slices of every material whose table is at hand. Also the demo's last step (order 90).
 #include <fmt/core.h>
 
@@ -10,15 +10,15 @@
 
 #include "cli/command.h"
 #include "cli/demo.h"
-#include "cli/inputs.h"
+#include "pipeline/inputs.h"
 #include "cli/progress.h"
-#include "fit/factor_export.h"
+#include "pipeline/factor_export.h"
 #include "fit/metrics.h"
 #include "io/atomic_file.h"
-#include "io/error.h"
-#include "io/html_report.h"
-#include "io/report_inputs.h"
-#include "io/report_slices.h"
+#include "core/error.h"
+#include "report/html_report.h"
+#include "report/report_inputs.h"
+#include "report/report_slices.h"
 #include "io/table_io.h"
 
 namespace brdfit::cli {
@@ -47,7 +47,7 @@ void AddSlices(const report::ReportSources& src, const ReportCliOptions& o, repo
         "do not name a readable one.");
     return;
   }
-  const Table table = LoadInput(t->second);
+  const Table table = pipeline::LoadInput(t->second);
   std::vector<report::NamedPredictor> predictors;
   for (const Entry& e : m->entries) {
     if (e.kind != Entry::Kind::kFit || e.Failed() || e.params.empty()) continue;

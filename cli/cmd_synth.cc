@@ -14,14 +14,14 @@
 
 #include "cli/command.h"
 #include "cli/demo.h"
-#include "cli/inputs.h"
+#include "pipeline/inputs.h"
 #include "io/atomic_file.h"
-#include "io/error.h"
+#include "core/error.h"
 #include "io/model_params.h"
 #include "io/nbrdf.h"
-#include "io/synth.h"
+#include "core/synth.h"
 #include "io/table_io.h"
-#include "io/table_stats.h"
+#include "core/table_stats.h"
 #include "models/registry.h"
 
 namespace brdfit::cli {
@@ -142,7 +142,7 @@ void PrintSummary(const fs::path& out, TableFormat f, const SynthResult& r) {
 
 int RunSynth(const SynthCliOptions& o) {
   if (o.list_nbrdf) {
-    for (const auto& m : ListNbrdfMaterials(NbrdfArchive(o.nbrdf_zip))) fmt::print("{}\n", m);
+    for (const auto& m : ListNbrdfMaterials(pipeline::NbrdfArchive(o.nbrdf_zip))) fmt::print("{}\n", m);
     return kExitOk;
   }
   if (o.model.empty() == o.nbrdf.empty()) {
@@ -177,7 +177,7 @@ int RunSynth(const SynthCliOptions& o) {
     if (!m) throw InputError("unknown model '" + o.model + "'; known models: " + ModelNames());
     r = SynthesizeFromModel(*m, ResolveModelParams(*m, o.params), grid, so);
   } else {
-    r = SynthesizeFromNbrdf(NbrdfArchive(o.nbrdf_zip), o.nbrdf, grid, so);
+    r = SynthesizeFromNbrdf(pipeline::NbrdfArchive(o.nbrdf_zip), o.nbrdf, grid, so);
   }
   SaveTable(r.table, out, *format);
   PrintSummary(out, *format, r);
@@ -269,7 +269,7 @@ int DemoSynth(DemoContext& ctx) {
     emit(mat.name, SynthesizeFromModel(*m, ResolveModelParams(*m, mat.params), grid,
                                        {mat.noise, mat.missing, 1}));
   }
-  const fs::path zip = NbrdfArchive("");
+  const fs::path zip = pipeline::NbrdfArchive("");
   if (fs::is_regular_file(zip)) {
     emit("nbrdf-gold-metallic-paint", SynthesizeFromNbrdf(zip, "gold-metallic-paint", grid, {}));
   } else {

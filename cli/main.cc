@@ -7,7 +7,7 @@
 
 #include "cli/command.h"
 #include "cli/demo.h"
-#include "io/error.h"
+#include "core/error.h"
 
 namespace brdfit::cli {
 std::vector<CommandSpec>& Commands() {

@@ -4,7 +4,7 @@
 // highlight).
 #pragma once
 
-#include "io/table.h"
+#include "core/table.h"
 
 namespace brdfit {
 

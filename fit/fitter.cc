@@ -4,7 +4,7 @@
 #include <chrono>
 
 #include "fit/model_ops.h"
-#include "io/error.h"
+#include "core/error.h"
 
 namespace brdfit {
 

@@ -16,9 +16,9 @@
 
 #include "fit/loss.h"
 #include "fit/options.h"
-#include "fit/result.h"
+#include "core/result.h"
 #include "fit/samples.h"
-#include "io/table.h"
+#include "core/table.h"
 
 namespace brdfit {
 

@@ -8,7 +8,7 @@
 #include "fit/bin_measure.h"
 #include "fit/loss.h"
 #include "fit/stratified.h"
-#include "io/error.h"
+#include "core/error.h"
 
 namespace brdfit {
 
@@ -182,7 +182,7 @@ Samples PrepareSamples(const Table& table, const SampleOptions& options) {
     while (row_begin < units.size()) {
       std::size_t row_end = row_begin;
       double all = 0, sel = 0;
-      // Cells of one (theta_h, theta_d) row share primary / n_phi_d (io/table.h, Index).
+      // Cells of one (theta_h, theta_d) row share primary / n_phi_d (core/table.h, Index).
       const std::size_t row = units[row_begin].primary / g.n_phi_d;
       while (row_end < units.size() && units[row_end].primary / g.n_phi_d == row) {
         all += units[row_end].weight;

@@ -19,7 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "io/table.h"
+#include "core/sample_counts.h"
+#include "core/table.h"
 #include "models/geometry.h"
 
 namespace brdfit {
@@ -52,17 +53,6 @@ struct SampleOptions {
   std::uint64_t seed = 1;    // for kRandom budgets; fixed so that fits are reproducible
   bool pair_mirrors = true;  // one model evaluation for a cell and its phi_d mirror
   bool operator==(const SampleOptions&) const = default;
-};
-
-// What preparation kept and dropped, for reports.
-struct SampleCounts {
-  std::size_t cells = 0;          // cells in the grid
-  std::size_t valid = 0;          // valid in the table
-  std::size_t nonfinite = 0;      // valid but NaN/Inf in the table: dropped
-  std::size_t negative = 0;       // kept, but some channel < 0 (log targets clamp m cos at 0)
-  std::size_t beyond_cutoff = 0;  // valid but beyond the cut-off (or grazing): dropped
-  std::size_t eligible = 0;       // valid, finite, inside the cut-off
-  std::size_t selected = 0;       // cells kept by the budget (== observations)
 };
 
 struct Samples {

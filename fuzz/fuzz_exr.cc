@@ -7,7 +7,7 @@
 #include <string>
 
 #include "fuzz/harness_util.h"
-#include "io/error.h"
+#include "core/error.h"
 #include "io/exr_texture.h"
 
 namespace brdfit::fuzz {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "fuzz/harness_util.h"
-#include "io/error.h"
+#include "core/error.h"
 #include "io/factor_io.h"
 
 namespace brdfit::fuzz {

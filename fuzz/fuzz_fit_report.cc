@@ -9,7 +9,7 @@
 #include <string>
 
 #include "fuzz/harness_util.h"
-#include "io/error.h"
+#include "core/error.h"
 #include "io/fit_report.h"
 
 namespace brdfit::fuzz {

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "fuzz/harness_util.h"
-#include "io/error.h"
+#include "core/error.h"
 #include "io/hdf5_table.h"
 #include "io/table_io.h"
 

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "fuzz/harness_util.h"
-#include "io/error.h"
+#include "core/error.h"
 #include "io/merl.h"
 
 namespace brdfit::fuzz {
@@ -97,7 +97,7 @@ int FuzzMerl(const std::uint8_t* data, std::size_t size) {
   WriteMerl(t, out);  // a table read from MERL must be writable as MERL
   const Table back = ReadMerl(out);
   CheckInvariant(back.valid == t.valid, "round trip changed the mask");
-  // Exact for valid cells. A masked cell's value is meaningless (io/table.h); the writer keeps
+  // Exact for valid cells. A masked cell's value is meaningless (core/table.h); the writer keeps
   // it only when it is negative, so a masked -0.0 comes back as -1 * scale.
   for (std::size_t i = 0; i < t.grid.NumCells(); ++i) {
     if (t.valid[i] && std::memcmp(back.Value(i), t.Value(i), 3 * sizeof(double)) != 0) {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "fuzz/harness_util.h"
-#include "io/error.h"
+#include "core/error.h"
 #include "preview/mesh.h"
 
 namespace brdfit::fuzz {
@@ -18,7 +18,7 @@ bool Finite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-void CheckMesh(const preview::Mesh& m) {
+void CheckMesh(const Mesh& m) {
   CheckInvariant(m.NumTriangles() >= 1 && m.indices.size() % 3 == 0, "no triangles");
   CheckInvariant(m.positions.size() == m.normals.size(), "normals per vertex");
   for (std::uint32_t i : m.indices) CheckInvariant(i < m.positions.size(), "index out of range");
@@ -39,9 +39,9 @@ void CheckMesh(const preview::Mesh& m) {
 
 int FuzzMesh(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  preview::Mesh mesh;
+  Mesh mesh;
   try {
-    mesh = preview::ParseObj(text, "fuzz.obj");
+    mesh = ParseObj(text, "fuzz.obj");
   } catch (const InputError&) {
     return 0;
   }

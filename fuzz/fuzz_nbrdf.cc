@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "fuzz/harness_util.h"
-#include "io/error.h"
+#include "core/error.h"
 #include "io/nbrdf.h"
 
 namespace brdfit::fuzz {

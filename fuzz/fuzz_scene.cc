@@ -9,7 +9,7 @@
 #include <string>
 
 #include "fuzz/harness_util.h"
-#include "io/error.h"
+#include "core/error.h"
 #include "preview/scene.h"
 
 namespace brdfit::fuzz {

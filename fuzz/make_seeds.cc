@@ -32,7 +32,7 @@
 #include "io/fit_report.h"
 #include "io/hdf5_table.h"
 #include "io/merl.h"
-#include "io/table.h"
+#include "core/table.h"
 
 namespace fs = std::filesystem;
 using namespace brdfit;

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <system_error>
 
-#include "io/error.h"
+#include "core/error.h"
 
 namespace brdfit {
 

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "io/atomic_file.h"
-#include "io/error.h"
+#include "core/error.h"
 #include "io/input_file.h"
 
 namespace brdfit {

@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "io/atomic_file.h"
-#include "io/error.h"
+#include "core/error.h"
 #include "io/input_file.h"
 
 namespace brdfit {

@@ -18,7 +18,7 @@ namespace brdfit {
 inline constexpr const char* kFactorFormat = "brdfit-factorization";
 inline constexpr int kFactorFormatVersion = 1;
 
-// EXR attribute names this layer owns (the rest are the caller's, see fit/factor_export.h).
+// EXR attribute names this layer owns (the rest are the caller's, see pipeline/factor_export.h).
 inline constexpr const char* kExrAttrFormat = "brdfit:format";
 inline constexpr const char* kExrAttrParameterization = "brdfit:parameterization";
 inline constexpr const char* kExrAttrFactor = "brdfit:factor";

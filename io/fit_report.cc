@@ -10,9 +10,9 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "fit/metrics.h"
+#include "core/metrics.h"
 #include "io/atomic_file.h"
-#include "io/error.h"
+#include "core/error.h"
 #include "io/hdf5_storage.h"
 
 namespace brdfit {

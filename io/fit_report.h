@@ -21,14 +21,14 @@
 //
 // Nothing else in the file depends on the run: no timestamps (object time tracking is off), so
 // the same entries written without timings give byte-identical files. No NaN or Inf is ever
-// written: FitResult holds none (fit/result.h), and the writer refuses one (std::logic_error).
+// written: FitResult holds none (core/result.h), and the writer refuses one (std::logic_error).
 #pragma once
 
 #include <filesystem>
 #include <string>
 #include <vector>
 
-#include "fit/result.h"
+#include "core/result.h"
 
 namespace brdfit {
 

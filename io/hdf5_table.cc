@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "io/atomic_file.h"
-#include "io/error.h"
+#include "core/error.h"
 #include "io/hdf5_storage.h"
 #include "io/input_file.h"
 

@@ -16,7 +16,7 @@
 
 #include <filesystem>
 
-#include "io/table.h"
+#include "core/table.h"
 
 namespace brdfit {
 

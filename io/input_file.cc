@@ -6,7 +6,7 @@
 #include <memory>
 #include <system_error>
 
-#include "io/error.h"
+#include "core/error.h"
 
 namespace brdfit {
 

@@ -21,7 +21,7 @@
 #include <cstdint>
 #include <filesystem>
 
-#include "io/table.h"
+#include "core/table.h"
 
 namespace brdfit {
 

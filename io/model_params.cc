@@ -6,7 +6,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "io/error.h"
+#include "core/error.h"
 
 namespace brdfit {
 

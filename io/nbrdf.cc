@@ -12,7 +12,7 @@
 #include <memory>
 #include <thread>
 
-#include "io/error.h"
+#include "core/error.h"
 #include "io/hdf5_storage.h"
 #include "io/input_file.h"
 

@@ -16,12 +16,12 @@
 #include <string_view>
 #include <vector>
 
-#include "io/table.h"
+#include "core/table.h"
 
 namespace brdfit {
 
 // An input that names a network of the archive instead of a file: "nbrdf:NAME" (the CLI
-// tabulates it on the MERL grid, cli/inputs.h; its material is NAME, io/report_inputs.h).
+// tabulates it on the MERL grid, pipeline/inputs.h; its material is NAME, report/report_inputs.h).
 inline constexpr std::string_view kNbrdfInputPrefix = "nbrdf:";
 inline bool IsNbrdfInput(std::string_view input) {
   return input.starts_with(kNbrdfInputPrefix);
@@ -54,7 +54,7 @@ struct NbrdfTabulation {
   std::size_t clamped_cells = 0;   // valid cells with at least one clamped channel
 };
 
-// Tabulates a network at the cell centres of a grid (io/table.h) following the README: cells
+// Tabulates a network at the cell centres of a grid (core/table.h) following the README: cells
 // whose incident or outgoing direction is below the horizon are invalid, negative outputs are
 // clamped to 0 and counted. Batched with Eigen, one theta_h slice at a time, on `threads`
 // threads (results do not depend on the thread count). Throws InputError if an output is not

@@ -4,7 +4,7 @@
 #include <cctype>
 #include <cstring>
 
-#include "io/error.h"
+#include "core/error.h"
 #include "io/hdf5_table.h"
 #include "io/input_file.h"
 #include "io/merl.h"

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "io/table.h"
+#include "core/table.h"
 
 namespace brdfit {
 

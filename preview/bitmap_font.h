@@ -6,7 +6,7 @@
 #include <array>
 #include <string_view>
 
-#include "preview/image.h"
+#include "core/image.h"
 
 namespace brdfit::preview {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "preview/gl.h"
-#include "preview/image.h"
+#include "core/image.h"
 
 namespace brdfit::preview {
 

@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "io/error.h"
+#include "core/error.h"
 #include "models/catalog.h"
 #include "models/registry.h"
 #include "preview/glsl_sources.h"

@@ -1,4 +1,4 @@
-// Materials ready to render: what a MaterialSpec resolves to after loading (preview/loader.h).
+// Materials ready to render: what a MaterialSpec resolves to after loading (pipeline/material_loader.h).
 #pragma once
 
 #include <array>
@@ -8,13 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "io/table.h"
-#include "preview/image.h"
+#include "core/table.h"
+#include "core/image.h"
 #include "preview/scene.h"
 
 namespace brdfit::preview {
 
-// A factorization as two textures (McCool, Ang, Ahmad 2001; fit/factor_param.h):
+// A factorization as two textures (McCool, Ang, Ahmad 2001; factor/factor_param.h):
 //   mccool:   f = p(wi) q(wh) p(wo), p on the parabolic disk map, q on the sqrt-theta disk map;
 //   halfdiff: f = p(wh) q(theta_d, phi_d), p on the sqrt-theta disk, q on the (theta_d, phi_d)
 //             rectangle (phi_d periodic).
@@ -22,7 +22,7 @@ namespace brdfit::preview {
 struct FactorTextures {
   std::string parameterization;  // "mccool" or "halfdiff"
   Image p, q;
-  // CPU evaluation through the same textures (fit/factor_eval.h), for the reference renderer.
+  // CPU evaluation through the same textures (factor/factor_eval.h), for the reference renderer.
   std::function<std::array<double, 3>(const Vec3& wi, const Vec3& wo)> eval;
 };
 

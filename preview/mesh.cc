@@ -1,13 +1,10 @@
 #include "preview/mesh.h"
 
-#include <tiny_obj_loader.h>
-
 #include <algorithm>
 #include <cmath>
-#include <map>
+#include <string>
 
-#include "io/error.h"
-#include "io/input_file.h"
+#include "core/error.h"
 
 namespace brdfit::preview {
 namespace {
@@ -16,148 +13,7 @@ bool Finite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-void ComputeBounds(Mesh* m) {
-  Vec3 lo = m->positions.front(), hi = lo;
-  for (const Vec3& p : m->positions) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-  m->bound_centre = 0.5 * (lo + hi);
-  double r2 = 0;
-  for (const Vec3& p : m->positions) {
-    const Vec3 d = p - m->bound_centre;
-    r2 = std::max(r2, Dot(d, d));
-  }
-  m->bound_radius = std::sqrt(r2);
-}
-
 }  // namespace
-
-Mesh ParseObj(const std::string& text, const std::filesystem::path& source) {
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = true;
-  config.vertex_color = false;
-  tinyobj::ObjReader reader;
-  // From a string with empty material text: `mtllib` lines never open other files.
-  if (!reader.ParseFromString(text, "", config)) {
-    std::string why = reader.Error();
-    while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
-    throw InputError(source, "not a readable OBJ mesh: " + (why.empty() ? "parse error" : why));
-  }
-  const tinyobj::attrib_t& a = reader.GetAttrib();
-  const std::size_t num_positions = a.vertices.size() / 3;
-  const std::size_t num_normals = a.normals.size() / 3;
-  if (num_positions > kMaxMeshVertices) {
-    throw InputError(source, "more than " + std::to_string(kMaxMeshVertices) + " vertices");
-  }
-
-  // One output vertex per distinct (position, normal) pair the faces use.
-  Mesh m;
-  std::map<std::pair<int, int>, std::uint32_t> vertex_of;
-  bool every_corner_has_normal = true;
-  std::vector<std::uint32_t> corners;
-  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
-    const auto& idx = shape.mesh.indices;
-    const auto& fv = shape.mesh.num_face_vertices;
-    std::size_t offset = 0;
-    for (const unsigned char n : fv) {
-      if (offset + n > idx.size()) throw InputError(source, "face indices run past the end");
-      if (n != 3) {  // triangulation leaves only triangles; anything else is degenerate input
-        offset += n;
-        ++m.dropped_triangles;
-        continue;
-      }
-      for (int k = 0; k < 3; ++k) {
-        const tinyobj::index_t& c = idx[offset + k];
-        if (c.vertex_index < 0 || static_cast<std::size_t>(c.vertex_index) >= num_positions) {
-          throw InputError(source, "a face refers to vertex " + std::to_string(c.vertex_index + 1) +
-                                       " of " + std::to_string(num_positions));
-        }
-        if (c.normal_index >= 0 && static_cast<std::size_t>(c.normal_index) >= num_normals) {
-          throw InputError(source, "a face refers to normal " + std::to_string(c.normal_index + 1) +
-                                       " of " + std::to_string(num_normals));
-        }
-        if (c.normal_index < 0) every_corner_has_normal = false;
-        const auto key = std::make_pair(c.vertex_index, c.normal_index);
-        auto [it, fresh] = vertex_of.emplace(key, static_cast<std::uint32_t>(m.positions.size()));
-        if (fresh) {
-          const std::size_t v = static_cast<std::size_t>(c.vertex_index);
-          const Vec3 p{a.vertices[3 * v], a.vertices[3 * v + 1], a.vertices[3 * v + 2]};
-          if (!Finite(p) || std::abs(p.x) > kMaxMeshCoordinate ||
-              std::abs(p.y) > kMaxMeshCoordinate || std::abs(p.z) > kMaxMeshCoordinate) {
-            throw InputError(source,
-                             "vertex " + std::to_string(v + 1) + " is not finite or beyond 1e100");
-          }
-          Vec3 nrm{0, 0, 0};
-          if (c.normal_index >= 0) {
-            const std::size_t ni = static_cast<std::size_t>(c.normal_index);
-            nrm = {a.normals[3 * ni], a.normals[3 * ni + 1], a.normals[3 * ni + 2]};
-          }
-          m.positions.push_back(p);
-          m.normals.push_back(nrm);
-        }
-        corners.push_back(it->second);
-      }
-      offset += 3;
-    }
-  }
-
-  // Zero-area triangles carry no surface and no normal: left out and counted. The others add
-  // their unit normal weighted by the corner angle to each corner (Thurmer & Wuthrich 1998,
-  // "Computing Vertex Normals from Polygonal Facets", JGT 3(1)): unlike area weights, the
-  // result does not depend on how a polygon was split into triangles.
-  std::vector<Vec3> corner_normal_sum(m.positions.size(), Vec3{0, 0, 0});
-  for (std::size_t t = 0; t + 2 < corners.size(); t += 3) {
-    const Vec3* p[3] = {&m.positions[corners[t]], &m.positions[corners[t + 1]],
-                        &m.positions[corners[t + 2]]};
-    const Vec3 cross = Cross(*p[1] - *p[0], *p[2] - *p[0]);
-    const double twice_area = Length(cross);
-    if (!(twice_area > 0) || !std::isfinite(twice_area)) {
-      ++m.dropped_triangles;
-      continue;
-    }
-    const Vec3 face_normal = (1.0 / twice_area) * cross;
-    for (int k = 0; k < 3; ++k) {
-      m.indices.push_back(corners[t + k]);
-      const Vec3 a = *p[(k + 1) % 3] - *p[k], b = *p[(k + 2) % 3] - *p[k];
-      const double angle = std::atan2(Length(Cross(a, b)), Dot(a, b));
-      corner_normal_sum[corners[t + k]] = corner_normal_sum[corners[t + k]] + angle * face_normal;
-    }
-  }
-  if (m.indices.empty()) throw InputError(source, "no triangle with a non-zero area");
-
-  // Normals: the file's where every corner has one, else the angle-weighted face normals
-  // summed over the triangles sharing a position (smooth shading).
-  m.computed_normals = !every_corner_has_normal;
-  if (m.computed_normals) {
-    std::vector<Vec3> by_position(num_positions, Vec3{0, 0, 0});
-    for (const auto& [key, v] : vertex_of) {
-      by_position[static_cast<std::size_t>(key.first)] =
-          by_position[static_cast<std::size_t>(key.first)] + corner_normal_sum[v];
-    }
-    for (const auto& [key, v] : vertex_of)
-      m.normals[v] = by_position[static_cast<std::size_t>(key.first)];
-  }
-  for (std::size_t v = 0; v < m.normals.size(); ++v) {
-    const double len = Length(m.normals[v]);
-    if (!(len > 0) || !std::isfinite(len)) {
-      // A file normal of zero length, or a vertex only degenerate triangles use: take the
-      // summed normal of the triangles around it; a vertex no triangle uses keeps +z (unused).
-      const double alt = Length(corner_normal_sum[v]);
-      m.normals[v] =
-          alt > 0 && std::isfinite(alt) ? (1.0 / alt) * corner_normal_sum[v] : Vec3{0, 0, 1};
-    } else {
-      m.normals[v] = (1.0 / len) * m.normals[v];
-    }
-  }
-  ComputeBounds(&m);
-  return m;
-}
-
-Mesh LoadObj(const std::filesystem::path& path) {
-  const std::vector<char> bytes = ReadWholeFile(path);  // InputError naming the file
-  return ParseObj(std::string(bytes.begin(), bytes.end()), path);
-}
 
 Mesh PlaceMesh(const Mesh& mesh, const Vec3& centre, double radius, bool normalize) {
   Mesh out = mesh;
@@ -165,7 +21,7 @@ Mesh PlaceMesh(const Mesh& mesh, const Vec3& centre, double radius, bool normali
   const double scale = normalize ? radius / std::max(mesh.bound_radius, 1e-300) : radius;
   for (Vec3& p : out.positions) p = centre + scale * (p - origin);
   // A uniform scale and a translation leave unit normals unchanged.
-  ComputeBounds(&out);
+  out.UpdateBounds();
   if (!Finite(out.bound_centre) || !std::isfinite(out.bound_radius) || !(out.bound_radius > 0)) {
     throw InputError("placing the mesh (radius " + std::to_string(radius) +
                      ") gives coordinates out of range");

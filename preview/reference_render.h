@@ -5,7 +5,7 @@
 // independently, in world space.
 #pragma once
 
-#include "preview/image.h"
+#include "core/image.h"
 #include "preview/material.h"
 #include "preview/scene.h"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "io/error.h"
+#include "core/error.h"
 #include "preview/camera_math.h"
 #include "preview/lights.h"
 #include "preview/shader_gen.h"

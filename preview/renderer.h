@@ -9,7 +9,7 @@
 
 #include "preview/explain.h"
 #include "preview/gl_objects.h"
-#include "preview/image.h"
+#include "core/image.h"
 #include "preview/material.h"
 #include "preview/scene.h"
 

@@ -7,7 +7,7 @@
 #include <set>
 #include <sstream>
 
-#include "io/error.h"
+#include "core/error.h"
 #include "models/registry.h"
 
 namespace brdfit::preview {

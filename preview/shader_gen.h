@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "io/table.h"
+#include "core/table.h"
 #include "preview/scene.h"
 
 namespace brdfit::preview {

@@ -1,6 +1,6 @@
 #include "preview/tonemap.h"
 
-#include "io/error.h"
+#include "core/error.h"
 
 namespace brdfit::preview {
 

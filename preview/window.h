@@ -6,7 +6,7 @@
 #pragma once
 
 #include "preview/explain.h"
-#include "preview/image.h"
+#include "core/image.h"
 #include "preview/material.h"
 #include "preview/scene.h"
 

@@ -1,9 +1,9 @@
 // Rank-1 factorization from two textures (McCool, Ang, Ahmad 2001, "Homomorphic Factorization
-// of BRDFs for High-Performance Rendering", SIGGRAPH, eq. 3; maps of fit/factor_param.h):
+// of BRDFs for High-Performance Rendering", SIGGRAPH, eq. 3; maps of factor/factor_param.h):
 //   FACTOR_MCCOOL:   f = p(wi) q(wh) p(wo)   p: parabolic disk map, q: sqrt-theta disk map
 //   otherwise:       f = p(wh) q(theta_d, phi_d)   p: sqrt-theta disk, q: theta_d/phi_d rectangle
 // Texels sit at texel centres (GL_LINEAR, clamp to edge; phi_d repeats), as the CPU evaluator
-// (fit/factor_eval.h). Per light: two texture fetches; p(wo) of mccool is fetched once per
+// (factor/factor_eval.h). Per light: two texture fetches; p(wo) of mccool is fetched once per
 // fragment. Point and directional lights only with this material (seed 001's limit; spot
 // lights are dropped by the renderer, which says so).
 // brdfit-requires: preview/glsl/halfdiff.glsl

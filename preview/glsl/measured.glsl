@@ -1,7 +1,7 @@
 // Measured table as a 3D texture (preview/renderer.cc uploads it): s = phi_d / pi (repeat),
 // t = theta_d / (pi/2), r = theta_h coordinate / n_theta_h (both clamp to edge), i.e. the
 // table's index coordinate u over n, so GL_LINEAR interpolates between CELL CENTRES exactly as
-// Table::LookupTrilinear (io/table.h). Texels hold (rgb * valid, valid): the filtered alpha is
+// Table::LookupTrilinear (core/table.h). Texels hold (rgb * valid, valid): the filtered alpha is
 // the weight of the valid neighbours and dividing by it drops invalid cells and renormalizes.
 // TABLE_SQRT_THETA_H selects MERL's theta_h index N sqrt(theta_h / (pi/2)) over the linear one.
 uniform sampler3D uTable;

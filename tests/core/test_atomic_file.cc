@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "io/atomic_file.h"
-#include "io/error.h"
+#include "core/error.h"
 
 namespace brdfit {
 namespace {

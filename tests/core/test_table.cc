@@ -2,7 +2,7 @@
 
 #include <random>
 
-#include "io/table.h"
+#include "core/table.h"
 
 namespace brdfit {
 namespace {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <functional>
 
-#include "io/table.h"
+#include "core/table.h"
 #include "models/geometry.h"
 
 namespace brdfit::testing {

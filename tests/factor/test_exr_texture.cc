@@ -13,7 +13,7 @@
 #include <limits>
 #include <random>
 
-#include "io/error.h"
+#include "core/error.h"
 #include "io/exr_texture.h"
 
 namespace brdfit {

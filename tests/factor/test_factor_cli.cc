@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "fit/factor_export.h"
+#include "pipeline/factor_export.h"
 #include "io/hdf5_table.h"
 #include "tests/factor/factor_test_util.h"
 

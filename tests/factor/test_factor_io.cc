@@ -5,8 +5,8 @@
 #include <fstream>
 #include <random>
 
-#include "fit/factor_export.h"
-#include "io/error.h"
+#include "pipeline/factor_export.h"
+#include "core/error.h"
 #include "tests/factor/factor_test_util.h"
 #include "tests/scratch_dir.h"
 

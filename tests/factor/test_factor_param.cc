@@ -1,11 +1,11 @@
-// Texture maps and interpolation weights of the factorization (fit/factor_param.h).
+// Texture maps and interpolation weights of the factorization (factor/factor_param.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "fit/factor_param.h"
-#include "io/error.h"
+#include "factor/factor_param.h"
+#include "core/error.h"
 
 namespace brdfit {
 namespace {

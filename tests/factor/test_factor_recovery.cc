@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "fit/factor.h"
+#include "factor/factor.h"
 #include "models/ggx.h"
 #include "tests/factor/factor_test_util.h"
 

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <numeric>
 
-#include "fit/factor.h"
-#include "io/error.h"
+#include "factor/factor.h"
+#include "core/error.h"
 #include "tests/factor/factor_test_util.h"
 
 namespace brdfit {

@@ -5,10 +5,10 @@
 #include <utility>
 #include <vector>
 
-#include "io/error.h"
+#include "core/error.h"
 #include "io/model_params.h"
-#include "io/synth.h"
-#include "io/table.h"
+#include "core/synth.h"
+#include "core/table.h"
 #include "models/registry.h"
 
 namespace brdfit::testing {
@@ -21,7 +21,7 @@ inline std::vector<double> Params(const std::string& model,
   return ResolveModelParams(*m, assignments);
 }
 
-// A table of the model at every cell centre above the horizon (io/synth.h), with optional
+// A table of the model at every cell centre above the horizon (core/synth.h), with optional
 // log-normal multiplicative noise and holes.
 inline Table SynthModel(const std::string& model, const std::vector<double>& params,
                         const Grid& grid, double noise = 0, double missing = 0,

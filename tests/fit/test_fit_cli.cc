@@ -12,7 +12,7 @@
 
 #include "fit/fitter.h"
 #include "fit_test_util.h"
-#include "io/error.h"
+#include "core/error.h"
 #include "io/fit_report.h"
 #include "io/table_io.h"
 

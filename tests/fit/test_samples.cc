@@ -10,7 +10,7 @@
 #include "fit/bin_measure.h"
 #include "fit/samples.h"
 #include "fit_test_util.h"
-#include "io/error.h"
+#include "core/error.h"
 #include "models/registry.h"
 
 namespace brdfit {

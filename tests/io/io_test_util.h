@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "io/table.h"
+#include "core/table.h"
 #include "tests/scratch_dir.h"
 
 namespace brdfit::testing_io {

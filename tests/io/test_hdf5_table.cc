@@ -9,7 +9,7 @@
 #include <cstring>
 #include <thread>
 
-#include "io/error.h"
+#include "core/error.h"
 #include "io/hdf5_table.h"
 #include "io_test_util.h"
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "io/error.h"
+#include "core/error.h"
 #include "io/merl.h"
 #include "io_test_util.h"
 

@@ -2,7 +2,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "io/error.h"
+#include "core/error.h"
 #include "io/model_params.h"
 
 namespace brdfit {

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <random>
 
-#include "io/error.h"
+#include "core/error.h"
 #include "io/nbrdf.h"
 
 namespace brdfit {

@@ -1,11 +1,11 @@
-// Synthetic tables (io/synth.h): what the model sees, exact hole counts, the statistics of the
+// Synthetic tables (core/synth.h): what the model sees, exact hole counts, the statistics of the
 // noise, determinism, and every registered model at its defaults and bounds.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <map>
 
-#include "io/synth.h"
+#include "core/synth.h"
 #include "models/registry.h"
 
 namespace brdfit {

@@ -2,7 +2,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "io/error.h"
+#include "core/error.h"
 #include "io/merl.h"
 #include "io/table_io.h"
 #include "io_test_util.h"

@@ -1,12 +1,12 @@
-// What `brdfit info` computes (io/table_stats.h): counts, medians, and the directional albedo
+// What `brdfit info` computes (core/table_stats.h): counts, medians, and the directional albedo
 // against closed forms and an independent quadrature of the model itself.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "io/synth.h"
-#include "io/table_stats.h"
+#include "core/synth.h"
+#include "core/table_stats.h"
 #include "models/registry.h"
 
 namespace brdfit {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstddef>
 
-#include "preview/image.h"
+#include "core/image.h"
 #include "preview/reference_render.h"
 
 namespace brdfit::preview::testing {

@@ -19,8 +19,8 @@
 #include <filesystem>
 #include <string>
 
-#include "preview/image_io.h"
-#include "preview/loader.h"
+#include "io/image_io.h"
+#include "pipeline/material_loader.h"
 #include "preview/renderer.h"
 #include "preview/scene.h"
 #include "tests/preview/gl_test_env.h"
@@ -44,7 +44,7 @@ TEST_P(Golden, MatchesStoredImage) {
   const fs::path golden = root / "data" / "golden" / (GetParam() + ".png");
   const Scene scene = LoadScene(scene_path);
   ExplainLog log;
-  const MaterialSet mats = LoadMaterials(scene, UsedMaterials(scene, false), {}, &log);
+  const MaterialSet mats = pipeline::LoadMaterials(scene, UsedMaterials(scene, false), {}, &log);
   Renderer renderer;
   const Image display = renderer.ToDisplay(renderer.RenderLinear(scene, mats, &log), scene);
   if (UpdateGolden()) {

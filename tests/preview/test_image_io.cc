@@ -3,8 +3,8 @@
 
 #include <filesystem>
 
-#include "io/error.h"
-#include "preview/image_io.h"
+#include "core/error.h"
+#include "io/image_io.h"
 #include "tests/scratch_dir.h"
 
 namespace brdfit::preview {

@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "io/synth.h"
-#if __has_include("fit/factor.h")
-#include "fit/factor.h"
+#include "core/synth.h"
+#if __has_include("factor/factor.h")
+#include "factor/factor.h"
 #endif
 #include "models/registry.h"
 #include "preview/reference_render.h"
@@ -85,9 +85,9 @@ TEST(Measured, GpuTextureMatchesTableLookupTrilinear) {
   }
 }
 
-#if __has_include("fit/factor.h")
+#if __has_include("factor/factor.h")
 // The factored path: two textures per material, GL_LINEAR at texel centres, against the CPU
-// evaluator of the same textures (fit/factor_eval.h). Spot lights are not used by this path.
+// evaluator of the same textures (factor/factor_eval.h). Spot lights are not used by this path.
 TEST(Factored, GpuTexturesMatchCpuEvaluator) {
   BRDFIT_REQUIRE_GL();
   Renderer renderer;

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "io/error.h"
+#include "core/error.h"
 #include "preview/mesh.h"
 #include "preview/reference_render.h"
 #include "preview/renderer.h"

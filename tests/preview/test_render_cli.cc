@@ -14,10 +14,10 @@
 
 #include <cmath>
 
-#include "io/synth.h"
+#include "core/synth.h"
 #include "io/table_io.h"
 #include "models/registry.h"
-#include "preview/image_io.h"
+#include "io/image_io.h"
 
 namespace brdfit::preview {
 namespace {

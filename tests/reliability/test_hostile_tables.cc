@@ -12,7 +12,7 @@
 #include <string>
 
 #include "fuzz/harness_util.h"
-#include "io/error.h"
+#include "core/error.h"
 #include "io/exr_texture.h"
 #include "io/factor_io.h"
 #include "io/fit_report.h"

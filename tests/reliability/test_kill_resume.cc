@@ -27,7 +27,7 @@
 
 #include "io/fit_report.h"
 #include "io/hdf5_table.h"
-#include "io/synth.h"
+#include "core/synth.h"
 #include "models/registry.h"
 
 extern char** environ;

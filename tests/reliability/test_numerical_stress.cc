@@ -23,9 +23,9 @@
 #include "fit/fitter.h"
 #include "fit/samples.h"
 #include "fuzz/harness_util.h"
-#include "io/error.h"
+#include "core/error.h"
 #include "io/hdf5_table.h"
-#include "io/synth.h"
+#include "core/synth.h"
 #include "models/registry.h"
 
 namespace brdfit {
@@ -81,7 +81,7 @@ FitOptions StressOptions() {
   return o;
 }
 
-// The contract of FitResult (fit/result.h): no NaN or Inf anywhere; a failure says why;
+// The contract of FitResult (core/result.h): no NaN or Inf anywhere; a failure says why;
 // a usable result lies inside the model's bounds; iterations bounded by the options.
 void ExpectSane(const FitResult& r, const FitOptions& o, const std::string& what) {
   SCOPED_TRACE(what + " / " + r.model + " (" + ToString(r.status) + ": " + r.message + ")");

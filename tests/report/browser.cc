@@ -10,7 +10,7 @@
 #include <sstream>
 #include <sys/wait.h>
 
-#include "preview/image_io.h"
+#include "io/image_io.h"
 
 namespace brdfit::testing {
 
@@ -158,7 +158,7 @@ int Screenshot(const fs::path& html, const fs::path& png, const fs::path& work_d
 }
 
 InkStats MeasureInk(const fs::path& png) {
-  const preview::Image img = preview::ReadPng(png);
+  const Image img = ReadPng(png);
   InkStats s;
   s.width = img.width;
   s.height = img.height;

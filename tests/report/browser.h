@@ -1,6 +1,6 @@
 // Headless Chromium (Debian's `chromium`) for the report tests: loads a page from a file with
 // no network, no profile and a timeout, and reads what the page recorded about itself
-// (io/html_report.h: data-charts-expected, data-charts-rendered, data-errors on <body>) plus
+// (report/html_report.h: data-charts-expected, data-charts-rendered, data-errors on <body>) plus
 // every console message Chromium logged. Also takes screenshots.
 #pragma once
 

@@ -3,10 +3,10 @@
 #include <cmath>
 
 #include "io/model_params.h"
-#include "io/report_slices.h"
-#include "io/synth.h"
+#include "report/report_slices.h"
+#include "core/synth.h"
 #include "models/registry.h"
-#include "preview/image_io.h"
+#include "io/image_io.h"
 
 namespace brdfit::testing {
 
@@ -100,7 +100,7 @@ report::Report MakeFixtureReport(const fs::path& dir) {
     }
   }
   // A 64 x 48 gradient as the render.
-  preview::Image img(64, 48);
+  Image img(64, 48);
   for (int y = 0; y < img.height; ++y) {
     for (int x = 0; x < img.width; ++x) {
       float* p = img.At(x, y);
@@ -111,7 +111,7 @@ report::Report MakeFixtureReport(const fs::path& dir) {
     }
   }
   const fs::path png = dir / "render.png";
-  preview::WritePng(png, img);
+  WritePng(png, img);
   r.renders.push_back({"gradient render", png.string()});
   return r;
 }

@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "io/report_model.h"
+#include "report/report_model.h"
 
 namespace brdfit::testing {
 

@@ -10,7 +10,7 @@
 #include <regex>
 #include <sstream>
 
-#include "io/html_report.h"
+#include "report/html_report.h"
 #include "tests/report/browser.h"
 #include "tests/report/report_fixture.h"
 

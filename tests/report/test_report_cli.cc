@@ -10,7 +10,7 @@
 #include <regex>
 #include <sstream>
 
-#include "io/bench_csv.h"
+#include "report/bench_csv.h"
 #include "io/fit_report.h"
 #include "models/registry.h"
 

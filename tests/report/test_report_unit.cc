@@ -10,14 +10,14 @@
 #include <random>
 #include <regex>
 
-#include "io/bench_csv.h"
-#include "io/compare.h"
-#include "io/error.h"
-#include "io/html_report.h"
+#include "report/bench_csv.h"
+#include "report/compare.h"
+#include "core/error.h"
+#include "report/html_report.h"
 #include "io/model_params.h"
-#include "io/report_inputs.h"
-#include "io/report_slices.h"
-#include "io/synth.h"
+#include "report/report_inputs.h"
+#include "report/report_slices.h"
+#include "core/synth.h"
 #include "models/registry.h"
 #include "tests/report/report_fixture.h"
 #include "tests/scratch_dir.h"

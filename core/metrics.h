@@ -1,0 +1,61 @@
+// Fit metrics: computed for every fit on the same sample set (all valid cells inside the
+// cut-off, whatever the fit's loss or budget), so that fits are comparable. Also used by the
+// factorization: any predictor that yields RGB per observation can be scored.
+//
+// With w the cell weight (bin measure, fit/bin_measure.h), c = cos theta_i, f predicted and
+// m measured f_r (1/sr), sums over cells and the three channels:
+//   log_rmse  = sqrt( sum w (ln(1 + f c) - ln(1 + m c))^2 / (3 sum w) )
+//               Löw, Kronander, Ynnerman, Unger 2012, "BRDF Models for Accurate and
+//               Efficient Rendering of Glossy Surfaces" (TOG 31(1)), metric E2, with the solid
+//               angle measure of the cells in place of its sin theta_i weight.
+//   cbrt_rmse = sqrt( sum w (cbrt(f c) - cbrt(m c))^2 / (3 sum w) )
+//               Fores, Ferwerda, Gu 2012, "Toward a Perceptually Based Metric for BRDF
+//               Modeling" (CIC 20); applied to f cos theta_i like E2. The cube root is the
+//               guarded one of fit/loss.h (differs from cbrt only for |f c| < 1e-5).
+//   rel_l2    = sqrt( sum w c^2 (f - m)^2 / sum w c^2 m^2 )
+//               cosine-weighted L2 (Ngan, Durand, Matusik 2005, "Experimental Analysis of BRDF
+//               Models", EGSR), relative to the measured norm.
+//   worst     = the cell with the largest |ln(1 + f c) - ln(1 + m c)| over channels (unweighted).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "models/geometry.h"
+
+namespace brdfit {
+
+struct WorstCell {
+  std::uint32_t cell = 0;  // table index
+  HalfDiffAngles angles;   // cell centre
+  double theta_i_deg = 0, theta_o_deg = 0;
+  std::array<double, 3> measured{}, predicted{};
+  double log_error = 0;  // max over channels of |ln(1 + f c) - ln(1 + m c)|
+};
+
+struct FitMetrics {
+  bool ok = false;  // false: no samples or non-finite predictions (see problem)
+  std::string problem;
+  double log_rmse = 0;
+  double cbrt_rmse = 0;
+  double rel_l2 = 0;
+  WorstCell worst;
+  std::size_t cells = 0;  // observations scored
+  double total_weight = 0;
+  // How the metrics were computed (reference.md §2: a report states metric, weighting and
+  // cut-off).
+  std::string weighting;  // "bin-measure" or "uniform"
+  double cutoff_deg = 0;
+};
+
+// One line describing the metric definitions, for reports (io/fit_report.cc writes it).
+inline const char* MetricsDefinition() {
+  return "log_rmse: sqrt(sum w (ln(1+f cos_i) - ln(1+m cos_i))^2 / (3 sum w)) (Low 2012 E2); "
+         "cbrt_rmse: sqrt(sum w (cbrt(f cos_i) - cbrt(m cos_i))^2 / (3 sum w)); "
+         "rel_l2: sqrt(sum w cos_i^2 (f-m)^2 / sum w cos_i^2 m^2); sums over cells and RGB; "
+         "w = cell weight; worst: max over cells of |ln(1+f cos_i) - ln(1+m cos_i)|";
+}
+
+}  // namespace brdfit

@@ -1,0 +1,125 @@
+#include "core/table.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace brdfit {
+
+namespace {
+constexpr double kHalfPi = kPi / 2;
+}
+
+const char* ToString(ThetaHMapping m) { return m == ThetaHMapping::kSqrt ? "sqrt" : "linear"; }
+
+ThetaHMapping ThetaHMappingFromString(const std::string& s) {
+  if (s == "sqrt" || s == "merl") return ThetaHMapping::kSqrt;
+  if (s == "linear") return ThetaHMapping::kLinear;
+  throw InputError("unknown theta_h mapping '" + s + "' (expected sqrt or linear)");
+}
+
+void Grid::Unindex(std::size_t idx, int* ih, int* id, int* ip) const {
+  *ip = static_cast<int>(idx % n_phi_d);
+  idx /= n_phi_d;
+  *id = static_cast<int>(idx % n_theta_d);
+  *ih = static_cast<int>(idx / n_theta_d);
+}
+
+// MERL (Matusik et al. 2003, BRDFRead.cpp): theta_h index = 90 sqrt(theta_h / (pi/2)).
+double Grid::ThetaHCoord(double theta_h) const {
+  const double t = std::max(theta_h, 0.0) / kHalfPi;
+  return n_theta_h * (theta_h_mapping == ThetaHMapping::kSqrt ? std::sqrt(t) : t);
+}
+double Grid::ThetaDCoord(double theta_d) const { return n_theta_d * theta_d / kHalfPi; }
+double Grid::PhiDCoord(double phi_d) const { return n_phi_d * phi_d / kPi; }
+
+double Grid::ThetaHAt(double u) const {
+  const double t = u / n_theta_h;
+  return kHalfPi * (theta_h_mapping == ThetaHMapping::kSqrt ? t * t : t);
+}
+double Grid::ThetaDAt(double u) const { return kHalfPi * u / n_theta_d; }
+double Grid::PhiDAt(double u) const { return kPi * u / n_phi_d; }
+
+HalfDiffAngles Grid::CellCentre(int ih, int id, int ip) const {
+  return {ThetaHAt(ih + 0.5), ThetaDAt(id + 0.5), PhiDAt(ip + 0.5)};
+}
+HalfDiffAngles Grid::CellCentre(std::size_t idx) const {
+  int ih, id, ip;
+  Unindex(idx, &ih, &id, &ip);
+  return CellCentre(ih, id, ip);
+}
+
+std::size_t Grid::CellOf(const HalfDiffAngles& a) const {
+  auto bin = [](double u, int n) {
+    return std::clamp(static_cast<int>(std::floor(u)), 0, n - 1);
+  };
+  double phi = std::fmod(a.phi_d, kPi);
+  if (phi < 0) phi += kPi;
+  return Index(bin(ThetaHCoord(a.theta_h), n_theta_h), bin(ThetaDCoord(a.theta_d), n_theta_d),
+               bin(PhiDCoord(phi), n_phi_d));
+}
+
+bool Grid::CellAboveHorizon(std::size_t idx) const {
+  Vec3 wi, wo;
+  FromHalfDiff(CellCentre(idx), 0.0, &wi, &wo);
+  return wi.z > 0 && wo.z > 0;
+}
+
+Table Table::Empty(const Grid& grid) {
+  Table t;
+  t.grid = grid;
+  t.rgb.assign(3 * grid.NumCells(), 0.0);
+  t.valid.assign(grid.NumCells(), 0);
+  return t;
+}
+
+std::size_t Table::CountValid() const {
+  return static_cast<std::size_t>(std::count(valid.begin(), valid.end(), std::uint8_t{1}));
+}
+
+std::optional<std::array<double, 3>> Table::LookupNearest(const HalfDiffAngles& a) const {
+  const std::size_t idx = grid.CellOf(a);
+  if (!valid[idx]) return std::nullopt;
+  return std::array<double, 3>{rgb[3 * idx], rgb[3 * idx + 1], rgb[3 * idx + 2]};
+}
+
+std::optional<std::array<double, 3>> Table::LookupTrilinear(const HalfDiffAngles& a) const {
+  double phi = std::fmod(a.phi_d, kPi);
+  if (phi < 0) phi += kPi;
+  // Coordinates relative to cell centres.
+  const double uh = std::clamp(grid.ThetaHCoord(a.theta_h) - 0.5, 0.0, grid.n_theta_h - 1.0);
+  const double ud = std::clamp(grid.ThetaDCoord(a.theta_d) - 0.5, 0.0, grid.n_theta_d - 1.0);
+  const double up = grid.PhiDCoord(phi) - 0.5;  // periodic
+  const int h0 = std::min(static_cast<int>(uh), grid.n_theta_h - 1);
+  const int d0 = std::min(static_cast<int>(ud), grid.n_theta_d - 1);
+  const int p0 = static_cast<int>(std::floor(up));
+  const double fh = uh - h0, fd = ud - d0, fp = up - p0;
+  std::array<double, 3> acc{0, 0, 0};
+  double wsum = 0;
+  for (int a_h = 0; a_h < 2; ++a_h) {
+    const int ih = std::min(h0 + a_h, grid.n_theta_h - 1);
+    const double wh = a_h ? fh : 1 - fh;
+    for (int a_d = 0; a_d < 2; ++a_d) {
+      const int id = std::min(d0 + a_d, grid.n_theta_d - 1);
+      const double wd = a_d ? fd : 1 - fd;
+      for (int a_p = 0; a_p < 2; ++a_p) {
+        const int ip = ((p0 + a_p) % grid.n_phi_d + grid.n_phi_d) % grid.n_phi_d;
+        const double w = wh * wd * (a_p ? fp : 1 - fp);
+        const std::size_t idx = grid.Index(ih, id, ip);
+        if (w <= 0 || !valid[idx]) continue;
+        for (int c = 0; c < 3; ++c) acc[c] += w * rgb[3 * idx + c];
+        wsum += w;
+      }
+    }
+  }
+  if (wsum <= 0) return std::nullopt;
+  for (double& v : acc) v /= wsum;
+  return acc;
+}
+
+std::optional<std::array<double, 3>> Table::LookupTrilinear(const Vec3& wi, const Vec3& wo) const {
+  return LookupTrilinear(ToHalfDiff(wi, wo));
+}
+
+}  // namespace brdfit

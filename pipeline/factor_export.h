@@ -1,0 +1,29 @@
+// Saving and loading factorizations: the textures and sidecar of io/factor_io.h, with the
+// parameterization's formula, maps, units and gauge written into every EXR header.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "factor/factor.h"
+#include "io/factor_io.h"
+
+namespace brdfit {
+
+// Writes <dir>/<stem>.p.exr, .q.exr and .factor.json. `extra` members (e.g. "source",
+// "metrics") are merged into the sidecar. Returns the paths written.
+FactorPaths SaveFactorization(const Factorization& r, const std::filesystem::path& dir,
+                              const std::string& stem,
+                              const nlohmann::json& extra = nlohmann::json::object());
+
+// Reads a sidecar and its textures into an evaluable BRDF. Throws InputError naming the file
+// if the parameterization is unknown, an EXR's map does not match it, or a texture is unusable.
+FactoredBrdf LoadFactoredBrdf(const std::filesystem::path& json_path,
+                              nlohmann::json* sidecar = nullptr);
+
+// The sidecar members describing a factorization (parameterization, formula, gauge, solver
+// options, textures' maps and units, stats).
+nlohmann::json DescribeFactorization(const Factorization& r);
+
+}  // namespace brdfit

@@ -1,0 +1,52 @@
+#include "pipeline/inputs.h"
+
+#include <cstdlib>
+
+#include "io/nbrdf.h"
+#include "report/report_inputs.h"
+#include "io/table_io.h"
+
+namespace brdfit::pipeline {
+
+namespace fs = std::filesystem;
+
+fs::path NbrdfArchive(const std::string& given) {
+  if (!given.empty()) return given;
+  if (const char* env = std::getenv("BRDFIT_NBRDF_ZIP"); env && *env) return env;
+  std::vector<fs::path> candidates = {fs::path("..") / "shared" / "data" / "merl_nbrdf.zip"};
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    for (fs::path d = exe.parent_path(); !d.empty() && d != d.root_path(); d = d.parent_path()) {
+      candidates.push_back(d.parent_path() / "shared" / "data" / "merl_nbrdf.zip");
+    }
+  }
+  for (const auto& c : candidates) {
+    if (fs::is_regular_file(c, ec)) return c;
+  }
+  return candidates.front();
+}
+
+std::vector<std::string> ExpandInputs(const std::vector<std::string>& inputs) {
+  std::vector<std::string> out;
+  for (const std::string& in : inputs) {
+    if (in == std::string(kNbrdfInputPrefix) + "all") {
+      for (const auto& m : ListNbrdfMaterials(NbrdfArchive())) {
+        out.push_back(std::string(kNbrdfInputPrefix) + m);
+      }
+    } else {
+      out.push_back(in);
+    }
+  }
+  return out;
+}
+
+Table LoadInput(const std::string& input) {
+  if (!IsNbrdfInput(input)) return LoadTable(input);
+  const NbrdfNetwork net = ReadNbrdf(NbrdfArchive(), report::MaterialName(input));
+  Table t = TabulateNbrdf(net, Grid::Merl(), 1).table;
+  t.provenance.source = input;
+  return t;
+}
+
+}  // namespace brdfit::pipeline

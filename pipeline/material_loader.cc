@@ -1,0 +1,257 @@
+#include "pipeline/material_loader.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "fit/fitter.h"
+#include "fit/options.h"
+#include "io/atomic_file.h"
+#include "core/error.h"
+#include "io/table_io.h"
+#include "models/registry.h"
+#include "pipeline/cache_key.h"
+#include "factor/factor.h"
+#include "io/fit_report.h"
+#include "pipeline/factor_export.h"
+
+namespace brdfit::pipeline {
+using namespace preview;  // the material types this loader fills in
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double MsSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+std::string Fmt(double v) {
+  std::ostringstream s;
+  s.precision(4);
+  s << v;
+  return s.str();
+}
+
+// Loads each table file once per render, whatever the number of materials naming it.
+class TableCache {
+ public:
+  explicit TableCache(ExplainLog* log) : log_(log) {}
+  std::shared_ptr<const Table> Get(const std::filesystem::path& path) {
+    const std::string key = std::filesystem::weakly_canonical(path).string();
+    auto it = tables_.find(key);
+    if (it != tables_.end()) {
+      if (log_) log_->Add("reuse", "table " + path.string() + " (already loaded)");
+      return it->second;
+    }
+    const auto t0 = Clock::now();
+    auto t = std::make_shared<const Table>(LoadTable(path));
+    if (log_) {
+      log_->Add("load", "table " + path.string() + " (" + std::to_string(t->grid.n_theta_h) + "x" +
+                            std::to_string(t->grid.n_theta_d) + "x" +
+                            std::to_string(t->grid.n_phi_d) + ", " +
+                            std::to_string(t->CountValid()) + " valid cells, " + Fmt(MsSince(t0)) +
+                            " ms)");
+    }
+    return tables_.emplace(key, std::move(t)).first->second;
+  }
+
+ private:
+  ExplainLog* log_;
+  std::map<std::string, std::shared_ptr<const Table>> tables_;
+};
+
+// Cache entry of a fit: {"model", "params", "param_names", "status", "source", "key"}.
+std::vector<double> FitCached(const MaterialSpec& m, const std::filesystem::path& cache_dir,
+                              TableCache* tables, ExplainLog* log) {
+  // The key: table content + model + every option that can change the result (canonical
+  // JSON of the fitter's defaults, fit/options.h): new defaults never reuse an old entry.
+  const SampleOptions sample_options;
+  const FitOptions fit_options;
+  Fnv1a64 h;
+  h.Add(FileContentKey(m.fit_table));
+  h.Add("|fit|" + m.model + "|" + OptionsJson(sample_options, fit_options));
+  const std::filesystem::path entry = cache_dir / ("fit-" + h.Hex() + ".json");
+  if (std::filesystem::exists(entry)) {
+    std::ifstream in(entry);
+    try {
+      const nlohmann::json j = nlohmann::json::parse(in);
+      if (j.at("model").get<std::string>() == m.model) {
+        auto params = j.at("params").get<std::vector<double>>();
+        if (log) {
+          log->Add("reuse", "fit " + m.model + " of " + m.fit_table.string() + " from cache " +
+                                entry.string());
+        }
+        return params;
+      }
+    } catch (const std::exception&) {
+      // A damaged entry is recomputed and overwritten below.
+      if (log) log->Add("note", "cache entry " + entry.string() + " unreadable: recomputing");
+    }
+  }
+  const auto table = tables->Get(m.fit_table);
+  const auto t0 = Clock::now();
+  const FitResult r = FitTable(m.model, *table, sample_options, fit_options);
+  if (r.Failed()) {
+    throw InputError(m.fit_table, "fit of '" + m.model + "' for material '" + m.name +
+                                      "' failed: " + r.message);
+  }
+  nlohmann::json j;
+  j["model"] = r.model;
+  j["params"] = r.params;
+  j["param_names"] = r.param_names;
+  j["status"] = ToString(r.status);
+  j["source"] = m.fit_table.string();
+  j["key"] = h.Hex();
+  std::filesystem::create_directories(cache_dir);
+  WriteTextAtomically(entry, j.dump(2) + "\n");
+  if (log) {
+    log->Add("compute", "fit " + m.model + " of " + m.fit_table.string() + " (" +
+                            ToString(r.status) + ", " + Fmt(MsSince(t0)) + " ms) -> " +
+                            entry.string());
+  }
+  return r.params;
+}
+
+// Parameters of `model` for `material` from a fit report (io/fit_report.h). The material is
+// matched against the entry's material name (its source's stem) or its source path.
+std::vector<double> FromReport(const MaterialSpec& m, ExplainLog* log) {
+  const auto entries = ReadFitReport(m.fit_report);
+  const std::string wanted = m.fit_material.empty() ? m.name : m.fit_material;
+  for (const auto& e : entries) {
+    if (e.result.model != m.model || (e.material != wanted && e.source != wanted)) continue;
+    if (e.result.Failed()) {
+      throw InputError(m.fit_report, "entry " + wanted + " / " + m.model + " is a failed fit");
+    }
+    if (log) {
+      log->Add("load", "material '" + m.name + "': " + m.model + " parameters of '" + wanted +
+                           "' from report " + m.fit_report.string() + " (" +
+                           ToString(e.result.status) + ")");
+    }
+    return e.result.params;
+  }
+  throw InputError(m.fit_report, "no fit of model '" + m.model + "' for material '" + wanted + "'");
+}
+
+Image ToImage(const RgbImage& src) {
+  Image img(src.width, src.height);
+  for (std::size_t i = 0; i < static_cast<std::size_t>(src.width) * src.height; ++i) {
+    for (int c = 0; c < 3; ++c) img.rgba[4 * i + c] = src.rgb[3 * i + c];
+    img.rgba[4 * i + 3] = 1.0f;
+  }
+  return img;
+}
+
+std::shared_ptr<const FactorTextures> Textures(FactoredBrdf brdf) {
+  auto f = std::make_shared<FactorTextures>();
+  f->parameterization = ToString(brdf.param());
+  f->p = ToImage(brdf.p());
+  f->q = ToImage(brdf.q());
+  auto shared = std::make_shared<const FactoredBrdf>(std::move(brdf));
+  f->eval = [shared](const Vec3& wi, const Vec3& wo) { return shared->Eval(wi, wo); };
+  return f;
+}
+
+std::shared_ptr<const FactorTextures> FactorCached(const MaterialSpec& m,
+                                                   const std::filesystem::path& cache_dir,
+                                                   TableCache* tables, ExplainLog* log) {
+  if (!m.factors.empty()) {
+    auto f = Textures(LoadFactoredBrdf(m.factors));
+    if (log) log->Add("load", "factorization " + m.factors.string());
+    return f;
+  }
+  FactorOptions opt;
+  opt.param = FactorParamFromString(m.factor_param);
+  opt.resolution = m.factor_resolution;
+  Fnv1a64 h;
+  h.Add(FileContentKey(m.table));
+  // Every solver option (defaults included: a changed default never reuses an old entry).
+  char opts[160];
+  std::snprintf(opts, sizeof opts, "|factor|%s|%d|%.17g|%d|%.17g", m.factor_param.c_str(),
+                opt.resolution, opt.lambda, static_cast<int>(opt.weighting), opt.max_theta);
+  h.Add(opts);
+  const std::string stem = "factor-" + h.Hex();
+  const FactorPaths paths = FactorFilePaths(cache_dir, stem);
+  if (std::filesystem::exists(paths.json)) {
+    try {
+      auto f = Textures(LoadFactoredBrdf(paths.json));
+      if (log) {
+        log->Add("reuse", "factorization " + m.factor_param + " " +
+                              std::to_string(m.factor_resolution) + " of " + m.table.string() +
+                              " from cache " + paths.json.string());
+      }
+      return f;
+    } catch (const InputError&) {
+      if (log) log->Add("note", "cache entry " + paths.json.string() + " unreadable: recomputing");
+    }
+  }
+  const auto table = tables->Get(m.table);
+  const auto t0 = Clock::now();
+  Factorization r = Factor(*table, opt);
+  std::filesystem::create_directories(cache_dir);
+  SaveFactorization(r, cache_dir, stem, {{"source", m.table.string()}});
+  if (log) {
+    log->Add("compute", "factorization " + m.factor_param + " " +
+                            std::to_string(m.factor_resolution) + " of " + m.table.string() +
+                            " (" + Fmt(MsSince(t0)) + " ms) -> " + paths.json.string());
+  }
+  return Textures(std::move(r.brdf));
+}
+
+}  // namespace
+
+
+std::filesystem::path DefaultCacheDir() {
+  if (const char* d = std::getenv("BRDFIT_CACHE_DIR"); d && *d) return d;
+  if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) {
+    return std::filesystem::path(d) / "brdfit";
+  }
+  if (const char* d = std::getenv("HOME"); d && *d) {
+    return std::filesystem::path(d) / ".cache" / "brdfit";
+  }
+  return std::filesystem::temp_directory_path() / "brdfit-cache";
+}
+
+MaterialSet LoadMaterials(const Scene& scene, const std::set<std::string>& used,
+                          const LoadOptions& options, ExplainLog* log) {
+  const std::filesystem::path cache_dir =
+      options.cache_dir.empty() ? DefaultCacheDir() : options.cache_dir;
+  TableCache tables(log);
+  MaterialSet out;
+  for (const MaterialSpec& m : scene.materials) {
+    if (!used.count(m.name)) {
+      if (log) log->Add("skip", "material '" + m.name + "' (not used by this render)");
+      continue;
+    }
+    ResolvedMaterial r;
+    r.name = m.name;
+    r.kind = m.kind;
+    switch (m.kind) {
+      case MaterialKind::kAnalytic:
+        r.model = m.model;
+        if (!m.fit_table.empty()) {
+          r.params = FitCached(m, cache_dir, &tables, log);
+        } else if (!m.fit_report.empty()) {
+          r.params = FromReport(m, log);
+        } else {
+          r.params = m.params;
+          if (log) log->Add("load", "material '" + m.name + "': " + m.model + " from scene parameters");
+        }
+        break;
+      case MaterialKind::kMeasured:
+        r.table = tables.Get(m.table);
+        break;
+      case MaterialKind::kFactored:
+        r.factors = FactorCached(m, cache_dir, &tables, log);
+        break;
+    }
+    out.emplace(m.name, std::move(r));
+  }
+  return out;
+}
+
+}  // namespace brdfit::pipeline

@@ -1,0 +1,200 @@
+#include "report/bench_csv.h"
+
+#include <fmt/core.h>
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "io/atomic_file.h"
+#include "core/error.h"
+
+namespace brdfit::report {
+
+const std::vector<std::string>& BenchCsvColumns() {
+  static const std::vector<std::string> columns = {
+      "material", "table",      "model",     "loss",         "budget",    "status",
+      "time_ms",  "prepare_ms", "init_ms",   "solve_ms",     "log_rmse",  "cbrt_rmse",
+      "rel_l2",   "metric_ok",  "metric_cells", "weighting", "cutoff_deg", "fit_cells",
+      "iterations", "message"};
+  return columns;
+}
+
+namespace {
+
+std::string Quote(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (const char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+// Shortest round-trip text of a double; "nan" for non-finite (never written by brdfit, read
+// back as NaN).
+std::string Num(double v) { return std::isfinite(v) ? fmt::format("{}", v) : "nan"; }
+
+}  // namespace
+
+std::string BenchCsvText(const std::vector<BenchPoint>& points) {
+  std::string out;
+  const auto& cols = BenchCsvColumns();
+  for (std::size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + cols[i];
+  out += "\n";
+  for (const BenchPoint& b : points) {
+    const std::vector<std::string> f = {
+        Quote(b.material),        Quote(b.table),           Quote(b.model),
+        Quote(b.loss),            Quote(b.budget),          Quote(b.status),
+        Num(b.time_ms),           Num(b.prepare_ms),        Num(b.init_ms),
+        Num(b.solve_ms),          Num(b.metrics.log_rmse),  Num(b.metrics.cbrt_rmse),
+        Num(b.metrics.rel_l2),    b.metrics.ok ? "1" : "0", std::to_string(b.metrics.cells),
+        Quote(b.metrics.weighting), Num(b.metrics.cutoff_deg), std::to_string(b.fit_cells),
+        std::to_string(b.iterations), Quote(b.message)};
+    for (std::size_t i = 0; i < f.size(); ++i) out += (i ? "," : "") + f[i];
+    out += "\n";
+  }
+  return out;
+}
+
+void WriteBenchCsv(const std::filesystem::path& path, const std::vector<BenchPoint>& points) {
+  WriteTextAtomically(path, BenchCsvText(points));
+}
+
+std::vector<std::string> SplitCsvRecord(const std::string& text, std::size_t* pos) {
+  std::vector<std::string> fields;
+  std::string field;
+  std::size_t i = *pos;
+  bool quoted = false, was_quoted = false;
+  for (; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c == '"') {
+        if (i + 1 < text.size() && text[i + 1] == '"') {
+          field += '"';
+          ++i;
+        } else {
+          quoted = false;
+        }
+      } else {
+        field += c;
+      }
+    } else if (c == '"' && field.empty() && !was_quoted) {
+      quoted = was_quoted = true;
+    } else if (c == ',') {
+      fields.push_back(std::move(field));
+      field.clear();
+      was_quoted = false;
+    } else if (c == '\n' || c == '\r') {
+      if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+      ++i;
+      break;
+    } else {
+      field += c;
+    }
+  }
+  if (quoted) throw std::invalid_argument("unterminated quoted field");
+  fields.push_back(std::move(field));
+  *pos = i;
+  return fields;
+}
+
+namespace {
+
+double ParseDouble(const std::string& s, const std::filesystem::path& path, int line,
+                   const std::string& column) {
+  if (s == "nan" || s == "NaN" || s.empty()) return NAN;
+  double v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || end != s.data() + s.size()) {
+    throw InputError(path, fmt::format("line {}: column {}: '{}' is not a number", line, column, s));
+  }
+  return v;
+}
+
+long ParseInt(const std::string& s, const std::filesystem::path& path, int line,
+              const std::string& column) {
+  long v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || end != s.data() + s.size() || v < 0) {
+    throw InputError(path,
+                     fmt::format("line {}: column {}: '{}' is not a count", line, column, s));
+  }
+  return v;
+}
+
+}  // namespace
+
+std::vector<BenchPoint> ReadBenchCsv(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot open the bench CSV");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string text = ss.str();
+  std::size_t pos = 0;
+  int line = 1;
+  std::map<std::string, std::size_t> col;
+  try {
+    const auto header = SplitCsvRecord(text, &pos);
+    for (std::size_t i = 0; i < header.size(); ++i) col[header[i]] = i;
+  } catch (const std::invalid_argument& e) {
+    throw InputError(path, fmt::format("line 1: {}", e.what()));
+  }
+  for (const char* required : {"material", "model", "budget", "time_ms", "log_rmse"}) {
+    if (!col.count(required)) {
+      throw InputError(path, fmt::format("not a brdfit bench CSV: no column '{}'", required));
+    }
+  }
+  std::vector<BenchPoint> points;
+  while (pos < text.size()) {
+    ++line;
+    std::vector<std::string> f;
+    try {
+      f = SplitCsvRecord(text, &pos);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(path, fmt::format("line {}: {}", line, e.what()));
+    }
+    if (f.size() == 1 && f[0].empty()) continue;  // blank line
+    if (f.size() != col.size()) {
+      throw InputError(path, fmt::format("line {}: {} fields, the header has {}", line, f.size(),
+                                         col.size()));
+    }
+    auto get = [&](const char* name) -> std::string {
+      const auto it = col.find(name);
+      return it == col.end() ? std::string() : f[it->second];
+    };
+    auto num = [&](const char* name) {
+      return col.count(name) ? ParseDouble(get(name), path, line, name) : NAN;
+    };
+    auto count = [&](const char* name) {
+      return col.count(name) ? ParseInt(get(name), path, line, name) : 0L;
+    };
+    BenchPoint b;
+    b.material = get("material");
+    b.table = get("table");
+    b.model = get("model");
+    b.loss = get("loss");
+    b.budget = get("budget");
+    b.status = get("status");
+    b.message = get("message");
+    b.time_ms = num("time_ms");
+    b.prepare_ms = num("prepare_ms");
+    b.init_ms = num("init_ms");
+    b.solve_ms = num("solve_ms");
+    b.metrics.log_rmse = num("log_rmse");
+    b.metrics.cbrt_rmse = num("cbrt_rmse");
+    b.metrics.rel_l2 = num("rel_l2");
+    b.metrics.ok = col.count("metric_ok") ? get("metric_ok") == "1"
+                                          : std::isfinite(b.metrics.log_rmse);
+    b.metrics.cells = static_cast<std::size_t>(count("metric_cells"));
+    b.metrics.weighting = get("weighting");
+    b.metrics.cutoff_deg = num("cutoff_deg");
+    b.fit_cells = static_cast<std::size_t>(count("fit_cells"));
+    b.iterations = static_cast<int>(count("iterations"));
+    points.push_back(std::move(b));
+  }
+  return points;
+}
+
+}  // namespace brdfit::report

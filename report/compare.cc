@@ -1,0 +1,287 @@
+#include "report/compare.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+
+#include "core/error.h"
+
+namespace brdfit::report {
+
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+bool Usable(const Entry& e) { return !e.Failed() && e.metrics.ok; }
+}  // namespace
+
+const char* ToString(MetricName m) {
+  switch (m) {
+    case MetricName::kCbrtRmse:
+      return "cbrt_rmse";
+    case MetricName::kRelL2:
+      return "rel_l2";
+    case MetricName::kLogRmse:
+      break;
+  }
+  return "log_rmse";
+}
+
+MetricName MetricNameFromString(const std::string& s) {
+  for (MetricName m : {MetricName::kLogRmse, MetricName::kCbrtRmse, MetricName::kRelL2}) {
+    if (s == ToString(m)) return m;
+  }
+  throw InputError("unknown metric '" + s + "'; expected log_rmse, cbrt_rmse or rel_l2");
+}
+
+double MetricValue(const Metrics& m, MetricName name) {
+  switch (name) {
+    case MetricName::kCbrtRmse:
+      return m.cbrt_rmse;
+    case MetricName::kRelL2:
+      return m.rel_l2;
+    case MetricName::kLogRmse:
+      break;
+  }
+  return m.log_rmse;
+}
+
+const char* ToString(Change c) {
+  switch (c) {
+    case Change::kSame: return "same";
+    case Change::kBetter: return "better";
+    case Change::kWorse: return "worse";
+    case Change::kSlower: return "slower";
+    case Change::kNowFails: return "now-fails";
+    case Change::kFixed: return "fixed";
+    case Change::kStillFails: return "still-fails";
+    case Change::kMissing: return "missing";
+    case Change::kAdded: return "added";
+  }
+  return "?";
+}
+
+int Comparison::Count(Change c) const {
+  return static_cast<int>(
+      std::count_if(deltas.begin(), deltas.end(), [c](const EntryDelta& d) { return d.change == c; }));
+}
+
+int Comparison::Regressions() const {
+  return static_cast<int>(
+      std::count_if(deltas.begin(), deltas.end(), [](const EntryDelta& d) { return d.regression; }));
+}
+
+namespace {
+
+EntryDelta Judge(const std::string& material, const Entry* a, const Entry* b,
+                 const CompareOptions& o) {
+  const Entry& any = a ? *a : *b;
+  EntryDelta d;
+  d.material = material;
+  d.name = any.name;
+  d.loss = any.loss;
+  d.budget = any.budget;
+  d.old_value = d.new_value = d.rel_change = kNaN;
+  if (a) {
+    d.status_old = a->status;
+    d.old_metrics = a->metrics;
+    d.old_time_ms = a->time_ms;
+    if (Usable(*a)) d.old_value = MetricValue(a->metrics, o.metric);
+  }
+  if (b) {
+    d.status_new = b->status;
+    d.new_metrics = b->metrics;
+    d.new_time_ms = b->time_ms;
+    if (Usable(*b)) d.new_value = MetricValue(b->metrics, o.metric);
+  }
+  if (!b) {
+    d.change = Change::kMissing;
+    d.regression = o.missing_is_regression;
+    return d;
+  }
+  if (!a) {
+    d.change = Change::kAdded;
+    return d;
+  }
+  const bool ua = Usable(*a) && std::isfinite(d.old_value);
+  const bool ub = Usable(*b) && std::isfinite(d.new_value);
+  if (!ua || !ub) {
+    d.change = ua ? Change::kNowFails : ub ? Change::kFixed : Change::kStillFails;
+    d.regression = d.change == Change::kNowFails;
+    return d;
+  }
+  const double diff = d.new_value - d.old_value;
+  d.rel_change = d.old_value > 0 ? diff / d.old_value : kNaN;
+  const bool beyond_rel = d.old_value > 0 ? std::abs(diff) > o.threshold * d.old_value : true;
+  if (diff > o.abs_floor && beyond_rel) {
+    d.change = Change::kWorse;
+  } else if (-diff > o.abs_floor && beyond_rel) {
+    d.change = Change::kBetter;
+  }
+  if (d.change != Change::kWorse && o.time_threshold > 0 &&
+      d.new_time_ms - d.old_time_ms > o.time_floor_ms &&
+      d.new_time_ms > d.old_time_ms * (1 + o.time_threshold)) {
+    d.change = Change::kSlower;
+  }
+  d.regression = d.change == Change::kWorse || d.change == Change::kSlower;
+  return d;
+}
+
+const Entry* FindEntry(const Material* m, const std::string& key) {
+  if (!m) return nullptr;
+  for (const Entry& e : m->entries) {
+    if (e.Key() == key) return &e;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+Comparison Compare(const Report& old_report, const Report& new_report,
+                   const CompareOptions& options) {
+  if (!(options.threshold >= 0) || !(options.abs_floor >= 0) || !(options.time_threshold >= 0)) {
+    throw InputError("compare: thresholds must be >= 0");
+  }
+  Comparison c;
+  c.options = options;
+  std::set<std::string> regressed;
+  for (const Material& ma : old_report.materials) {
+    const Material* mb = new_report.FindMaterial(ma.name);
+    if (!mb) c.missing_materials.push_back(ma.name);
+    for (const Entry& ea : ma.entries) {
+      c.deltas.push_back(Judge(ma.name, &ea, FindEntry(mb, ea.Key()), options));
+    }
+    if (mb) {
+      for (const Entry& eb : mb->entries) {
+        if (!FindEntry(&ma, eb.Key())) c.deltas.push_back(Judge(ma.name, nullptr, &eb, options));
+      }
+    }
+  }
+  for (const Material& mb : new_report.materials) {
+    if (old_report.FindMaterial(mb.name)) continue;
+    c.added_materials.push_back(mb.name);
+    for (const Entry& eb : mb.entries) c.deltas.push_back(Judge(mb.name, nullptr, &eb, options));
+  }
+  for (const EntryDelta& d : c.deltas) {
+    if (d.regression &&
+        std::find(c.regressed_materials.begin(), c.regressed_materials.end(), d.material) ==
+            c.regressed_materials.end()) {
+      c.regressed_materials.push_back(d.material);
+    }
+  }
+  return c;
+}
+
+namespace {
+nlohmann::ordered_json Num(double v) {
+  return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
+}
+nlohmann::ordered_json MetricsJson(const Metrics& m) {
+  return {{"ok", m.ok}, {"log_rmse", Num(m.log_rmse)}, {"cbrt_rmse", Num(m.cbrt_rmse)},
+          {"rel_l2", Num(m.rel_l2)}};
+}
+}  // namespace
+
+nlohmann::ordered_json ComparisonToJson(const Comparison& c) {
+  nlohmann::ordered_json j;
+  j["metric"] = ToString(c.options.metric);
+  j["threshold"] = c.options.threshold;
+  j["abs_floor"] = c.options.abs_floor;
+  j["time_threshold"] = c.options.time_threshold;
+  j["missing_is_regression"] = c.options.missing_is_regression;
+  j["regressed"] = c.Regressed();
+  j["regressions"] = c.Regressions();
+  nlohmann::ordered_json counts;
+  for (Change ch : {Change::kSame, Change::kBetter, Change::kWorse, Change::kSlower,
+                    Change::kNowFails, Change::kFixed, Change::kStillFails, Change::kMissing,
+                    Change::kAdded}) {
+    counts[ToString(ch)] = c.Count(ch);
+  }
+  j["counts"] = counts;
+  j["regressed_materials"] = c.regressed_materials;
+  j["missing_materials"] = c.missing_materials;
+  j["added_materials"] = c.added_materials;
+  nlohmann::ordered_json deltas = nlohmann::ordered_json::array();
+  for (const EntryDelta& d : c.deltas) {
+    deltas.push_back({{"material", d.material},
+                      {"name", d.name},
+                      {"loss", d.loss},
+                      {"budget", d.budget},
+                      {"change", ToString(d.change)},
+                      {"regression", d.regression},
+                      {"status_old", d.status_old},
+                      {"status_new", d.status_new},
+                      {"old", Num(d.old_value)},
+                      {"new", Num(d.new_value)},
+                      {"rel_change", Num(d.rel_change)},
+                      {"old_metrics", MetricsJson(d.old_metrics)},
+                      {"new_metrics", MetricsJson(d.new_metrics)},
+                      {"old_time_ms", d.old_time_ms},
+                      {"new_time_ms", d.new_time_ms}});
+  }
+  j["deltas"] = deltas;
+  return j;
+}
+
+std::string FormatComparison(const Comparison& c, bool all) {
+  const char* metric = ToString(c.options.metric);
+  std::string out;
+  std::string material;
+  auto pct = [](double r) { return std::isfinite(r) ? fmt::format("{:+.1f} %", 100 * r) : "–"; };
+  auto num = [](double v) { return std::isfinite(v) ? fmt::format("{:.4g}", v) : "–"; };
+  for (const EntryDelta& d : c.deltas) {
+    if (!all && d.change == Change::kSame) continue;
+    if (d.material != material) {
+      material = d.material;
+      out += fmt::format("{}\n", material);
+    }
+    std::string what = fmt::format("{} ({}, {})", d.name, d.loss, d.budget);
+    std::string detail;
+    switch (d.change) {
+      case Change::kNowFails:
+        detail = fmt::format("status {} -> {}", d.status_old, d.status_new);
+        break;
+      case Change::kMissing:
+        detail = "only in the old report";
+        break;
+      case Change::kAdded:
+        detail = fmt::format("only in the new report ({} {})", metric, num(d.new_value));
+        break;
+      case Change::kSlower:
+        detail = fmt::format("time {:.1f} -> {:.1f} ms", d.old_time_ms, d.new_time_ms);
+        break;
+      default:
+        detail = fmt::format("{} {} -> {} ({}); time {:.1f} -> {:.1f} ms", metric,
+                             num(d.old_value), num(d.new_value), pct(d.rel_change), d.old_time_ms,
+                             d.new_time_ms);
+    }
+    out += fmt::format("  {:<12} {:<44} {}{}\n", ToString(d.change), what, detail,
+                       d.regression ? "   <- REGRESSION" : "");
+  }
+  out += fmt::format(
+      "\n{} entries compared on {} (regression: > {:.3g} % worse and > {:.3g} absolute{}): "
+      "{} better, {} same, {} worse, {} slower, {} now fail, {} fixed, {} still fail, "
+      "{} missing, {} added\n",
+      c.deltas.size(), metric, 100 * c.options.threshold, c.options.abs_floor,
+      c.options.time_threshold > 0
+          ? fmt::format("; time > {:.3g} % slower", 100 * c.options.time_threshold)
+          : "",
+      c.Count(Change::kBetter), c.Count(Change::kSame), c.Count(Change::kWorse),
+      c.Count(Change::kSlower), c.Count(Change::kNowFails), c.Count(Change::kFixed),
+      c.Count(Change::kStillFails), c.Count(Change::kMissing), c.Count(Change::kAdded));
+  for (const auto& m : c.missing_materials) out += fmt::format("material {} is missing\n", m);
+  for (const auto& m : c.added_materials) out += fmt::format("material {} is new\n", m);
+  if (c.Regressed()) {
+    std::string names;
+    for (const auto& m : c.regressed_materials) names += (names.empty() ? "" : ", ") + m;
+    out += fmt::format("REGRESSED: {} ({} regressions)\n", names, c.Regressions());
+  } else {
+    out += "no regressions\n";
+  }
+  return out;
+}
+
+}  // namespace brdfit::report

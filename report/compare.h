@@ -1,0 +1,76 @@
+// Comparing two reports (report/report_model.h) entry by entry: for each material and each
+// approximation (name | loss | budget), the metric deltas, and whether the change is a
+// regression beyond a threshold. `brdfit compare` prints it and gates CI with its exit code.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "report/report_model.h"
+
+namespace brdfit::report {
+
+enum class MetricName { kLogRmse, kCbrtRmse, kRelL2 };
+const char* ToString(MetricName m);
+MetricName MetricNameFromString(const std::string& s);  // throws InputError
+double MetricValue(const Metrics& m, MetricName name);
+
+struct CompareOptions {
+  MetricName metric = MetricName::kLogRmse;  // the metric that decides
+  // A change is a regression when new > old * (1 + threshold) and new - old > abs_floor
+  // (the floor keeps round-off on near-perfect fits from failing CI).
+  double threshold = 0.05;
+  double abs_floor = 1e-6;
+  // > 0: time_ms growing by more than this fraction (and by more than time_floor_ms) is also a
+  // regression. Off by default: timings are noisy across machines.
+  double time_threshold = 0;
+  double time_floor_ms = 5;
+  bool missing_is_regression = true;  // an entry of the old report absent from the new one
+};
+
+enum class Change {
+  kSame,        // within the threshold
+  kBetter,      // metric dropped by more than the threshold
+  kWorse,       // metric grew beyond the threshold: a regression
+  kSlower,      // time grew beyond time_threshold: a regression
+  kNowFails,    // usable before, failed (or unscored) now: a regression
+  kFixed,       // failed before, usable now
+  kStillFails,  // failed in both
+  kMissing,     // only in the old report (a regression if missing_is_regression)
+  kAdded,       // only in the new report
+};
+const char* ToString(Change c);
+
+struct EntryDelta {
+  std::string material, name, loss, budget;
+  Change change = Change::kSame;
+  bool regression = false;
+  std::string status_old, status_new;
+  double old_value = 0, new_value = 0;  // the deciding metric (NaN when absent or unusable)
+  double rel_change = 0;                // (new - old) / old; NaN when undefined
+  Metrics old_metrics, new_metrics;
+  double old_time_ms = 0, new_time_ms = 0;
+};
+
+struct Comparison {
+  CompareOptions options;
+  std::vector<EntryDelta> deltas;  // in the old report's order, then additions
+  std::vector<std::string> regressed_materials;  // materials with at least one regression
+  std::vector<std::string> missing_materials;    // in the old report only
+  std::vector<std::string> added_materials;      // in the new report only
+
+  int Count(Change c) const;
+  int Regressions() const;
+  bool Regressed() const { return Regressions() > 0; }
+};
+
+Comparison Compare(const Report& old_report, const Report& new_report,
+                   const CompareOptions& options = {});
+
+nlohmann::ordered_json ComparisonToJson(const Comparison& c);
+// Human-readable: one line per material and changed entry, then a summary. With all = true,
+// unchanged entries are listed too.
+std::string FormatComparison(const Comparison& c, bool all = false);
+
+}  // namespace brdfit::report

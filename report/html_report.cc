@@ -1,0 +1,557 @@
+#include "report/html_report.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "io/atomic_file.h"
+#include "core/error.h"
+#include "report/report_charts.h"
+
+namespace brdfit::report {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+// ---- helpers ------------------------------------------------------------------------------
+
+std::filesystem::path ChartJsPath() {
+  if (const char* env = std::getenv("BRDFIT_CHART_JS"); env && *env) return env;
+  return kDefaultChartJs;
+}
+
+namespace {
+bool ReadBytes(const fs::path& path, std::string* out) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) return false;
+  *out = ss.str();
+  return true;
+}
+}  // namespace
+
+std::string ReadChartJs(const fs::path& path) {
+  const std::string fix =
+      "the HTML report inlines Chart.js from Debian's libjs-chart.js: run "
+      "scripts/setup-deps.sh (or apt-get install libjs-chart.js), or set BRDFIT_CHART_JS to "
+      "chart.min.js";
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw InputError(path, "Chart.js not found; " + fix);
+  std::string js;
+  if (!ReadBytes(path, &js)) throw InputError(path, "cannot read Chart.js; " + fix);
+  if (js.find("Chart") == std::string::npos || js.size() < 1000) {
+    throw InputError(path, "does not look like Chart.js; " + fix);
+  }
+  // Inlined into a <script> element: the text must not close it.
+  if (js.find("</script") != std::string::npos || js.find("</SCRIPT") != std::string::npos) {
+    throw InputError(path, "contains '</script' and cannot be inlined");
+  }
+  return js;
+}
+
+std::string HtmlEscape(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&#39;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string Base64(std::string_view bytes) {
+  static constexpr char kAlphabet[] =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  std::size_t i = 0;
+  for (; i + 3 <= bytes.size(); i += 3) {
+    const unsigned v = (static_cast<unsigned char>(bytes[i]) << 16) |
+                       (static_cast<unsigned char>(bytes[i + 1]) << 8) |
+                       static_cast<unsigned char>(bytes[i + 2]);
+    for (int k = 3; k >= 0; --k) out += kAlphabet[(v >> (6 * k)) & 63];
+  }
+  const std::size_t rest = bytes.size() - i;
+  if (rest > 0) {
+    unsigned v = static_cast<unsigned char>(bytes[i]) << 16;
+    if (rest == 2) v |= static_cast<unsigned char>(bytes[i + 1]) << 8;
+    out += kAlphabet[(v >> 18) & 63];
+    out += kAlphabet[(v >> 12) & 63];
+    out += rest == 2 ? kAlphabet[(v >> 6) & 63] : '=';
+    out += '=';
+  }
+  return out;
+}
+
+std::string ScriptSafeJson(const std::string& json_text) {
+  std::string out;
+  out.reserve(json_text.size());
+  for (const char c : json_text) {
+    if (c == '<') {
+      out += "\\u003c";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+namespace {
+
+std::string Num(double v, const char* spec = "{:.4g}") {
+  return std::isfinite(v) ? fmt::format(fmt::runtime(spec), v) : "–";
+}
+
+// Anchor-safe id from a name.
+std::string Slug(const std::string& name) {
+  std::string s;
+  for (const char c : name) {
+    s += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_') ? c : '_';
+  }
+  return s;
+}
+
+bool Usable(const Entry& e) { return !e.Failed() && e.metrics.ok; }
+
+// ---- page assembly ------------------------------------------------------------------------
+
+constexpr const char* kStyle = R"css(
+:root { --fg:#1d232a; --muted:#5b6570; --line:#d9dee3; --best:#dff3e2; --bad:#fbe4e4; }
+* { box-sizing: border-box; }
+body { font: 14px/1.45 system-ui, -apple-system, "Segoe UI", Roboto, sans-serif; color: var(--fg);
+       margin: 0 auto; max-width: 1280px; padding: 16px 24px 48px; }
+h1 { font-size: 24px; margin: 8px 0 4px; } h2 { font-size: 20px; margin: 32px 0 8px;
+  border-bottom: 2px solid var(--line); padding-bottom: 4px; } h3 { font-size: 16px; margin: 20px 0 6px; }
+.muted, .note { color: var(--muted); } .note { font-style: italic; }
+table { border-collapse: collapse; margin: 8px 0; font-variant-numeric: tabular-nums; }
+th, td { border-bottom: 1px solid var(--line); padding: 4px 8px; text-align: right; white-space: nowrap; }
+th { background: #f3f5f7; position: sticky; top: 0; } td.l, th.l { text-align: left; }
+tr.best td { background: var(--best); } td.bestv { font-weight: 700; }
+tr.failed td { background: var(--bad); }
+.charts { display: grid; grid-template-columns: repeat(auto-fit, minmax(520px, 1fr)); gap: 16px; }
+.chart { position: relative; height: 340px; border: 1px solid var(--line); border-radius: 6px; padding: 6px; }
+.renders { display: flex; flex-wrap: wrap; gap: 16px; } figure { margin: 0; }
+figure img { max-width: 100%; border: 1px solid var(--line); } figcaption { color: var(--muted); }
+#report-errors { display: none; background: var(--bad); border: 1px solid #d33; padding: 8px; }
+nav a { margin-right: 12px; } code { background: #f3f5f7; padding: 0 3px; }
+details { margin: 6px 0; } summary { cursor: pointer; color: var(--muted); }
+.scroll { overflow-x: auto; } td.stages { white-space: normal; min-width: 12em; text-align: left; }
+)css";
+
+// First script of the page: collects errors before anything else runs.
+constexpr const char* kErrorCapture = R"js(
+window.__errors = [];
+window.__brdfitError = function (msg) {
+  window.__errors.push(String(msg));
+  if (document.body) {
+    document.body.setAttribute('data-errors', JSON.stringify(window.__errors));
+    var box = document.getElementById('report-errors');
+    if (box) { box.style.display = 'block'; box.textContent = 'Errors on this page: ' + window.__errors.join(' | '); }
+  }
+};
+window.addEventListener('error', function (e) {
+  window.__brdfitError((e && e.message) ? e.message : 'error loading ' + (e && e.target && e.target.src));
+}, true);
+window.addEventListener('unhandledrejection', function (e) { window.__brdfitError('unhandled rejection: ' + e.reason); });
+(function () {
+  var original = console.error;
+  console.error = function () {
+    window.__brdfitError(Array.prototype.map.call(arguments, String).join(' '));
+    return original.apply(console, arguments);
+  };
+})();
+)js";
+
+// Last script: draws every chart from its JSON configuration and records what it drew.
+constexpr const char* kBootstrap = R"js(
+(function () {
+  if (typeof Chart === 'undefined') { window.__brdfitError('Chart.js did not load'); return; }
+  var specs = document.querySelectorAll('script[type="application/json"][data-chart]');
+  var rendered = 0;
+  function tooltipLabel(ctx) {
+    var r = ctx.raw;
+    if (r && typeof r === 'object' && r.label) return r.label;
+    return ctx.dataset.label + ': ' + ctx.formattedValue;
+  }
+  function drewSomething(chart) {
+    var points = 0;
+    chart.data.datasets.forEach(function (d) {
+      d.data.forEach(function (v) {
+        var y = (v !== null && typeof v === 'object') ? v.y : v;
+        if (typeof y === 'number' && isFinite(y)) points++;
+      });
+    });
+    var c = chart.canvas, g = c.getContext('2d');
+    var px = g.getImageData(0, 0, c.width, c.height).data, inked = 0;
+    for (var i = 3; i < px.length; i += 4) if (px[i] > 0) inked++;
+    return points > 0 && inked > 0.002 * c.width * c.height;
+  }
+  // Log axes: label 1, 2 and 5 times powers of ten, in exponent form far from 1.
+  function logTick(value) {
+    if (!(value > 0)) return '';
+    var e = Math.floor(Math.log10(value) + 1e-9), m = value / Math.pow(10, e);
+    m = Math.round(m * 1000) / 1000;
+    if (m !== 1 && m !== 2 && m !== 5) return '';
+    return (e < -3 || e > 4) ? m + 'e' + e : String(Number(value.toPrecision(3)));
+  }
+  specs.forEach(function (s) {
+    var id = s.getAttribute('data-chart');
+    try {
+      var cfg = JSON.parse(s.textContent);
+      cfg.options = cfg.options || {};
+      cfg.options.plugins = cfg.options.plugins || {};
+      cfg.options.plugins.tooltip = { callbacks: { label: tooltipLabel } };
+      Object.keys(cfg.options.scales || {}).forEach(function (k) {
+        var sc = cfg.options.scales[k];
+        if (sc.type === 'logarithmic') { sc.ticks = sc.ticks || {}; sc.ticks.callback = logTick; }
+      });
+      var canvas = document.getElementById(id);
+      var chart = new Chart(canvas, cfg);
+      if (drewSomething(chart)) { rendered++; canvas.setAttribute('data-rendered', '1'); }
+      else window.__brdfitError('chart ' + id + ' drew no data');
+    } catch (e) {
+      window.__brdfitError('chart ' + id + ': ' + e);
+    }
+  });
+  document.body.setAttribute('data-charts-rendered', String(rendered));
+  document.body.setAttribute('data-errors', JSON.stringify(window.__errors));
+})();
+)js";
+
+class Page {
+ public:
+  explicit Page(const Report& r) : report_(r), palette_(r) {}
+
+  std::string Build(const std::string& chart_js) {
+    Header();
+    Summary();
+    Bench();
+    for (const Material& m : report_.materials) MaterialSection(m);
+    Renders();
+    body_ += fmt::format(
+        "<footer class=\"muted\"><p>Made by brdfit. Plots drawn by Chart.js 3 (MIT licence, "
+        "chartjs.org), inlined from Debian's libjs-chart.js; the page loads nothing from the "
+        "network.</p></footer>\n");
+    std::string out;
+    out += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
+    out += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
+    out += "<title>" + HtmlEscape(report_.title) + "</title>\n";
+    out += "<style>" + std::string(kStyle) + "</style>\n";
+    out += "<script>" + std::string(kErrorCapture) + "</script>\n";
+    out += "<script>\n" + chart_js + "\n</script>\n</head>\n";
+    out += fmt::format("<body data-charts-expected=\"{}\" data-charts-rendered=\"0\" "
+                       "data-errors=\"[]\">\n",
+                       charts_);
+    out += "<div id=\"report-errors\"></div>\n";
+    out += body_;
+    out += "<script>" + std::string(kBootstrap) + "</script>\n</body>\n</html>\n";
+    return out;
+  }
+
+ private:
+  // True if some dataset holds a finite value (Chart.js would draw an empty frame otherwise).
+  static bool HasData(const json& config) {
+    for (const json& d : config["data"]["datasets"]) {
+      for (const json& v : d["data"]) {
+        const json& y = v.is_object() ? v["y"] : v;
+        if (y.is_number() && std::isfinite(y.get<double>())) return true;
+      }
+    }
+    return false;
+  }
+
+  void Chart(const json& config, const std::string& aria) {
+    if (!HasData(config)) {
+      body_ += "<p class=\"note\">No data to plot: " + HtmlEscape(aria) + ".</p>\n";
+      return;
+    }
+    const std::string id = fmt::format("chart-{}", charts_++);
+    body_ += fmt::format(
+        "<div class=\"chart\"><canvas id=\"{}\" role=\"img\" aria-label=\"{}\"></canvas></div>\n"
+        "<script type=\"application/json\" data-chart=\"{}\">{}</script>\n",
+        id, HtmlEscape(aria), id, ScriptSafeJson(config.dump(-1, ' ', false, json::error_handler_t::replace)));
+  }
+
+  void Header() {
+    body_ += "<header><h1>" + HtmlEscape(report_.title) + "</h1>\n";
+    if (!report_.inputs.empty()) {
+      body_ += fmt::format("<details><summary>Made from {} input{}</summary><p>",
+                           report_.inputs.size(), report_.inputs.size() == 1 ? "" : "s");
+      for (std::size_t i = 0; i < report_.inputs.size(); ++i) {
+        body_ += (i ? ", " : "") + ("<code>" + HtmlEscape(report_.inputs[i]) + "</code>");
+      }
+      body_ += "</p></details>\n";
+    }
+    if (!report_.metric_definition.empty()) {
+      body_ += "<p class=\"muted\"><b>Metrics.</b> " + HtmlEscape(report_.metric_definition) +
+               "</p>\n";
+    }
+    for (const auto& n : report_.notes) body_ += "<p class=\"note\">" + HtmlEscape(n) + "</p>\n";
+    if (report_.materials.size() > 1) {
+      body_ += "<nav>Materials: ";
+      for (const Material& m : report_.materials) {
+        body_ += fmt::format("<a href=\"#m-{}\">{}</a>", Slug(m.name), HtmlEscape(m.name));
+      }
+      body_ += "</nav>\n";
+    }
+    body_ += "</header>\n";
+  }
+
+  // Materials x approximations: the best log_rmse of each (over losses and budgets).
+  void Summary() {
+    std::vector<std::string> names;
+    for (const Material& m : report_.materials) {
+      for (const Entry& e : m.entries) {
+        if (std::find(names.begin(), names.end(), e.name) == names.end()) names.push_back(e.name);
+      }
+    }
+    if (names.empty()) return;
+    body_ += "<section id=\"summary\"><h2>Summary: best log_rmse per material</h2>\n";
+    body_ += "<p class=\"muted\">Lowest log_rmse of each model or factorization over its losses "
+             "and budgets; the best of each material is highlighted. – : not run or failed.</p>\n";
+    body_ += "<table><tr><th class=\"l\">material</th>";
+    for (const auto& n : names) body_ += "<th>" + HtmlEscape(n) + "</th>";
+    body_ += "<th class=\"l\">best</th></tr>\n";
+    for (const Material& m : report_.materials) {
+      std::vector<double> best(names.size(), NAN);
+      for (const Entry& e : m.entries) {
+        if (!Usable(e)) continue;
+        const auto k = std::find(names.begin(), names.end(), e.name) - names.begin();
+        if (!(best[k] <= e.metrics.log_rmse)) best[k] = e.metrics.log_rmse;
+      }
+      int arg = -1;
+      for (std::size_t k = 0; k < best.size(); ++k) {
+        if (std::isfinite(best[k]) && (arg < 0 || best[k] < best[arg])) arg = static_cast<int>(k);
+      }
+      body_ += fmt::format("<tr><td class=\"l\"><a href=\"#m-{}\">{}</a></td>", Slug(m.name),
+                           HtmlEscape(m.name));
+      for (std::size_t k = 0; k < best.size(); ++k) {
+        body_ += fmt::format("<td{}>{}</td>", static_cast<int>(k) == arg ? " class=\"bestv\"" : "",
+                             Num(best[k]));
+      }
+      body_ += "<td class=\"l\">" + (arg >= 0 ? HtmlEscape(names[arg]) : std::string("–")) +
+               "</td></tr>\n";
+    }
+    body_ += "</table>\n<div class=\"charts\">\n";
+    Chart(SummaryChart("Best log_rmse per material and model", report_, palette_),
+          "bar chart of the best log_rmse per material and model");
+    body_ += "</div>\n</section>\n";
+  }
+
+  void Bench() {
+    if (report_.bench.empty()) return;
+    body_ += "<section id=\"bench\"><h2>Run time against error (bench)</h2>\n";
+    body_ += "<p class=\"muted\">Each point is one fit: time from a loaded table to the fitted "
+             "parameters against log_rmse on all valid cells inside the cut-off. Colour: model; "
+             "marker: sample budget; dashed: the Pareto front (nothing is both faster and more "
+             "accurate than a point on it).</p>\n<div class=\"charts\">\n";
+    std::vector<std::string> mats;
+    for (const auto& b : report_.bench) {
+      if (std::find(mats.begin(), mats.end(), b.material) == mats.end()) mats.push_back(b.material);
+    }
+    for (const auto& mat : mats) {
+      Chart(ParetoChart("Run time against error: " + mat, BenchPoints(report_.bench, mat), palette_),
+            "scatter plot of run time against log_rmse for " + mat);
+    }
+    body_ += "</div>\n<details><summary>All bench points</summary>\n<table><tr>"
+             "<th class=\"l\">material</th><th class=\"l\">model</th><th class=\"l\">loss</th>"
+             "<th class=\"l\">budget</th><th class=\"l\">status</th><th>time (ms)</th>"
+             "<th>log_rmse</th><th>cbrt_rmse</th><th>rel_l2</th></tr>\n";
+    for (const auto& b : report_.bench) {
+      body_ += fmt::format(
+          "<tr{}><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td>"
+          "<td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td>"
+          "<td>{}</td></tr>\n",
+          b.status == "failed" ? " class=\"failed\"" : "", HtmlEscape(b.material),
+          HtmlEscape(b.model), HtmlEscape(b.loss), HtmlEscape(b.budget), HtmlEscape(b.status),
+          Num(b.time_ms, "{:.1f}"), Num(b.metrics.log_rmse), Num(b.metrics.cbrt_rmse),
+          Num(b.metrics.rel_l2));
+    }
+    body_ += "</table></details>\n</section>\n";
+  }
+
+  void MaterialSection(const Material& m) {
+    body_ += fmt::format("<section id=\"m-{}\"><h2>{}</h2>\n", Slug(m.name), HtmlEscape(m.name));
+    if (!m.source.empty()) {
+      body_ += "<p class=\"muted\">Table <code>" + HtmlEscape(m.source) + "</code></p>\n";
+    }
+    for (const auto& n : m.notes) body_ += "<p class=\"note\">" + HtmlEscape(n) + "</p>\n";
+    if (!m.entries.empty()) {
+      MetricsTable(m);
+      ParamsTable(m);
+    }
+    body_ += "<div class=\"charts\">\n";
+    if (!m.entries.empty()) {
+      Chart(ParetoChart("Run time against error: " + m.name, EntryPoints(m), palette_),
+            "scatter plot of fit time against log_rmse for " + m.name);
+      Chart(MetricsChart("Metrics: " + m.name, m), "bar chart of the metrics of " + m.name);
+    }
+    for (const Slice& s : m.slices) {
+      Chart(SliceChart(fmt::format("{}: θd = {:.1f}°, φd = {:.1f}°", m.name, s.theta_d_deg,
+                                   s.phi_d_deg),
+                       s, palette_),
+            fmt::format("theta_h slice at theta_d {:.1f} degrees", s.theta_d_deg));
+    }
+    body_ += "</div>\n";
+    if (m.slices.empty()) {
+      body_ += "<p class=\"note\">No θh slices for this material (its table was not "
+               "available).</p>\n";
+    } else {
+      body_ += "<p class=\"muted\">θh slices: black points are the measured cells (cell "
+               "centres of one θd and one φd bin); solid lines the fitted models, dashed lines "
+               "the factorizations, evaluated at the same cell centres. Gaps: invalid cells or "
+               "cells below the horizon.</p>\n";
+    }
+    body_ += "</section>\n";
+  }
+
+  void MetricsTable(const Material& m) {
+    // Rows by log_rmse, failed and unscored last.
+    std::vector<std::size_t> order(m.entries.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      const Entry &ea = m.entries[a], &eb = m.entries[b];
+      if (Usable(ea) != Usable(eb)) return Usable(ea);
+      return Usable(ea) && ea.metrics.log_rmse < eb.metrics.log_rmse;
+    });
+    const int best = BestEntry(m.entries);
+    const auto front_v = ParetoFront(m.entries);
+    const std::set<std::size_t> front(front_v.begin(), front_v.end());
+    auto best_of = [&](auto get) {
+      double b = NAN;
+      for (const Entry& e : m.entries) {
+        if (Usable(e) && !(b <= get(e))) b = get(e);
+      }
+      return b;
+    };
+    const double best_log = best_of([](const Entry& e) { return e.metrics.log_rmse; });
+    const double best_cbrt = best_of([](const Entry& e) { return e.metrics.cbrt_rmse; });
+    const double best_rel = best_of([](const Entry& e) { return e.metrics.rel_l2; });
+    const double best_time = best_of([](const Entry& e) { return e.time_ms; });
+    auto cell = [&](double v, double b, const char* spec = "{:.4g}") {
+      return fmt::format("<td{}>{}</td>", std::isfinite(v) && v == b ? " class=\"bestv\"" : "",
+                         Num(v, spec));
+    };
+    body_ += "<div class=\"scroll\"><table><tr><th class=\"l\">approximation</th><th class=\"l\">loss</th>"
+             "<th class=\"l\">budget</th><th class=\"l\">status</th><th>log_rmse</th>"
+             "<th>cbrt_rmse</th><th>rel_l2</th><th>cells</th><th>time (ms)</th>"
+             "<th class=\"l\">stages (ms)</th><th>iter.</th><th>Pareto</th></tr>\n";
+    for (const std::size_t i : order) {
+      const Entry& e = m.entries[i];
+      std::string stages;
+      for (const auto& [name, ms] : e.times_ms) {
+        stages += (stages.empty() ? "" : " · ") + fmt::format("{} {}", name, Num(ms, "{:.1f}"));
+      }
+      const bool ok = Usable(e);
+      const char* cls = static_cast<int>(i) == best ? " class=\"best\""
+                        : e.Failed()                ? " class=\"failed\""
+                                                    : "";
+      std::string status = HtmlEscape(e.status);
+      if (!e.message.empty()) status += " <span class=\"muted\">(" + HtmlEscape(e.message) + ")</span>";
+      body_ += fmt::format(
+          "<tr{}><td class=\"l\">{}{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td>"
+          "<td class=\"l\">{}</td>{}{}{}<td>{}</td>{}<td class=\"stages\">{}</td><td>{}</td>"
+          "<td>{}</td></tr>\n",
+          cls, static_cast<int>(i) == best ? "★ " : "", HtmlEscape(e.name), HtmlEscape(e.loss),
+          HtmlEscape(e.budget), status, cell(ok ? e.metrics.log_rmse : NAN, best_log),
+          cell(ok ? e.metrics.cbrt_rmse : NAN, best_cbrt), cell(ok ? e.metrics.rel_l2 : NAN, best_rel),
+          e.metrics.cells, cell(e.time_ms, ok ? best_time : NAN, "{:.1f}"), stages,
+          e.kind == Entry::Kind::kFit ? std::to_string(e.iterations) : std::string("–"),
+          front.count(i) ? "◆" : "");
+    }
+    body_ += "</table></div>\n<p class=\"muted\">★ lowest log_rmse; bold: best of each column; ◆ on "
+             "the Pareto front of time against log_rmse. Time: from the loaded table to the "
+             "result (fits: preparation, initializer and solve; factorizations: the whole "
+             "solve).";
+    const Entry* any = nullptr;
+    for (const Entry& e : m.entries) {
+      if (e.metrics.ok) any = any ? any : &e;
+    }
+    if (any) {
+      body_ += fmt::format(" Metrics weighted by {}, cut-off {}°.", HtmlEscape(any->metrics.weighting),
+                           Num(any->metrics.cutoff_deg));
+    }
+    body_ += "</p>\n";
+  }
+
+  void ParamsTable(const Material& m) {
+    bool any = false;
+    for (const Entry& e : m.entries) any = any || !e.params.empty();
+    if (!any) return;
+    body_ += "<details><summary>Parameters</summary>\n<table><tr><th class=\"l\">"
+             "approximation</th><th class=\"l\">budget</th><th class=\"l\">parameters "
+             "(<sup>b</sup>: on a bound)</th></tr>\n";
+    for (const Entry& e : m.entries) {
+      if (e.params.empty()) continue;
+      std::string ps;
+      for (std::size_t k = 0; k < e.params.size(); ++k) {
+        const std::string name = k < e.param_names.size() ? e.param_names[k] : fmt::format("p{}", k);
+        const bool bound = k < e.at_bound.size() && e.at_bound[k];
+        ps += fmt::format("{}<code>{}</code> = {}{}", k ? ", " : "", HtmlEscape(name),
+                          Num(e.params[k], "{:.5g}"), bound ? "<sup>b</sup>" : "");
+      }
+      body_ += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l\">{}</td>"
+                           "<td class=\"l\" style=\"white-space:normal\">{}</td></tr>\n",
+                           HtmlEscape(e.name), HtmlEscape(e.budget), ps);
+    }
+    body_ += "</table></details>\n";
+  }
+
+  void Renders() {
+    if (report_.renders.empty() && report_.materials.empty()) return;  // e.g. a bench page
+    body_ += "<section id=\"renders\"><h2>Preview renders</h2>\n";
+    if (report_.renders.empty()) {
+      body_ += "<p class=\"note\">No renders were given (brdfit render writes them; pass the PNG "
+               "files to brdfit report).</p>\n</section>\n";
+      return;
+    }
+    body_ += "<div class=\"renders\">\n";
+    for (const Render& r : report_.renders) {
+      std::string png;
+      if (!ReadBytes(r.png_path, &png) || png.size() < 8 || png.compare(1, 3, "PNG") != 0) {
+        body_ += "<p class=\"note\">Render " + HtmlEscape(r.png_path) +
+                 " could not be read as a PNG.</p>\n";
+        continue;
+      }
+      body_ += fmt::format(
+          "<figure><img alt=\"{}\" src=\"data:image/png;base64,{}\"><figcaption>{}</figcaption>"
+          "</figure>\n",
+          HtmlEscape(r.title), Base64(png), HtmlEscape(r.title));
+    }
+    body_ += "</div>\n</section>\n";
+  }
+
+  const Report& report_;
+  Palette palette_;
+  std::string body_;
+  int charts_ = 0;
+};
+
+}  // namespace
+
+std::string RenderHtml(const Report& report, const std::string& chart_js) {
+  return Page(report).Build(chart_js);
+}
+
+void WriteHtmlReport(const fs::path& out, const Report& report, const fs::path& chart_js) {
+  const std::string js = ReadChartJs(chart_js);
+  WriteTextAtomically(out, RenderHtml(report, js));
+}
+
+}  // namespace brdfit::report

@@ -1,0 +1,244 @@
+#include "report/report_charts.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace brdfit::report {
+
+using nlohmann::json;
+
+namespace {
+
+// Tableau 10 (Tableau Software, 2016), then darker variants for larger reports.
+constexpr const char* kColors[] = {"#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f",
+                                   "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac",
+                                   "#2f4b7c", "#a05195", "#d45087", "#665191", "#003f5c"};
+constexpr const char* kPointStyles[] = {"circle", "triangle", "rect",  "rectRot",
+                                        "star",   "crossRot", "cross", "rectRounded"};
+
+json Value(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json Axis(const std::string& type, const std::string& title) {
+  return {{"type", type}, {"title", {{"display", true}, {"text", title}}}};
+}
+
+json BaseOptions(const std::string& title) {
+  return {{"animation", false},
+          {"responsive", true},
+          {"maintainAspectRatio", false},
+          {"plugins",
+           {{"title", {{"display", true}, {"text", title}}},
+            {"legend", {{"position", "bottom"}, {"labels", {{"usePointStyle", true}}}}}}}};
+}
+
+}  // namespace
+
+Palette::Palette(const Report& report) {
+  std::size_t next = 0;
+  auto add = [&](const std::string& name) {
+    if (colors_.count(name)) return;
+    colors_[name] = kColors[next++ % std::size(kColors)];
+  };
+  for (const Material& m : report.materials) {
+    for (const Entry& e : m.entries) add(e.name);
+  }
+  for (const BenchPoint& b : report.bench) add(b.model);
+}
+
+std::string Palette::Color(const std::string& name) const {
+  const auto it = colors_.find(name);
+  return it == colors_.end() ? "#555555" : it->second;
+}
+
+std::vector<ParetoPoint> EntryPoints(const Material& m) {
+  std::vector<ParetoPoint> points;
+  for (const Entry& e : m.entries) {
+    ParetoPoint p;
+    p.model = e.name;
+    p.budget = e.budget;
+    p.time_ms = e.time_ms;
+    p.error = e.metrics.log_rmse;
+    p.usable = !e.Failed() && e.metrics.ok && e.time_ms > 0;
+    p.label = fmt::format("{} ({}, loss {}): {:.4g} ms, log_rmse {:.4g}", e.name, e.budget, e.loss,
+                          e.time_ms, e.metrics.log_rmse);
+    points.push_back(std::move(p));
+  }
+  return points;
+}
+
+std::vector<ParetoPoint> BenchPoints(const std::vector<BenchPoint>& bench,
+                                     const std::string& material) {
+  std::vector<ParetoPoint> points;
+  for (const BenchPoint& b : bench) {
+    if (!material.empty() && b.material != material) continue;
+    ParetoPoint p;
+    p.model = b.model;
+    p.budget = b.budget;
+    p.time_ms = b.time_ms;
+    p.error = b.metrics.log_rmse;
+    p.usable = b.status != "failed" && b.metrics.ok && b.time_ms > 0;
+    p.label = fmt::format("{} {} ({}, loss {}): {:.4g} ms, log_rmse {:.4g}", b.material, b.model,
+                          b.budget, b.loss, b.time_ms, b.metrics.log_rmse);
+    points.push_back(std::move(p));
+  }
+  return points;
+}
+
+json ParetoChart(const std::string& title, const std::vector<ParetoPoint>& points,
+                 const Palette& palette, const std::string& error_name) {
+  std::vector<std::string> budgets;
+  for (const auto& p : points) {
+    if (std::find(budgets.begin(), budgets.end(), p.budget) == budgets.end()) {
+      budgets.push_back(p.budget);
+    }
+  }
+  auto style = [&](const std::string& budget) {
+    const auto i = std::find(budgets.begin(), budgets.end(), budget) - budgets.begin();
+    return kPointStyles[static_cast<std::size_t>(i) % std::size(kPointStyles)];
+  };
+  json datasets = json::array();
+  std::map<std::string, std::size_t> index;  // "model\nbudget" -> dataset
+  std::vector<CostError> ce;
+  for (const auto& p : points) {
+    ce.push_back({p.time_ms, p.error, p.usable});
+    if (!p.usable) continue;
+    const std::string key = p.model + "\n" + p.budget;
+    if (!index.count(key)) {
+      index[key] = datasets.size();
+      const std::string color = palette.Color(p.model);
+      datasets.push_back({{"label", p.model + " · " + p.budget},
+                          {"data", json::array()},
+                          {"backgroundColor", color},
+                          {"borderColor", color},
+                          {"pointStyle", style(p.budget)},
+                          {"pointRadius", 6},
+                          {"pointHoverRadius", 8}});
+    }
+    datasets[index[key]]["data"].push_back(
+        {{"x", p.time_ms}, {"y", p.error}, {"label", p.label}});
+  }
+  json front = json::array();
+  for (const std::size_t i : ParetoFront(ce)) {
+    front.push_back({{"x", points[i].time_ms}, {"y", points[i].error}, {"label", points[i].label}});
+  }
+  datasets.push_back({{"label", "Pareto front"},
+                      {"data", front},
+                      {"showLine", true},
+                      {"borderColor", "#333333"},
+                      {"backgroundColor", "#333333"},
+                      {"borderDash", {5, 4}},
+                      {"borderWidth", 1},
+                      {"pointRadius", 0},
+                      {"pointStyle", "line"}});
+  json options = BaseOptions(title);
+  options["scales"] = {{"x", Axis("logarithmic", "time (ms, log scale)")},
+                       {"y", Axis("logarithmic", error_name + " (log scale; lower is better)")}};
+  // Log axes end at the extreme data values: pad them so that no marker sits on an edge.
+  double x0 = INFINITY, x1 = 0, y0 = INFINITY, y1 = 0;
+  for (const auto& p : points) {
+    if (!p.usable || !(p.time_ms > 0) || !(p.error > 0)) continue;
+    x0 = std::min(x0, p.time_ms), x1 = std::max(x1, p.time_ms);
+    y0 = std::min(y0, p.error), y1 = std::max(y1, p.error);
+  }
+  // A margin of 6 % of the decades spanned, at least a factor 1.5.
+  auto pad = [](double lo, double hi) { return std::pow(10.0, std::max(0.176, 0.06 * std::log10(hi / lo))); };
+  if (x1 > 0 && y1 > 0) {
+    const double px = pad(x0, x1), py = pad(y0, y1);
+    options["scales"]["x"]["min"] = x0 / px;
+    options["scales"]["x"]["max"] = x1 * px;
+    options["scales"]["y"]["min"] = y0 / py;
+    options["scales"]["y"]["max"] = y1 * py;
+  }
+  return {{"type", "scatter"}, {"data", {{"datasets", datasets}}}, {"options", options}};
+}
+
+json SliceChart(const std::string& title, const Slice& slice, const Palette& palette) {
+  json datasets = json::array();
+  for (const SliceSeries& s : slice.series) {
+    json data = json::array();
+    for (std::size_t i = 0; i < s.value.size() && i < slice.theta_h_deg.size(); ++i) {
+      data.push_back({{"x", slice.theta_h_deg[i]}, {"y", Value(s.value[i])}});
+    }
+    json d = {{"label", s.label}, {"data", data}, {"spanGaps", false}};
+    if (s.role == "measured") {
+      d.update({{"showLine", false},
+                {"pointRadius", 2.5},
+                {"backgroundColor", "#000000"},
+                {"borderColor", "#000000"},
+                {"pointStyle", "circle"}});
+    } else {
+      const std::string color = palette.Color(s.label);
+      d.update({{"showLine", true},
+                {"pointRadius", 0},
+                {"borderWidth", 2},
+                {"borderColor", color},
+                {"backgroundColor", color},
+                {"pointStyle", "line"}});
+      if (s.role == "factored") d["borderDash"] = {6, 3};
+    }
+    datasets.push_back(std::move(d));
+  }
+  json options = BaseOptions(title);
+  options["scales"] = {{"x", Axis("linear", "θh (degrees)")},
+                       {"y", Axis("logarithmic", "f_r, mean of R, G, B (1/sr, log scale)")}};
+  options["scales"]["x"]["min"] = 0;
+  options["scales"]["x"]["max"] = 90;
+  return {{"type", "scatter"}, {"data", {{"datasets", datasets}}}, {"options", options}};
+}
+
+json MetricsChart(const std::string& title, const Material& m) {
+  json labels = json::array();
+  json log_rmse = json::array(), cbrt_rmse = json::array(), rel_l2 = json::array();
+  for (const Entry& e : m.entries) {
+    if (e.Failed() || !e.metrics.ok) continue;
+    labels.push_back(e.name + " (" + e.budget + ")");
+    log_rmse.push_back(Value(e.metrics.log_rmse));
+    cbrt_rmse.push_back(Value(e.metrics.cbrt_rmse));
+    rel_l2.push_back(Value(e.metrics.rel_l2));
+  }
+  auto bars = [](const char* label, json data, const char* color) {
+    return json{{"label", label}, {"data", std::move(data)}, {"backgroundColor", color}};
+  };
+  json options = BaseOptions(title);
+  options["scales"] = {{"y", Axis("logarithmic", "error (log scale; lower is better)")}};
+  return {{"type", "bar"},
+          {"data",
+           {{"labels", labels},
+            {"datasets",
+             {bars("log_rmse", log_rmse, "#4e79a7"), bars("cbrt_rmse", cbrt_rmse, "#f28e2b"),
+              bars("rel_l2", rel_l2, "#59a14f")}}}},
+          {"options", options}};
+}
+
+json SummaryChart(const std::string& title, const Report& report, const Palette& palette) {
+  std::vector<std::string> models;
+  for (const Material& m : report.materials) {
+    for (const Entry& e : m.entries) {
+      if (std::find(models.begin(), models.end(), e.name) == models.end()) models.push_back(e.name);
+    }
+  }
+  json labels = json::array();
+  for (const Material& m : report.materials) labels.push_back(m.name);
+  json datasets = json::array();
+  for (const std::string& model : models) {
+    json data = json::array();
+    for (const Material& m : report.materials) {
+      double best = NAN;
+      for (const Entry& e : m.entries) {
+        if (e.name != model || e.Failed() || !e.metrics.ok) continue;
+        if (!(best <= e.metrics.log_rmse)) best = e.metrics.log_rmse;
+      }
+      data.push_back(Value(best));
+    }
+    datasets.push_back(
+        {{"label", model}, {"data", data}, {"backgroundColor", palette.Color(model)}});
+  }
+  json options = BaseOptions(title);
+  options["scales"] = {{"y", Axis("logarithmic", "best log_rmse (log scale; lower is better)")}};
+  return {{"type", "bar"}, {"data", {{"labels", labels}, {"datasets", datasets}}},
+          {"options", options}};
+}
+
+}  // namespace brdfit::report

@@ -1,0 +1,50 @@
+// Reading the files `brdfit report` and `brdfit compare` are given into one report
+// (report/report_model.h). Each input is classified by name and content:
+//   <stem>.factor.json       a factorization (io/factor_io.h): one entry of its table's material
+//   *.csv                    a bench CSV (report/bench_csv.h): bench points
+//   *.png                    a preview render, embedded
+//   fit reports              every fit of every material (io/fit_report.h, HDF5)
+//   fit parameters .json     the same fits without times (brdfit fit --json); read only when
+//                            named, not from a folder (the fit report beside it has them)
+//   *.binary, table *.h5     a table: the source of θh slices for the material of its stem
+//   a folder                 every file in it (not recursive) of the kinds above; others skipped
+// A material is named after its table's file stem ("red-plastic" for red-plastic.binary).
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "report/report_model.h"
+
+namespace brdfit::report {
+
+struct FactorRef {
+  std::string material;
+  std::string label;  // the entry's name, e.g. "factor:mccool"
+  std::filesystem::path sidecar;
+};
+
+struct ReportSources {
+  Report report;
+  std::map<std::string, std::filesystem::path> tables;  // material -> table, for slices
+  std::vector<FactorRef> factors;                       // for slices (pipeline/factor_export.h)
+};
+
+// Throws InputError naming the file when an input is missing, unreadable or of no known kind.
+ReportSources ReadReportInputs(const std::vector<std::filesystem::path>& inputs);
+
+// Bench points as entries of their materials (for `brdfit compare` on two bench CSVs): one fit
+// entry per point, keyed like any fit (model | loss | budget).
+void AddBenchEntries(Report* report);
+
+// The material a table input stands for: its file name without the extension, or NAME for an
+// NBRDF input "nbrdf:NAME" (io/nbrdf.h). Reports, fit reports and factor outputs use it.
+std::string MaterialName(const std::filesystem::path& table);
+
+// One factorization sidecar as a report entry (exposed for tests). Sets *material from the
+// sidecar's source.file.
+Entry FactorEntry(const std::filesystem::path& sidecar, std::string* material, std::string* table);
+
+}  // namespace brdfit::report

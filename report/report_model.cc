@@ -1,0 +1,74 @@
+#include "report/report_model.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace brdfit::report {
+
+std::string Entry::Key() const { return name + " | " + loss + " | " + budget; }
+
+Material* Report::FindMaterial(const std::string& name) {
+  for (auto& m : materials) {
+    if (m.name == name) return &m;
+  }
+  return nullptr;
+}
+
+const Material* Report::FindMaterial(const std::string& name) const {
+  return const_cast<Report*>(this)->FindMaterial(name);
+}
+
+Material& Report::GetOrAddMaterial(const std::string& name) {
+  if (Material* m = FindMaterial(name)) return *m;
+  materials.push_back({});
+  materials.back().name = name;
+  return materials.back();
+}
+
+namespace {
+bool Usable(const CostError& p) {
+  return p.usable && std::isfinite(p.cost) && std::isfinite(p.error);
+}
+}  // namespace
+
+std::vector<std::size_t> ParetoFront(const std::vector<CostError>& points) {
+  std::vector<std::size_t> front;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!Usable(points[i])) continue;
+    bool dominated = false;
+    for (std::size_t j = 0; j < points.size() && !dominated; ++j) {
+      if (j == i || !Usable(points[j])) continue;
+      const CostError &a = points[i], &b = points[j];
+      dominated = b.cost <= a.cost && b.error <= a.error && (b.cost < a.cost || b.error < a.error);
+    }
+    if (!dominated) front.push_back(i);
+  }
+  std::stable_sort(front.begin(), front.end(), [&](std::size_t a, std::size_t b) {
+    return points[a].cost < points[b].cost;
+  });
+  return front;
+}
+
+namespace {
+bool EntryUsable(const Entry& e) { return !e.Failed() && e.metrics.ok; }
+}  // namespace
+
+std::vector<std::size_t> ParetoFront(const std::vector<Entry>& entries) {
+  std::vector<CostError> points;
+  for (const Entry& e : entries) points.push_back({e.time_ms, e.metrics.log_rmse, EntryUsable(e)});
+  return ParetoFront(points);
+}
+
+int BestEntry(const std::vector<Entry>& entries) {
+  int best = -1;
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const Entry& e = entries[i];
+    if (!EntryUsable(e) || !std::isfinite(e.metrics.log_rmse)) continue;
+    if (best < 0 || e.metrics.log_rmse < entries[best].metrics.log_rmse) {
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
+}  // namespace brdfit::report

@@ -1,0 +1,119 @@
+// The in-memory form of a fit report as `brdfit report` and `brdfit compare` see it: per
+// material, every approximation (model fit or factorization) with its metrics, parameters and
+// times; θh slices of measured against approximated values; bench points (run time against
+// error); preview renders. Plain data, filled by readers (report/report_inputs.h) and consumed by
+// the HTML writer (report/html_report.h) and the comparison (report/compare.h).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace brdfit::report {
+
+// Fit metrics as fit/metrics.h defines them (same names, same meaning).
+struct Metrics {
+  bool ok = false;  // false: not computed or not finite (see Entry::message)
+  double log_rmse = 0;
+  double cbrt_rmse = 0;
+  double rel_l2 = 0;
+  std::size_t cells = 0;
+  std::string weighting;  // "bin-measure" or "uniform"
+  double cutoff_deg = 0;
+};
+
+// One approximation of one material.
+struct Entry {
+  enum class Kind { kFit, kFactor };
+  Kind kind = Kind::kFit;
+  std::string name;    // model ("lambert+ggx") or factorization ("factor:mccool")
+  std::string loss;    // fits: loss name ("log"); factorizations: "log (linear)"
+  std::string budget;  // fits: "full", "stride:8", "random:N"; factorizations: "res 64"
+  std::string status;  // "converged", "no_convergence", "failed" (core/result.h)
+  std::string message;
+  std::vector<std::string> param_names;
+  std::vector<double> params;
+  std::vector<bool> at_bound;
+  int iterations = 0;
+  Metrics metrics;
+  // Named stage times in milliseconds, in display order ("init", "solve", ...).
+  std::vector<std::pair<std::string, double>> times_ms;
+  // The time a user pays to get this approximation from a loaded table (fits: prepare + init +
+  // solve; factorizations: the whole solve), in milliseconds. The x axis of the Pareto plots.
+  double time_ms = 0;
+
+  bool Failed() const { return status == "failed"; }
+  // Identifies the entry within its material across reports: "name | loss | budget".
+  std::string Key() const;
+};
+
+// Values along θh at fixed θd, φd (cell centres of one θd and one φd bin): the mean of the
+// three channels of f_r in 1/sr; NaN where the cell is invalid or the value is not positive.
+struct SliceSeries {
+  std::string label;  // "measured", a model name, "factor:mccool"
+  std::string role;   // "measured", "fitted" or "factored"
+  std::vector<double> value;
+};
+struct Slice {
+  double theta_d_deg = 0;
+  double phi_d_deg = 0;
+  std::vector<double> theta_h_deg;
+  std::vector<SliceSeries> series;
+};
+
+struct Material {
+  std::string name;    // table stem, e.g. "red-plastic"
+  std::string source;  // table path as recorded by the producer
+  std::vector<Entry> entries;
+  std::vector<Slice> slices;
+  std::vector<std::string> notes;  // e.g. why the slices are missing
+};
+
+// One point of a run time against error sweep (brdfit bench; report/bench_csv.h).
+struct BenchPoint {
+  std::string material, table, model, loss, budget;
+  std::string status;  // as Entry::status
+  std::string message;
+  double time_ms = 0;  // prepare + init + solve, as Entry::time_ms
+  double prepare_ms = 0, init_ms = 0, solve_ms = 0;
+  std::size_t fit_cells = 0;  // observations the fit used (the budget's effect)
+  int iterations = 0;
+  Metrics metrics;
+};
+
+struct Render {
+  std::string title;
+  std::string png_path;  // embedded as a data: URI when the HTML is written
+};
+
+struct Report {
+  std::string title = "brdfit fit report";
+  std::string metric_definition;   // how the metrics were computed (fit/metrics.h)
+  std::vector<std::string> inputs;  // files the report was made from
+  std::vector<Material> materials;
+  std::vector<BenchPoint> bench;
+  std::vector<Render> renders;
+  std::vector<std::string> notes;
+
+  Material* FindMaterial(const std::string& name);
+  const Material* FindMaterial(const std::string& name) const;
+  Material& GetOrAddMaterial(const std::string& name);
+};
+
+// A point that may lie on a Pareto front: cost (time) and error, both to be minimized.
+struct CostError {
+  double cost = 0, error = 0;
+  bool usable = false;  // failed or without metrics: never on the front
+};
+
+// Indices of the usable points that no other usable point dominates (<= in both and < in one),
+// sorted by cost. Equal points are all kept.
+std::vector<std::size_t> ParetoFront(const std::vector<CostError>& points);
+// Front of (time_ms, log_rmse) over the entries that did not fail and have metrics.
+std::vector<std::size_t> ParetoFront(const std::vector<Entry>& entries);
+
+// Index of the usable entry with the lowest log_rmse, or -1 if there is none.
+int BestEntry(const std::vector<Entry>& entries);
+
+}  // namespace brdfit::report
