@@ -82,7 +82,7 @@ void BM_Sphere512_Measured_3Lights(benchmark::State& s) {
 }
 
 // The torus of data/scenes/torus.obj (4,096 triangles) as the scene's object, 3 lights: the
-// mesh path (vertex buffers cached, seed 000's vertex stage) against the analytic sphere.
+// mesh path (vertex buffers cached, Three.js-style vertex stage) against the analytic sphere.
 void BM_Mesh512_Torus_LambertGgx_3Lights(benchmark::State& state) {
   Context();
   Renderer renderer;

@@ -1,6 +1,6 @@
-// Error tiers (design.md): bad input -> brdfit::InputError (message names the file and the
-// problem; the CLI prints it on one line and exits 2); broken invariants -> assertions;
-// numerical trouble inside a residual -> the residual returns false.
+// Error tiers (docs/conventions.md, "Errors"): bad input -> brdfit::InputError (message names
+// the file and the problem; the CLI prints it on one line and exits 2); broken invariants ->
+// assertions; numerical trouble inside a residual -> the residual returns false.
 #pragma once
 
 #include <filesystem>

@@ -44,8 +44,8 @@ struct FitMetrics {
   WorstCell worst;
   std::size_t cells = 0;  // observations scored
   double total_weight = 0;
-  // How the metrics were computed (reference.md §2: a report states metric, weighting and
-  // cut-off).
+  // How the metrics were computed (a report states metric, weighting and cut-off: errors are
+  // not comparable without them).
   std::string weighting;  // "bin-measure" or "uniform"
   double cutoff_deg = 0;
 };

@@ -31,7 +31,7 @@ namespace brdfit {
 
 // How table cells are weighted in the least-squares data term.
 //  kSolidAngle: by the measure of the cell in (wi, wo) space (fit/bin_measure.h, the weight
-//    the analytic fits use: dwi dwo = 4 cos(theta_d) dwh dwd, reference.md §1), divided by the
+//    the analytic fits use: dwi dwo = 4 cos(theta_d) dwh dwd, derived there), divided by the
 //    measure of the whole (theta_h, theta_d, phi_d) box, 4 pi^2: the weights of all cells of
 //    any grid sum to 1, the data term is a mean squared log error over (wi, wo) and does not
 //    depend on how the table is binned.

@@ -8,7 +8,7 @@
 
 namespace brdfit {
 
-// Derivation (reference.md §1, checked in tests/fit/test_samples.cc):
+// Derivation (checked in tests/fit/test_samples.cc):
 //  For fixed wi, wo = 2 (wi.h) h - wi gives dwo = 4 (wi.h) dwh (Torrance & Sparrow 1967;
 //  Walter et al. 2007, eq. 14), and rotating wi into the frame of h is measure preserving, so
 //      dwi dwo = 4 cos(theta_d) dwh dwd
@@ -16,8 +16,8 @@ namespace brdfit {
 //  An isotropic table does not depend on phi_h; integrating it over [0, 2 pi) and the cell's
 //  box gives a product of one-dimensional integrals:
 //      w = 2 pi * 4 * [cos th_lo - cos th_hi] * [(sin^2 td_hi - sin^2 td_lo) / 2] * dphi_d.
-//  This is the exact integral over the bin (reference.md states the midpoint rule,
-//  2 pi 4 cos td sin th dth sin td dtd dphi_d, which agrees to second order in the bin
+//  This is the exact integral over the bin (the midpoint rule,
+//  2 pi 4 cos td sin th dth sin td dtd dphi_d, agrees with it to second order in the bin
 //  widths). Cells are not clipped at the horizon. Totals (tested): over all cells exactly
 //  4 pi^2 (pairs whose half vector is above the surface, phi_d folded); over the cells above
 //  the horizon about 2 pi^2, half of the (2 pi)^2 of ordered pairs of directions, because the

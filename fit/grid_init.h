@@ -1,10 +1,10 @@
 // The initializer: a grid over the shape parameters; at each grid point the linear colour
 // weights are solved by box-constrained weighted least squares (variable projection, Golub &
-// Pereyra 1973; reference.md §5: "solve the linear weights at fixed alpha"). The grid spans
-// the log-scale shape parameters (alpha, exponents); linear-scale ones (cxy, f0, metallic)
-// get a short adaptive compass search from their defaults at each grid point (first step 1/64
-// of the range, doubled on success: defaults are usually good and ranges can be wide). The best
-// points are refined by a compass search over all shape parameters (same inner solve).
+// Pereyra 1973). The grid spans the log-scale shape parameters (alpha, exponents); linear-scale
+// ones (cxy, f0, metallic) get a short adaptive compass search from their defaults at each grid
+// point (first step 1/64 of the range, doubled on success: defaults are usually good and ranges
+// can be wide). The best points are refined by a compass search over all shape parameters (same
+// inner solve).
 //
 // The weighted least squares is the loss linearized at the data: e ~ d (f - m) with
 // d = inv T'(m c) c, so each cell/channel weighs omega d^2 with target m. Every grid point is

@@ -22,7 +22,7 @@ class LossFunction;
 
 namespace brdfit {
 
-// Below this |x| the cube root is replaced by an odd C1 cubic (reference.md §5, Ceres #594:
+// Below this |x| the cube root is replaced by an odd C1 cubic (Ceres #594:
 // cbrt has an infinite derivative at 0 and pow(x, 1/3) is NaN for x < 0 on Jets).
 inline constexpr double kCbrtGuard = 1e-5;
 // Offset of the relative loss (1/sr): (f - m) / (|m| + eps), after Sun et al. 2018 (eps 1e-3).

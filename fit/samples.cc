@@ -15,7 +15,7 @@ namespace brdfit {
 namespace {
 
 // Cells whose directions are this close to the horizon are dropped whatever the cut-off
-// (reference.md §5: masking terms divide by cos theta).
+// (the masking terms divide by cos theta).
 constexpr double kMinCos = 1e-3;
 
 // Random budgets spread samples as W_s^0.5 over theta_h strata (see SelectStratified): the

@@ -4,7 +4,7 @@
 // What is skipped because it cannot change the fit:
 //  * invalid cells (masked in the table; never read as zero) and non-finite values;
 //  * cells beyond the angle cut-off (theta_i or theta_o > cutoff, default 80 deg) or with
-//    cos theta_i or cos theta_o <= 1e-3 (reference.md §5: grazing masking divides by ~0);
+//    cos theta_i or cos theta_o <= 1e-3 (the masking terms divide by ~0 at grazing angles);
 //  * half of the model evaluations: for an isotropic, reciprocal BRDF the cell at phi_d and
 //    its mirror at pi - phi_d hold the same value. (Mirroring phi_d is a reflection of the
 //    configuration plus the swap wi <-> wo: theta_i and theta_o trade places.) On a uniform

@@ -1,4 +1,4 @@
-// Fuzz harness: Wavefront OBJ meshes of preview objects (preview/mesh.h, ParseObj, which uses
+// Fuzz harness: Wavefront OBJ meshes of preview objects (io/obj_mesh.h ParseObj, which uses
 // tinyobjloader; docs/scenes.md). The input is the OBJ text.
 // After a successful parse: at least one triangle, every index in range, every position
 // finite, every normal of unit length, every kept triangle of non-zero area, a finite bounding

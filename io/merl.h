@@ -1,5 +1,5 @@
 // MERL BRDF database binary format (Matusik, Pfister, Brand, McMillan 2003, "A Data-Driven
-// Reflectance Model", SIGGRAPH; reference reader BRDFRead.cpp). reference.md §1:
+// Reflectance Model", SIGGRAPH; reference reader BRDFRead.cpp; docs/formats.md):
 //  * header: 3 x int32 little-endian {90, 90, 180} = (theta_h, theta_d, phi_d) bins;
 //  * body: 3 x 1,458,000 float64, channel-planar (all R, then G, then B), MERL index layout;
 //    file size exactly 34,992,012 bytes;

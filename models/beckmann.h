@@ -11,8 +11,8 @@ namespace brdfit {
 // Smith G with the exact Beckmann Lambda (erf form, Walter §5.1 / Heitz 2014 §5.3); Fresnel
 // folded into ks:
 //   f_r = ks exp(-tan^2 th_h / alpha^2) / (pi alpha^2 cos^4 th_h) G1(wi) G1(wo) / (4 cos_i cos_o)
-// [1/sr, without the cosine]. Seeds 001 and 004 Sphere(11)/(12) print the NDF without pi (1/(4 m^2
-// cos^4), 1/(alpha^2 cos^4)); the constant factor is absorbed by ks (docs/models.md, D4).
+// [1/sr, without the cosine]. Some course notes print the NDF without pi (1/(4 m^2 cos^4),
+// 1/(alpha^2 cos^4)); the constant factor is absorbed by ks (docs/models.md).
 // Energy conserving for ks <= 1.
 //
 // Parameters: ks_r, ks_g, ks_b [0, 1e3] linear weights; alpha = RMS slope m [1e-4, 1] (log).

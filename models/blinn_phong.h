@@ -12,12 +12,12 @@ namespace brdfit {
 
 // Blinn 1977, "Models of Light Reflection for Computer Synthesized Pictures" (SIGGRAPH), with
 // the (n + 8) / (8 pi) normalization of Sloan & Hoffman / Akenine-Moeller et al., "Real-Time
-// Rendering" 3rd ed. eq. 7.49, as printed in seed 001:
+// Rendering" 3rd ed. eq. 7.49:
 //   f_r = ks (n + 8) / (8 pi) cos^n th_h        [1/sr, without the cosine]
 // cos^n th_h = exp(n log cos th_h) with log cos from log1p(-sin^2 th_h) near th_h = 0 (PowCos).
-// Seeds: 001 (normalized; "commonly used" un-normalized form), 004 Sphere(6) (un-normalized
-// (H.N)^n, preview only). The normalization is approximate: the albedo exceeds ks at grazing
-// incidence for sharp lobes (its implicit G = cos_i cos_o, seed 001), so NOT energy conserving.
+// Shading tutorials also use the un-normalized (H.N)^n (preview only; docs/models.md). The
+// normalization is approximate: the albedo exceeds ks at grazing incidence for sharp lobes (its
+// implicit G = cos_i cos_o), so NOT energy conserving.
 //
 // Parameters: ks_r, ks_g, ks_b [0, 1e3] linear weights; n = exponent [1, 1e5] (log).
 struct BlinnPhong {

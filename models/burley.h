@@ -14,19 +14,20 @@ namespace brdfit {
 enum class BurleyVariant {
   kFrostbite,  // Lagarde & de Rousiers 2014 renormalized, linearRoughness r = sqrt(alpha)
   kDisney,     // Burley 2012 original (albedo up to ~1.2 at r = 1: not energy conserving)
-  kSeed004,    // seed 004 Sphere(14)/(15): Frostbite's code fed alpha as linearRoughness (D20)
+  kSeed004,    // URP workshop 2025 steps 14-15: Frostbite's code fed alpha as linearRoughness
 };
 
 // Burley 2012, "Physically-Based Shading at Disney" (SIGGRAPH course), §5.3 diffuse:
 //   f_d = kd / pi (1 + (F_D90 - 1)(1 - cos_i)^5)(1 + (F_D90 - 1)(1 - cos_o)^5),
 //   F_D90 = 0.5 + 2 r cos_d^2,
 // and Lagarde & de Rousiers 2014, "Moving Frostbite to Physically Based Rendering 3.0"
-// (SIGGRAPH course), Listing 1 (Fr_DisneyDiffuse), quoted by seed 004 Sphere(14):
+// (SIGGRAPH course), Listing 1 (Fr_DisneyDiffuse):
 //   energyBias = lerp(0, 0.5, r), energyFactor = lerp(1, 1/1.51, r),
 //   F_D90 = energyBias + 2 r cos_d^2,  f_d = kd / pi * F(cos_i) F(cos_o) * energyFactor,
 //   F(c) = 1 + (F_D90 - 1)(1 - c)^5.                                         [1/sr, no cosine]
 // r is Frostbite's "linearRoughness", the perceptual roughness: r = sqrt(alpha) (the project's
-// parameter is alpha). Seed 004 passes alpha itself as linearRoughness (kSeed004 reproduces it).
+// parameter is alpha). The URP workshop 2025 (step 14, docs/models.md) passes alpha itself as
+// linearRoughness; kSeed004 reproduces it.
 // NOT energy conserving: Frostbite's renormalization (energyFactor = 1/1.51 at r = 1) is a fit;
 // with kd = 1 the directional albedo reaches 1.03 at 89.9 deg incidence and r = 1 (1.009 at
 // 89 deg); Burley 2012's original reaches about 1.2 (tests/models/test_physics.cc).

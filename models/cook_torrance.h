@@ -13,8 +13,9 @@ namespace brdfit {
 //   f_r = ks F_Schlick(F0, wi.h) D_Beckmann(h) G_Vgroove / (pi cos_i cos_o)
 // with D normalized as in Walter 2007 eq. 25, G = min(1, 2 (n.h)(n.wo)/(wo.h), 2
 // (n.h)(n.wi)/(wo.h)) and Schlick's F with F0 a fitted shape parameter. [1/sr, without the cosine.]
-// Seeds: 000 §4.9.4 (the pi form, eq. 79), 001, 003, 004 Sphere(12) (Beckmann + V-groove +
-// Schlick, with the Walter 4 and an un-normalized D: same shape, ks rescaled by pi/4 and pi).
+// Tutorials print the same terms (docs/models.md): the pi form (mebiusbox 2018 eq. 79), and the
+// URP workshop 2025's step 12 (Beckmann + V-groove + Schlick, with the Walter 4 and an
+// un-normalized D: same shape, ks rescaled by pi/4 and pi).
 // NOT energy conserving with ks = 1: the pi form is 4/pi times the Walter form.
 //
 // Parameters: ks_r, ks_g, ks_b [0, 1e3] linear weights; alpha = Beckmann m [1e-4, 1] (log);

@@ -11,8 +11,8 @@ namespace brdfit {
 // EGSR) eq. 20 with D eq. 33 and separable Smith G (G1 eq. 34; Heitz 2014 eq. 98); Fresnel
 // folded into the RGB weight ks:
 //   f_r = ks D_GGX(h) G1(wi) G1(wo) / (4 cos_i cos_o)       [1/sr, without the cosine]
-// Seeds: 000 §4.9.1 / §6.5.3, 002 §1.2, 003, 004 Sphere(13) (D; their G and F differ: see
-// docs/models.md). Energy conserving for ks <= 1 (the single-scattering lobe loses energy).
+// Karis 2013 and the tutorials of docs/models.md print the same D (their G and F differ).
+// Energy conserving for ks <= 1 (the single-scattering lobe loses energy).
 //
 // Parameters: ks_r, ks_g, ks_b [0, 1e3] linear weights; alpha [1e-4, 1] (log scale).
 struct Ggx : Microfacet<GgxNdf, SmithSeparable, NoFresnel> {
@@ -23,8 +23,8 @@ struct Ggx : Microfacet<GgxNdf, SmithSeparable, NoFresnel> {
 };
 
 // GGX lobe with height-correlated Smith G (Heitz 2014 eq. 99), the G of Frostbite's
-// V_SmithGGXCorrelated (Lagarde & de Rousiers 2014; seed 004 Sphere(15), without the seed's
-// second 1/(4 cos_i cos_o)):
+// V_SmithGGXCorrelated (Lagarde & de Rousiers 2014, Listing 2; that V already holds the
+// 1/(4 cos_i cos_o)):
 //   f_r = ks D_GGX(h) / ((1 + Lambda(wi) + Lambda(wo)) 4 cos_i cos_o)
 // Same parameters as "ggx". Energy conserving for ks <= 1.
 struct GgxHc : Microfacet<GgxNdf, SmithHeightCorrelated, NoFresnel> {

@@ -13,9 +13,8 @@ namespace brdfit {
 // Lafortune, Foo, Torrance, Greenberg 1997, "Non-Linear Approximation of Reflectance
 // Functions" (SIGGRAPH), the generalized cosine lobe model:
 //   f_r(u, v) = sum_i [C_x,i u_x v_x + C_y,i u_y v_y + C_z,i u_z v_z]^n_i
-// with u = wi, v = wo both pointing away from the surface; isotropic: C_x = C_y. No Lafortune
-// formula appears in the seeds; seeds 000 and 001 name it as the model for fitting measured
-// data.
+// with u = wi, v = wo both pointing away from the surface; isotropic: C_x = C_y. Tutorials
+// name it as the model for fitting measured data but print no formula: this follows the paper.
 //
 // Parameterization (one lobe; sums give N lobes):
 //   f_r = rho (n + 2) / (2 pi) max(0, cxy s + c)^n / sqrt(1 + cxy^(2n))        [1/sr, no cosine]

@@ -9,7 +9,7 @@
 
 namespace brdfit {
 
-// Lambert 1760; normalized form f_r = rho_d / pi (seed 000 §4.5–4.6, seed 001, seed 002 §1.7).
+// Lambert 1760; normalized form f_r = rho_d / pi (the cosine integrates to pi over the hemisphere).
 // f_r in 1/sr, without the cosine. Energy conserving for rho_d <= 1 (albedo = rho_d).
 struct Lambert {
   static constexpr std::string_view kName = "lambert";

@@ -11,12 +11,13 @@
 namespace brdfit {
 
 // Oren & Nayar 1994, "Generalization of Lambert's Reflectance Model" (SIGGRAPH), eq. 30 (the
-// qualitative model), as printed in seed 001:
+// qualitative model):
 //   f_r = kd / pi (A + B max(0, cos(ph_i - ph_o)) sin(a) tan(b)),  a = max(th_i, th_o),
 //   b = min(th_i, th_o),  A = 1 - 0.5 s^2 / (s^2 + 0.33),  B = 0.45 s^2 / (s^2 + 0.09),
 // s = sigma, the standard deviation of the facet slope angle (radians).     [1/sr, no cosine]
-// Vector form without angles or singular points (seed 001's vector form, with its L_proj typo
-// fixed, D19): cos(dph) sin(th_i) sin(th_o) = wi.x wo.x + wi.y wo.y and
+// Vector form without angles or singular points (after the vector form of Tokoi's lecture
+// notes, whose L_proj = L - N(N.V) is a typo for N(N.L)):
+// cos(dph) sin(th_i) sin(th_o) = wi.x wo.x + wi.y wo.y and
 // sin(a) tan(b) = sin(th_i) sin(th_o) / cos(b) = sin(th_i) sin(th_o) / max(cos_i, cos_o), so
 //   f_r = kd / pi (A + B max(0, wi.x wo.x + wi.y wo.y) / max(cos_i, cos_o)).
 // sigma = 0 is Lambert. NOT energy conserving: the qualitative model is a fit to the full

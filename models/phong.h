@@ -13,12 +13,12 @@ namespace brdfit {
 
 // Phong 1975, "Illumination for Computer Generated Pictures" (CACM 18(6)), as the
 // energy-normalized "modified Phong" BRDF of Lewis 1994, "Making Shaders More Physically
-// Plausible" (CGF 13(2)), as printed in seed 001:
+// Plausible" (CGF 13(2)):
 //   f_r = ks (n + 2) / (2 pi) max(0, cos alpha_r)^n,   cos alpha_r = wo . reflect(wi)
 // [1/sr, without the cosine]. At normal incidence the albedo is exactly ks; elsewhere the
 // horizon clips the lobe, so the albedo is <= ks: energy conserving for ks <= 1.
-// Seeds: 001 (raw Phong BRDF c_spec cos^m / (pi cos_i), and this normalized form), 004
-// Sphere(4)/(5) (un-normalized (R.V)^n, preview only).
+// Also printed: the raw Phong BRDF c_spec cos^m / (pi cos_i) (Tokoi's lecture notes) and the
+// un-normalized (R.V)^n of shading tutorials (preview only; docs/models.md).
 //
 // Parameters: ks_r, ks_g, ks_b [0, 1e3] linear weights; n = exponent [1, 1e5] (log).
 struct Phong {

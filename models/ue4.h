@@ -12,15 +12,16 @@
 
 namespace brdfit {
 
-// Karis 2013, "Real Shading in Unreal Engine 4" (SIGGRAPH course notes), as seed 002 §1.1
-// implements it (and seed 000's code: the UE4 workflow):
+// Karis 2013, "Real Shading in Unreal Engine 4" (SIGGRAPH course notes), as shading tutorials
+// implement it (OpenGL course 2023 §1.1; the metallic workflow of mebiusbox 2018's sample code;
+// docs/models.md):
 //   f_r = (1 - m) base / pi  +  D_GGX(h) G(wi, wo) F(wi.h) / (4 cos_i cos_o)
 //   D: GGX (Walter 2007 eq. 33; Karis eq. 3), alpha = r^2
-//   G: Schlick-Smith with k = (r + 1)^2 / 8 (Karis eq. 4-5; seed 002 §1.3)
-//   F: Schlick, F0 = mix(0.04, base, m) per channel (seed 002 §1.4: (1 - c)^5; Karis 2013
+//   G: Schlick-Smith with k = (r + 1)^2 / 8 (Karis eq. 4-5)
+//   F: Schlick, F0 = mix(0.04, base, m) per channel (Schlick 1994's (1 - c)^5; Karis 2013
 //      uses a spherical-Gaussian fit of the same curve)
 // [1/sr, without the cosine]. With kSeed002DiffuseFresnel the diffuse term is also weighted
-// by (1 - F), as seed 002's shader code does (D9).
+// by (1 - F), as the OpenGL course 2023's shader code does.
 // NOT energy conserving: the diffuse and specular terms are added without a (1 - F) coupling,
 // so base = 1, m = 0 reflects more than 1 (Karis 2013 accepts this).
 //

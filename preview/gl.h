@@ -1,5 +1,5 @@
 // OpenGL core-profile declarations. libOpenGL (glvnd) exports every core entry point, so the
-// prototypes are linked directly (no loader, no libepoxy: reference.md §6).
+// prototypes are linked directly (no loader, no libepoxy: it aborts on eglGetPlatformDisplay).
 #pragma once
 
 #ifndef GL_GLEXT_PROTOTYPES

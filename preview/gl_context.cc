@@ -36,7 +36,7 @@ std::string EglErrorName(EGLint e) {
 }  // namespace
 
 HeadlessGlContext::HeadlessGlContext() {
-  // The EXT entry point: libepoxy-style wrappers abort on eglGetPlatformDisplay (reference.md §6).
+  // The EXT entry point: libepoxy-style wrappers abort on eglGetPlatformDisplay.
   const char* client_ext = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   if (client_ext == nullptr || std::string(client_ext).find("EGL_MESA_platform_surfaceless") ==
                                    std::string::npos) {

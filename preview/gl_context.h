@@ -1,5 +1,5 @@
 // A current OpenGL 3.3+ core context: headless through EGL surfaceless (Mesa llvmpipe, no GPU,
-// no display; reference.md §6). Rendering goes into the renderer's own framebuffer objects.
+// no display; docs/preview.md). Rendering goes into the renderer's own framebuffer objects.
 #pragma once
 
 #include <memory>

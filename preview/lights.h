@@ -1,4 +1,4 @@
-// Seed 000 light semantics on the CPU: which lights can reach an object (culling before the
+// Three.js r8x light semantics on the CPU: which lights can reach an object (culling before the
 // shader is generated) and the incident light at a point (the CPU reference renderer).
 #pragma once
 
@@ -13,7 +13,7 @@ namespace brdfit::preview {
 // (distance > 0) ends before the sphere, or a spot whose cone misses it. *why says which.
 bool LightReachesSphere(const Light& light, const Vec3& centre, double radius, std::string* why);
 
-// Seed 000 getXDirectLightIrradiance in world space: direction towards the light and the
+// Three.js getXDirectLightIrradiance in world space: direction towards the light and the
 // light colour (colour * intensity * range/decay/cone factors) at a surface point.
 struct Incident {
   Vec3 direction;

@@ -1,4 +1,4 @@
-// CPU reference renderer in double precision: the same scene (spheres and meshes, seed 000 lights,
+// CPU reference renderer in double precision: the same scene (spheres and meshes, Three.js lights,
 // analytic or measured materials) evaluated with the C++ models and Table::LookupTrilinear.
 // It is the oracle of the GPU path (GLSL <-> C++ parity) and of the light semantics. It shares
 // no code with the shaders: rays, sphere and triangle hits, frames and lights are computed

@@ -164,7 +164,7 @@ Image Renderer::RenderLinear(const Scene& scene, const MaterialSet& materials, E
         continue;
       }
       if (mat.kind == MaterialKind::kFactored && l.type == LightType::kSpot) {
-        // Seed 001's factored path: point and directional lights, two fetches per light.
+        // The factored path: point and directional lights, two fetches per light.
         if (log) {
           log->Add("skip", "spot light '" + l.name + "' for object '" + obj.name +
                                "': the factored path supports point and directional lights "
@@ -195,7 +195,7 @@ Image Renderer::RenderLinear(const Scene& scene, const MaterialSet& materials, E
     prog.SetMat4("uProjection", projf.data());
     if (is_mesh) {
       // World-space vertices: the model-view matrix is the view; its rotation (orthonormal)
-      // is its own inverse transpose, seed 000's normal matrix.
+      // is its own inverse transpose, Three.js's normal matrix.
       const Eigen::Matrix4f viewf = view.cast<float>();
       const Eigen::Matrix3f normal_matrix = viewf.topLeftCorner<3, 3>();
       prog.SetMat4("uModelView", viewf.data());

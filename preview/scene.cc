@@ -254,10 +254,11 @@ MaterialSpec ParseMaterial(Reader r, const std::string& name) {
     }
     m.params = ParseParams(r, *model);
   } else if (type == "metallic-roughness") {
-    // Seed 000's material (albedo, metallic, perceptual roughness r) as lambert+ggx at the
-    // edge where perceptual roughness enters (docs/conventions.md): alpha = r^2,
-    // kd = albedo (1 - m), ks = mix(0.04, albedo, m) (Fresnel at normal incidence folded
-    // into ks; seed 000 uses Schlick's F(v.h), see docs/scenes.md).
+    // The metallic/roughness material of mebiusbox 2018's sample (albedo, metallic, perceptual
+    // roughness r) as lambert+ggx at the edge where perceptual roughness enters
+    // (docs/conventions.md): alpha = r^2, kd = albedo (1 - m), ks = mix(0.04, albedo, m)
+    // (Fresnel at normal incidence folded into ks; that sample uses Schlick's F(v.h), see
+    // docs/scenes.md).
     m.kind = MaterialKind::kAnalytic;
     m.model = "lambert+ggx";
     const Vec3 albedo = r.Colour("albedo");

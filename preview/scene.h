@@ -1,4 +1,4 @@
-// A preview scene (docs/scenes.md): camera, objects, lights with seed 000's semantics,
+// A preview scene (docs/scenes.md): camera, objects, lights with Three.js r8x's semantics,
 // materials, display settings. World space, right-handed, y up by default. Lengths in
 // arbitrary scene units; angles in degrees in the file, radians here.
 #pragma once
@@ -27,8 +27,8 @@ struct Camera {
 enum class LightType { kDirectional, kPoint, kSpot };
 const char* ToString(LightType t);
 
-// Seed 000 (Three.js r8x) punctual lights. The shader receives colour * intensity; with
-// punctual_pi the irradiance is pi (n.l) colour intensity (seed 000 §6.5).
+// Three.js r8x punctual lights. The shader receives colour * intensity; with punctual_pi the
+// irradiance is pi (n.l) colour intensity (Three.js without PHYSICALLY_CORRECT_LIGHTS).
 struct Light {
   std::string name;
   LightType type = LightType::kDirectional;
@@ -37,7 +37,7 @@ struct Light {
   Vec3 direction{0, 0, 1};  // directional: unit vector from the scene TOWARDS the light
   Vec3 position{0, 0, 5};   // point, spot
   Vec3 target{0, 0, 0};     // spot: the cone axis runs from position to target
-  double distance = 0.0;    // range; 0 = unlimited (seed 000 testLightInRange)
+  double distance = 0.0;    // range; 0 = unlimited (Three.js testLightInRange)
   double decay = 0.0;       // exponent of (1 - d / distance); 0 = none
   double angle = kPi / 6;   // spot: cone half-angle, radians (coneCos = cos(angle))
   double penumbra = 0.0;    // spot: penumbraCos = cos(angle (1 - penumbra)), Three.js

@@ -1,6 +1,6 @@
 // Generates the shading program for one (object, material, light set): only the model twins
 // and light types the scene uses are compiled in, with exact light counts as #defines
-// (seed 000 / Three.js style, digest §5.5).
+// (Three.js style: NUM_DIR_LIGHTS-like counts instead of run-time branches).
 #pragma once
 
 #include <string>
@@ -22,7 +22,7 @@ struct ShaderVariant {
   std::string Key() const;  // cache key, also printed by --explain
 };
 
-// Sphere: a screen rectangle (glsl/sphere.vert); mesh: seed 000's vertex stage (object.vert).
+// Sphere: a screen rectangle (glsl/sphere.vert); mesh: a Three.js-style vertex stage (object.vert).
 std::string ShadeVertexSource(const ShaderVariant& v);
 std::string ShadeFragmentSource(const ShaderVariant& v);
 std::string ToneMapFragmentSource(ToneMap t, Encoding e);

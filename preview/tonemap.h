@@ -1,5 +1,5 @@
-// Display transform, C++ twin of preview/glsl/tonemap.frag: exposure and tone mapping (seed
-// 000's Three.js set, digest §3.1), clamp to [0, 1], then the output encoding. The GPU pass is
+// Display transform, C++ twin of preview/glsl/tonemap.frag: exposure and tone mapping (Three.js
+// r8x's set), clamp to [0, 1], then the output encoding. The GPU pass is
 // what the renderer uses; this twin is the oracle its test compares with.
 #pragma once
 
@@ -60,7 +60,7 @@ inline double ToneMapChannel(double c, const DisplaySettings& s) {
       return c;
     case Encoding::kSrgb:  // IEC 61966-2-1
       return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
-    case Encoding::kGamma2:  // seed 000 GAMMA_FACTOR 2
+    case Encoding::kGamma2:  // Three.js's default GAMMA_FACTOR 2
       return std::sqrt(c);
   }
   return c;

@@ -1,5 +1,5 @@
-// GLSL twin of models/lambert.h. Lambert 1760; normalized form f_r = rho_d / pi (seed 000
-// §4.5-4.6). f_r in 1/sr, without the cosine.
+// GLSL twin of models/lambert.h. Lambert 1760; normalized form f_r = rho_d / pi (the cosine
+// integrates to pi over the hemisphere). f_r in 1/sr, without the cosine.
 /* brdfit-params lambert
    name  unit lower upper init scale  role
    kd_r  1    0     1     0.5  linear weight_r

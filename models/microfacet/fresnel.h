@@ -1,5 +1,5 @@
 // Fresnel reflectance F(c), c = cos of the angle between the light and the microfacet normal
-// (c = wi.h = wo.h = Geometry::cos_d inside microfacet lobes; seeds-digest §2.14 D7).
+// (c = wi.h = wo.h = Geometry::cos_d inside microfacet lobes; tutorials write v.h or l.h: equal).
 //
 // Free functions (F...) implement the formulas; policy types (...Fresnel) publish the extra
 // parameters a lobe gains by choosing them and evaluate F from the lobe's parameter block:
@@ -19,7 +19,7 @@
 namespace brdfit {
 
 // Schlick 1994, "An Inexpensive BRDF Model for Physically-based Rendering" (CGF 13(3)), eq. 15:
-//   F = F0 + (1 - F0)(1 - c)^5   (seed 000 eq. 35/77, seeds 001-004).
+//   F = F0 + (1 - F0)(1 - c)^5.
 template <class T>
 T FSchlick(const T& f0, double c) {
   return f0 + (1.0 - f0) * Pow5(1.0 - c);
@@ -31,13 +31,14 @@ T FSchlickOneMinusCos(const T& f0, double one_minus_c) {
 }
 
 // Schlick with a grazing value F90 (Lagarde & de Rousiers 2014, "Moving Frostbite to PBR",
-// Listing 1; seed 004 Sphere(14)/(15)):  F = F0 + (F90 - F0)(1 - c)^5.
+// Listing 1):  F = F0 + (F90 - F0)(1 - c)^5.
 template <class T>
 T FSchlickF90(const T& f0, const T& f90, double c) {
   return f0 + (f90 - f0) * Pow5(1.0 - c);
 }
 
-// "Far Cry 3" approximation quoted by seed 004 Sphere(9):  F = F0 + (1 - F0) exp(-6 c).
+// The "Far Cry 3" approximation, as quoted by the URP workshop 2025 (step 9; docs/models.md):
+//   F = F0 + (1 - F0) exp(-6 c).
 template <class T>
 T FFarCry3(const T& f0, double c) {
   return f0 + (1.0 - f0) * std::exp(-6.0 * c);
@@ -47,8 +48,8 @@ T FFarCry3(const T& f0, double c) {
 // arriving from the rarer medium), in Cook & Torrance 1982's form (Appendix):
 //   g = sqrt(eta^2 - 1 + c^2),
 //   F = (g - c)^2 / (2 (g + c)^2) * (1 + ((c (g + c) - 1) / (c (g - c) + 1))^2).
-// Seed 001 prints g = sqrt(n^2 + c^2 + 1) and "- 1" in the last denominator (D8, two typos);
-// this is the corrected form. Equal to seed 000 eqs. 32-34 (tested).
+// Tokoi's lecture notes print g = sqrt(n^2 + c^2 + 1) and "- 1" in the last denominator (two
+// typos); this is the correct form. Equal to the s/p amplitude form with Snell's law (tested).
 template <class T>
 T FDielectric(const T& eta, double c) {
   using std::sqrt;
@@ -59,8 +60,8 @@ T FDielectric(const T& eta, double c) {
   return 0.5 * (gmc * gmc) / (gpc * gpc) * (1.0 + ratio * ratio);
 }
 
-// Seed 000 eq. 36 / seed 001: F0 = ((eta - 1) / (eta + 1))^2, and its inverse (seed 004's
-// FresnelReflectanceAverageDielectric recovers eta from F0 this way).
+// F0 = ((eta - 1) / (eta + 1))^2 (the above at c = 1), and its inverse (shader code such as the
+// URP workshop 2025's FresnelReflectanceAverageDielectric recovers eta from F0 this way).
 template <class T>
 T F0FromIor(const T& eta) {
   const T r = (eta - 1.0) / (eta + 1.0);
@@ -99,7 +100,7 @@ T FConductor(const T& eta, const T& k, double c) {
 // --- Policy types ------------------------------------------------------------------------------
 
 // F = 1: the Fresnel factor is folded into the lobe's RGB weight (the default for fitting:
-// with F0 fitted, F0 and the weight trade off; reference.md §5).
+// with F0 fitted, F0 and the weight trade off).
 struct NoFresnel {
   static constexpr std::string_view kName = "folded into weight";
   static constexpr std::array<ParamSpec, 0> kParams = {};

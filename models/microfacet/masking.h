@@ -3,9 +3,9 @@
 // Each policy type has
 //   template <class Ndf, class T> static T G(const T& alpha, const Geometry& g);
 // Ndf supplies Lambda for the Smith terms; the others ignore it. Every G is symmetric in
-// (wi, wo), so every microfacet lobe built from them is reciprocal. The seeds' list of
-// visibility terms (seeds-digest §2.8, disagreements D1-D3, D21) maps onto these types as
-// documented in docs/models.md.
+// (wi, wo), so every microfacet lobe built from them is reciprocal. docs/models.md ("Formula
+// variants in tutorials and course notes") maps the G and visibility forms printed in tutorials
+// and lecture notes (Schlick-k choices, V-groove denominators, visibility terms) onto these types.
 #pragma once
 
 #include <algorithm>
@@ -38,8 +38,8 @@ struct SmithSeparable {
 // Height-correlated Smith masking-shadowing, Heitz 2014 eq. 99:
 //   G2 = 1 / (1 + Lambda(wi) + Lambda(wo)).
 // For GGX this is the G inside Frostbite's V_SmithGGXCorrelated (Lagarde & de Rousiers 2014,
-// "Moving Frostbite to PBR", Listing 2; seed 004 Sphere(15)), without seed 004's second
-// division by 4 cos_i cos_o.
+// "Moving Frostbite to PBR", Listing 2), without the second division by 4 cos_i cos_o that the
+// URP workshop 2025's PBR step adds (docs/models.md).
 struct SmithHeightCorrelated {
   static constexpr std::string_view kName = "Smith height-correlated";
   template <class Ndf, class T>
@@ -50,12 +50,16 @@ struct SmithHeightCorrelated {
 
 // Schlick 1994, "An Inexpensive BRDF Model for Physically-based Rendering" (CGF 13(3)),
 // approximation of Smith's G1:  G1(c) = c / (c (1 - k) + k),  G2 = G1(cos_i) G1(cos_o).
-// The seeds disagree on k (seeds-digest §2.14 D1); each choice is a named option:
+// Published choices of k differ; each one is a named option (sources: docs/models.md):
+//   kAlphaHalf    Karis 2013's k = alpha / 2 before its roughness remap; mebiusbox 2018 eq. 74
+//   kAlphaSqHalf  mebiusbox 2018's shader code (a*a*0.5 with a = roughness^2, against its eq. 74)
+//   kUe4          Karis 2013 (UE4, analytic lights); OpenGL course 2023 §1.3
+//   kBeckmannFit  Schlick 1994 for Beckmann m; Tokoi's lecture notes
 enum class SchlickK {
-  kAlphaHalf,    // k = alpha / 2                      seed 000 text, eq. 74
-  kAlphaSqHalf,  // k = alpha^2 / 2                    seed 000 code (a*a*0.5, a = roughness^2)
-  kUe4,          // k = (r + 1)^2 / 8, r = sqrt(alpha)  Karis 2013 (UE4), seed 002 §1.3
-  kBeckmannFit,  // k = alpha sqrt(2 / pi)             Schlick 1994 for Beckmann m; seed 001
+  kAlphaHalf,    // k = alpha / 2
+  kAlphaSqHalf,  // k = alpha^2 / 2
+  kUe4,          // k = (r + 1)^2 / 8, r = sqrt(alpha)
+  kBeckmannFit,  // k = alpha sqrt(2 / pi)
 };
 
 template <class T>
@@ -91,7 +95,7 @@ struct SchlickSmith {
 // Cook & Torrance 1982, "A Reflectance Model for Computer Graphics" (ACM TOG 1(1)), V-groove
 // geometric attenuation (after Torrance & Sparrow 1967):
 //   G = min(1, 2 (n.h)(n.wo) / (wo.h), 2 (n.h)(n.wi) / (wo.h)).
-// wi.h == wo.h, so seeds 001/003/004's different denominators agree (D3).
+// wi.h == wo.h, so the printed variants that divide by h.l, v.h or l.h all agree.
 struct VGroove {
   static constexpr std::string_view kName = "V-groove";
   template <class Ndf, class T>
@@ -102,7 +106,7 @@ struct VGroove {
 };
 
 // Implicit G = cos_i cos_o: visibility G / (4 cos_i cos_o) = 1/4 (Hoffman 2010, "Physics and
-// Math of Shading", SIGGRAPH course; seed 001: the G hidden in Blinn-Phong).
+// Math of Shading", SIGGRAPH course: the G hidden in the Blinn-Phong BRDF).
 struct ImplicitG {
   static constexpr std::string_view kName = "implicit";
   template <class Ndf, class T>
@@ -113,7 +117,7 @@ struct ImplicitG {
 
 // Kelemen & Szirmay-Kalos 2001, "A Microfacet Based Coupled Specular-Matte BRDF Model with
 // Importance Sampling" (Eurographics short): G / (cos_i cos_o) ~ 2 / (1 + wi.wo) = 1 / cos_d^2
-// (seed 001, as an approximation of Torrance-Sparrow's G).
+// (their approximation of the Torrance-Sparrow / Cook-Torrance G).
 struct KelemenG {
   static constexpr std::string_view kName = "Kelemen";
   template <class Ndf, class T>
@@ -123,7 +127,7 @@ struct KelemenG {
 };
 
 // Neumann, Neumann, Szirmay-Kalos 1999, "Compact Metallic Reflectance Models" (CGF 18(3)):
-//   G / (cos_i cos_o) = 1 / max(cos_i, cos_o)   (seed 001).
+//   G / (cos_i cos_o) = 1 / max(cos_i, cos_o).
 struct NeumannG {
   static constexpr std::string_view kName = "Neumann";
   template <class Ndf, class T>
@@ -133,7 +137,7 @@ struct NeumannG {
 };
 
 // Ashikhmin & Premoze 2007, "Distribution-based BRDFs" (tech. report):
-//   G / (cos_i cos_o) = 1 / (cos_i + cos_o - cos_i cos_o)   (seed 001, the arrow's target).
+//   G / (cos_i cos_o) = 1 / (cos_i + cos_o - cos_i cos_o).
 struct AshikhminPremozeG {
   static constexpr std::string_view kName = "Ashikhmin-Premoze";
   template <class Ndf, class T>
@@ -142,8 +146,8 @@ struct AshikhminPremozeG {
   }
 };
 
-// No masking, G = 1 (Ward 1992's implicit visibility 1 / (cos_i cos_o); seed 001: "too bright
-// at grazing").
+// No masking, G = 1 (Ward 1992's implicit visibility 1 / (cos_i cos_o); too bright at grazing
+// angles).
 struct NoMasking {
   static constexpr std::string_view kName = "none";
   template <class Ndf, class T>

@@ -1,9 +1,9 @@
 // The microfacet specular lobe, assembled from an NDF, a masking term and a Fresnel term:
 //
 //   Walter form (default):  f = ks * D(h) G(wi, wo) F(wi.h) / (4 cos_i cos_o)
-//       Walter et al. 2007 eq. 20; seeds 000 eq. 71-72, 002, 003, 004 (project default, §5.6).
+//       Walter et al. 2007 eq. 20 (the project default, and the form most tutorials use).
 //   Cook-Torrance form:     f = ks * D(h) G(wi, wo) F(wi.h) / (pi cos_i cos_o)
-//       Cook & Torrance 1982 as used by Ngan et al. 2005 (F/pi folded with ks; seed 000 eq. 79).
+//       Cook & Torrance 1982 as used by Ngan et al. 2005 (F/pi folded with ks).
 //
 // Parameters: ks_r, ks_g, ks_b (linear RGB weights, kWeight roles), alpha (Ndf::kAlpha), then
 // Fresnel::kParams. f_r in 1/sr, without the cosine. Named models derive from this template

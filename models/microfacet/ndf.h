@@ -27,8 +27,9 @@ namespace brdfit {
 //   D(h) = alpha^2 / (pi cos^4 th (alpha^2 + tan^2 th)^2)
 //        = alpha^2 / (pi (alpha^2 cos^2 th + sin^2 th)^2).
 // The second form is used: with sin^2 th from components it does not cancel at th -> 0, so D
-// stays accurate for alpha down to 1e-4 (reference.md §5). Seeds 000/002/003/004 print the
-// equivalent alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2); seed 001 drops the square (D5).
+// stays accurate for alpha down to 1e-4 (the usual form cancels to 0 in float below roughness
+// 0.01: godot #59123). Karis 2013 and most tutorials print the equivalent
+// alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2); Tokoi's lecture notes drop the square (a typo).
 template <class T>
 T DGgx(const T& alpha, double cos_h, double sin2_h) {
   const T a2 = alpha * alpha;
@@ -50,7 +51,7 @@ T LambdaGgx(const T& alpha, double tan2) {
 
 // Walter et al. 2007 eq. 25 (Beckmann & Spizzichino 1963), normalized with pi:
 //   D(h) = exp(-tan^2 th / alpha^2) / (pi alpha^2 cos^4 th),   tan^2 th = sin^2 th / cos^2 th.
-// Seeds 001/004 print 1/(4 m^2 cos^4) or 1/(alpha^2 cos^4) without pi (D4): see docs/models.md.
+// Some course notes print 1/(4 m^2 cos^4) or 1/(alpha^2 cos^4) without pi: see docs/models.md.
 template <class T>
 T DBeckmann(const T& alpha, double cos_h, double sin2_h) {
   using std::exp;
@@ -78,8 +79,8 @@ T LambdaBeckmann(const T& alpha, double tan2) {
 
 // Walter et al. 2007 eq. 30 (Blinn 1977 normalized as a microfacet distribution):
 //   D(h) = (n + 2) / (2 pi) cos^n th.
-// Seed 001's normalized Blinn-Phong BRDF uses (n + 8)/(8 pi) instead: that is the BRDF
-// normalization including an implicit G and the 1/(4 cos cos) (models/blinn_phong.h).
+// The normalized Blinn-Phong BRDF (models/blinn_phong.h) uses (n + 8)/(8 pi) instead: that is
+// the BRDF normalization including an implicit G and the 1/(4 cos cos).
 template <class T>
 T DBlinnPhong(const T& n, double cos_h, double sin2_h) {
   return (n + 2.0) / (2.0 * kPi) * PowCos(cos_h, sin2_h, n);

@@ -1,6 +1,6 @@
-// Shared fragment-stage code: constants, seed 000's structs and punctual lights, and the
-// BRDF geometry every model twin reads (twin of models/geometry.h).
-// Lighting is computed in view (camera) space, as in seed 000 (digest §3.1).
+// Shared fragment-stage code: constants, Three.js r8x's structs and punctual lights (as in
+// mebiusbox 2018's sample, docs/models.md), and the BRDF geometry every model twin reads (twin of
+// models/geometry.h). Lighting is computed in view (camera) space, as Three.js does.
 #define PI 3.14159265358979
 #define RECIPROCAL_PI 0.318309886183791
 #define saturate(a) clamp(a, 0.0, 1.0)
@@ -8,12 +8,12 @@
 struct IncidentLight { vec3 color; vec3 direction; bool visible; };
 struct GeometricContext { vec3 position; vec3 normal; vec3 viewDir; };
 
-// Seed 000 (Three.js r8x lights_pars): distance 0 = unlimited range.
+// Three.js r8x lights_pars (testLightInRange): distance 0 = unlimited range.
 bool testLightInRange(const in float lightDistance, const in float cutoffDistance) {
   return any(bvec2(cutoffDistance == 0.0, lightDistance < cutoffDistance));
 }
-// Seed 000: pow(saturate(1 - d / cutoff), decay) when decay > 0. The scene loader rejects
-// decay > 0 with distance 0 (seed 000 would divide by zero and return black).
+// Three.js r8x: pow(saturate(1 - d / cutoff), decay) when decay > 0. The scene loader rejects
+// decay > 0 with distance 0 (that formula would divide by zero and return black).
 float punctualLightIntensityToIrradianceFactor(const in float lightDistance,
                                                const in float cutoffDistance,
                                                const in float decayExponent) {

@@ -4,8 +4,8 @@
 //   otherwise:       f = p(wh) q(theta_d, phi_d)   p: sqrt-theta disk, q: theta_d/phi_d rectangle
 // Texels sit at texel centres (GL_LINEAR, clamp to edge; phi_d repeats), as the CPU evaluator
 // (factor/factor_eval.h). Per light: two texture fetches; p(wo) of mccool is fetched once per
-// fragment. Point and directional lights only with this material (seed 001's limit; spot
-// lights are dropped by the renderer, which says so).
+// fragment. Point and directional lights only with this material (the limit course notes give
+// for factored BRDFs, docs/preview.md; spot lights are dropped by the renderer, which says so).
 // brdfit-requires: preview/glsl/halfdiff.glsl
 uniform sampler2D uFactorP;
 uniform sampler2D uFactorQ;

@@ -1,8 +1,8 @@
-// Surface shading: seed 000's structure (geometry, incident light, RE_Direct), per fragment in
+// Surface shading: Three.js r8x's structure (geometry, incident light, RE_Direct), per fragment in
 // view space. The generator prepends #version, the #defines (light counts, object kind,
 // material kind), common.glsl, the model twins the scene uses and EvalBrdf().
 #if !OBJECT_SPHERE
-in vec3 vViewPosition;  // surface -> camera, view space (seed 000 pbr_vert.glsl)
+in vec3 vViewPosition;  // surface -> camera, view space (Three.js: -mvPosition.xyz)
 in vec3 vNormal;
 #endif
 
@@ -27,9 +27,9 @@ out vec4 fragColor;
 vec3 gT, gB, gN;  // tangent frame of the current fragment
 vec3 ToLocal(vec3 v) { return vec3(dot(v, gT), dot(v, gB), dot(v, gN)); }
 
-// Cosine, irradiance and BRDF for one light (seed 000 RE_Direct). With PUNCTUAL_PI the light
+// Cosine, irradiance and BRDF for one light (Three.js RE_Direct). With PUNCTUAL_PI the light
 // colour is multiplied by pi, so a white Lambert surface facing a unit light shows the light
-// colour (seed 000 §6.5).
+// colour (Three.js r8x without PHYSICALLY_CORRECT_LIGHTS; docs/scenes.md).
 void RE_Direct(const in IncidentLight directLight, const in vec3 wo, inout vec3 radiance) {
   vec3 wi = ToLocal(directLight.direction);
   if (wi.z <= 0.0) return;  // light below the horizon: no contribution, BRDF not evaluated

@@ -1,6 +1,6 @@
-// Display transform: exposure and tone mapping (seed 000's Three.js set: Linear, Reinhard,
-// Uncharted2, OptimizedCineon), then the output encoding (exact sRGB, gamma 2.0 = seed 000's
-// GAMMA_FACTOR, or none). Twin of preview/tonemap.h. TONE_MAPPING and ENCODING are #defined
+// Display transform: exposure and tone mapping (Three.js r8x's set: Linear, Reinhard,
+// Uncharted2, OptimizedCineon), then the output encoding (exact sRGB, gamma 2.0 = Three.js's
+// default GAMMA_FACTOR, or none). Twin of preview/tonemap.h. TONE_MAPPING and ENCODING are #defined
 // by the renderer: 0 linear, 1 reinhard, 2 uncharted2, 3 cineon; 0 linear, 1 srgb, 2 gamma2.
 uniform sampler2D uLinear;
 uniform float toneMappingExposure;
@@ -24,7 +24,7 @@ vec3 OptimizedCineonToneMapping(vec3 color) {
   color = max(vec3(0.0), color - 0.004);
   return pow((color * (6.2 * color + 0.5)) / (color * (6.2 * color + 1.7) + 0.06), vec3(2.2));
 }
-// IEC 61966-2-1 sRGB encoding (exact exponent 1/2.4; seed 000 writes 0.41666).
+// IEC 61966-2-1 sRGB encoding (exact exponent 1/2.4; Three.js's LinearTosRGB writes 0.41666).
 vec3 LinearTosRGB(vec3 v) {
   return mix(pow(v, vec3(1.0 / 2.4)) * 1.055 - vec3(0.055), v * 12.92,
              vec3(lessThanEqual(v, vec3(0.0031308))));

@@ -8,7 +8,7 @@ namespace brdfit {
 namespace {
 
 TEST(Grid, MerlThetaHBinEdgesMatchReference) {
-  // reference.md §1: bin 1 starts at 0.011 deg, bin 10 at 1.11 deg, bin 45 at 22.5 deg,
+  // MERL's sqrt mapping: bin 1 starts at 0.011 deg, bin 10 at 1.11 deg, bin 45 at 22.5 deg,
   // bin 89 at 88.0 deg.
   const Grid g = Grid::Merl();
   const double deg = 180.0 / kPi;
@@ -28,7 +28,7 @@ TEST(Grid, CellCentreMapsBackToItsCell) {
 }
 
 TEST(Grid, MerlGeometricallyInvalidFractionAtBinCentres) {
-  // reference.md §1: about 24.8 % of the 1,458,000 cells are below the horizon at bin centres.
+  // About 24.8 % of the 1,458,000 cells are below the horizon at bin centres (docs/conventions.md).
   const Grid g = Grid::Merl();
   std::size_t below = 0;
   for (std::size_t idx = 0; idx < g.NumCells(); ++idx) below += !g.CellAboveHorizon(idx);

@@ -62,7 +62,7 @@ TEST(BinMeasure, TotalsMatchAnalyticIntegrals) {
 }
 
 TEST(BinMeasure, AgreesWithMidpointRuleOfReference) {
-  // reference.md §1: w = 2 pi 4 cos td sin th dth sin td dtd dphi at the centre.
+  // Midpoint rule (fit/bin_measure.h): w = 2 pi 4 cos td sin th dth sin td dtd dphi at the centre.
   const Grid g = Grid::Merl();
   for (int ih : {10, 45, 89}) {
     for (int id : {5, 45, 80}) {

@@ -99,7 +99,7 @@ TEST(Hdf5Table, AxesDescribeTheCellCentres) {
   std::vector<double> th(10);
   H5::DataSet ds = f.openDataSet("axes/theta_h");
   ds.read(th.data(), H5::PredType::NATIVE_DOUBLE);
-  // MERL mapping (reference.md §1): bin i covers [(i/n)^2, ((i+1)/n)^2] * 90 deg; centre at
+  // MERL mapping (BRDFRead.cpp): bin i covers [(i/n)^2, ((i+1)/n)^2] * 90 deg; centre at
   // index coordinate i + 0.5.
   for (int i = 0; i < 10; ++i) EXPECT_DOUBLE_EQ(th[i], kPi / 2 * std::pow((i + 0.5) / 10, 2));
   std::string mapping;

@@ -1,4 +1,4 @@
-// MERL binary reader/writer (io/merl.h) against reference.md §1: header, size, layout, channel
+// MERL binary reader/writer (io/merl.h) against MERL's BRDFRead.cpp: header, size, layout, channel
 // scales, masking; round trips; one test per rejected input.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -33,7 +33,7 @@ struct RawMerl {
   }
 };
 
-// idx = i_phi_d + 180 i_theta_d + 16200 i_theta_h (reference.md §1).
+// idx = i_phi_d + 180 i_theta_d + 16200 i_theta_h (BRDFRead.cpp).
 std::size_t MerlIndex(int ih, int id, int ip) {
   return ip + 180 * id + 16200 * ih;
 }
@@ -74,7 +74,7 @@ TEST(MerlRead, LayoutChannelScalesAndMaskFollowTheFormat) {
   MerlReadReport report;
   const Table t = ReadMerl(dir / "m.binary", &report);
   EXPECT_EQ(t.grid, Grid::Merl());
-  const double scale[3] = {1.0 / 1500, 1.15 / 1500, 1.66 / 1500};  // reference.md §1
+  const double scale[3] = {1.0 / 1500, 1.15 / 1500, 1.66 / 1500};  // BRDFRead.cpp
   for (int c = 0; c < 3; ++c) {
     EXPECT_EQ(t.Value(a)[c], 1500.0 * (c + 1) * scale[c]);
     EXPECT_EQ(t.Value(b)[c], (0.1 + c) * scale[c]);

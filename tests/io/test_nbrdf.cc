@@ -77,8 +77,8 @@ std::array<double, 3> OracleEval(const OracleNet& n, double th, double td, doubl
   return {std::exp(x[0]) - 1, std::exp(x[1]) - 1, std::exp(x[2]) - 1};
 }
 
-// Cell-centre angles written from reference.md §1 (not from Grid): theta_h index coordinate
-// u = 90 sqrt(th / 90deg), centre at i + 0.5.
+// Cell-centre angles written from MERL's layout (BRDFRead.cpp), not from Grid: theta_h index
+// coordinate u = 90 sqrt(th / 90deg), centre at i + 0.5.
 void MerlCentre(int ih, int id, int ip, double* th, double* td, double* pd) {
   const double u = (ih + 0.5) / 90.0;
   *th = u * u * kPi / 2;

@@ -78,7 +78,8 @@ inline double FSchlick(double f0, double t) {
   return f0 + (1.0 - f0) * std::pow(OneMinusCos(t), 5);
 }
 
-// Seed 000 eqs. 32-34 with Snell's law (eq. 38): light in medium 1 (eta1 = 1) hits medium 2.
+// Fresnel equations in the s/p amplitude form with Snell's law (as in mebiusbox 2018 eqs.
+// 32-34, 38): light in medium 1 (eta1 = 1) hits medium 2.
 inline double FDielectricSnell(double eta, double theta1) {
   const double theta2 = std::asin(std::sin(theta1) / eta);
   const double c1 = std::cos(theta1), c2 = std::cos(theta2);
@@ -136,7 +137,7 @@ inline void Phong(const double* p, const Angles& a, double rgb[3]) {
   for (int c = 0; c < 3; ++c) rgb[c] = p[c] * v;
 }
 
-// Seed 001 normalized Blinn-Phong.
+// Normalized Blinn-Phong, (n + 8) / (8 pi) (Real-Time Rendering 3rd ed. eq. 7.49).
 inline void BlinnPhong(const double* p, const Angles& a, double rgb[3]) {
   const double n = p[3];
   const double v = (n + 8) / (8 * kPi) * std::pow(std::cos(Half(a).th), n);
@@ -210,8 +211,8 @@ inline void Lafortune(const double* p, const Angles& a, double rgb[3]) {
   }
 }
 
-// Seed 002 §1.1-1.4 / Karis 2013 in the seed's printed form (GGX with (n.h)^2 (a^2 - 1) + 1,
-// k = (r + 1)^2 / 8 with roughness r = sqrt(alpha), F0 = mix(0.04, base, m)).
+// Karis 2013 in its printed form (also the OpenGL course 2023's): GGX with
+// (n.h)^2 (a^2 - 1) + 1, k = (r + 1)^2 / 8 with roughness r = sqrt(alpha), F0 = mix(0.04, base, m).
 inline void Ue4(const double* p, const Angles& a, double rgb[3]) {
   const double m = p[3], r = std::sqrt(p[4]), r4 = r * r * r * r;
   const HalfAngles h = Half(a);

@@ -221,12 +221,13 @@ TEST(ModelOracles, SumsAddTheirLobes) {
       });
 }
 
-// ---- seed variants (models/seed_variants.h), against the seeds' own printed code forms -------
-// The seeds' GGX and Beckmann forms ((n.h)^2 (a^2 - 1) + 1, 1 - (n.h)^2) cancel near
-// theta_h = 0 for small alpha; these grids keep alpha >= 0.1 where the seed forms are accurate.
+// ---- tutorial variants (models/seed_variants.h), against the sources' own code forms ---------
+// Their GGX and Beckmann forms ((n.h)^2 (a^2 - 1) + 1, 1 - (n.h)^2) cancel near theta_h = 0 for
+// small alpha; these grids keep alpha >= 0.1 where those forms are accurate. Sources:
+// docs/models.md, "Formula variants in tutorials and course notes".
 
-// Seed 000 shader: a = roughness^2 (= alpha), D = a^2 / (pi ((n.h)^2 (a^2 - 1) + 1)^2),
-// k = a * a * 0.5 (without the seed's +1e-6), G = G_Schlick(l) G_Schlick(v), F Schlick(v.h).
+// mebiusbox 2018's shader: a = roughness^2 (= alpha), D = a^2 / (pi ((n.h)^2 (a^2 - 1) + 1)^2),
+// k = a * a * 0.5 (without its +1e-6), G = G_Schlick(l) G_Schlick(v), F Schlick(v.h).
 TEST(SeedVariants, Seed000GgxCode) {
   ExpectMatchesOracle<Seed000GgxCode>(
       WithWeights({{0.1, 0.04}, {0.4, 0.5}, {1.0, 0.9}}),
@@ -243,10 +244,10 @@ TEST(SeedVariants, Seed000GgxCode) {
       });
 }
 
-// Seed 004 Sphere(12): alpha2 = roughness^4 = alpha^2,
+// URP workshop 2025 step 12: alpha2 = roughness^4 = alpha^2,
 // D = exp(-(1 - nh^2) / (nh^2 alpha2)) / (4 alpha2 nh^4),
 // G = min(1, 2 min(nh nv / vh, nh nl / lh)), brdf = base D G F / (4 nl nv).
-// Seed004CookTorrance reproduces it with ks = base * pi / 4 (seed D = pi/4 Walter D).
+// Seed004CookTorrance reproduces it with ks = base * pi / 4 (the workshop's D = pi/4 Walter D).
 TEST(SeedVariants, Seed004CookTorrance) {
   std::vector<std::vector<double>> params;
   for (auto s : std::vector<std::pair<double, double>>{{0.1, 0.8}, {0.4, 0.04}, {1.0, 0.5}}) {
@@ -269,8 +270,8 @@ TEST(SeedVariants, Seed004CookTorrance) {
       });
 }
 
-// Seed 001: Beckmann p(th) = exp(-tan^2 / m^2) / (4 m^2 cos^4) under the Cook-Torrance pi-form
-// F/pi D G / (cos cos), with the Schlick-Smith k = sqrt(2 m^2 / pi).
+// Tokoi's lecture notes: Beckmann p(th) = exp(-tan^2 / m^2) / (4 m^2 cos^4) under the
+// Cook-Torrance pi-form F/pi D G / (cos cos), with the Schlick-Smith k = sqrt(2 m^2 / pi).
 TEST(SeedVariants, Seed001Beckmann) {
   ExpectMatchesOracle<Seed001Beckmann>(
       WithWeights({{0.05, 0.04}, {0.3, 0.5}, {1.0, 0.9}}),
@@ -287,7 +288,7 @@ TEST(SeedVariants, Seed001Beckmann) {
       });
 }
 
-// Seed 002 shader: diffuse = base (1 - F)(1 - metallic) / pi, specular as UE4.
+// OpenGL course 2023 shader: diffuse = base (1 - F)(1 - metallic) / pi, specular as UE4.
 TEST(SeedVariants, Seed002Ue4) {
   std::vector<std::vector<double>> params;
   for (double m : {0.0, 0.6, 1.0})
@@ -306,7 +307,7 @@ TEST(SeedVariants, Seed002Ue4) {
                                   });
 }
 
-// Seed 004 Sphere(15) specular without the seed's second 1/(4 nl nv): D (seed form) times
+// URP workshop 2025 step 15 specular without its second 1/(4 nl nv): D (its form) times
 // Frostbite's V_SmithGGXCorrelated (code form, alphaG2 = alpha^2) times Schlick F.
 TEST(SeedVariants, Seed004PbrSpecular) {
   ExpectMatchesOracle<Seed004PbrSpecular>(
@@ -325,8 +326,8 @@ TEST(SeedVariants, Seed004PbrSpecular) {
       });
 }
 
-// GGX lobes with the other Fresnel forms: Far Cry 3 (seed 004 Sphere(9)) and the exact
-// dielectric (seed 000 eqs. 32-34 with Snell's law).
+// GGX lobes with the other Fresnel forms: Far Cry 3 (URP workshop 2025 step 9) and the exact
+// dielectric (s/p amplitude form with Snell's law).
 TEST(SeedVariants, GgxFresnelAlternatives) {
   auto ggx_hc = [](const double* p, const oracle::Angles& a) {
     double rgb[3];
@@ -348,7 +349,7 @@ TEST(SeedVariants, GgxFresnelAlternatives) {
                                      });
 }
 
-// Seed 004 Sphere(14): Fr_DisneyDiffuse(linearRoughness = alpha) / pi; Burley 2012 original.
+// URP workshop 2025 step 14: Fr_DisneyDiffuse(linearRoughness = alpha) / pi; Burley 2012 original.
 TEST(SeedVariants, DiffuseVariants) {
   ExpectMatchesOracle<Seed004FrostbiteDiffuse>(
       WithWeights({{0.01}, {0.16}, {1.0}}),

@@ -252,7 +252,7 @@ TEST(Physics, FurnaceCoversEverySingleModel) {
   }
 }
 
-// Lambert's albedo is kd exactly (seed 000 §4.6.1: integral of cos over the hemisphere = pi):
+// Lambert's albedo is kd exactly (the integral of cos over the hemisphere is pi):
 // a check of the furnace quadrature itself.
 TEST(Physics, FurnaceQuadratureIsExactForLambert) {
   const ModelInfo* m = FindModel("lambert");

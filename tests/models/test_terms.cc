@@ -1,4 +1,4 @@
-// Microfacet term families (models/microfacet/) against the seeds' and papers' printed forms.
+// Microfacet term families (models/microfacet/) against the papers' and tutorials' printed forms.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -63,7 +63,8 @@ TEST(Masking, SmithLambdaMatchesWalterG1) {
     }
 }
 
-// Frostbite's V_SmithGGXCorrelated (seed 004 §3.5 code form) is G2_hc / (4 cos_i cos_o).
+// Frostbite's V_SmithGGXCorrelated (Lagarde & de Rousiers 2014, Listing 2, code form) is
+// G2_hc / (4 cos_i cos_o).
 TEST(Masking, HeightCorrelatedMatchesFrostbiteVisibility) {
   for (double alpha : {0.01, 0.2, 1.0})
     for (const Geometry& g : Geometries()) {
@@ -76,15 +77,16 @@ TEST(Masking, HeightCorrelatedMatchesFrostbiteVisibility) {
     }
 }
 
-// Seed forms of the Schlick k choices, written with the seeds' "roughness" r (alpha = r^2).
+// The printed forms of the Schlick k choices, written with the sources' "roughness" r
+// (alpha = r^2; docs/models.md).
 TEST(Masking, SchlickKChoicesMatchSeeds) {
   for (double r : {0.01, 0.3, 0.7, 1.0}) {
     const double alpha = r * r;
-    const double a = r * r;  // seed 000 code: a = roughness * roughness; k = a * a * 0.5
+    const double a = r * r;  // mebiusbox 2018 code: a = roughness * roughness; k = a * a * 0.5
     EXPECT_DOUBLE_EQ(SchlickKValue(SchlickK::kAlphaSqHalf, alpha), a * a * 0.5);
-    EXPECT_DOUBLE_EQ(SchlickKValue(SchlickK::kAlphaHalf, alpha), alpha / 2);  // seed 000 eq. 74
+    EXPECT_DOUBLE_EQ(SchlickKValue(SchlickK::kAlphaHalf, alpha), alpha / 2);  // Karis 2013
     EXPECT_NEAR(SchlickKValue(SchlickK::kUe4, alpha), (r + 1) * (r + 1) * 0.125, 1e-15);
-    const double m = alpha;  // seed 001: k = sqrt(2 m^2 / pi), m = Beckmann RMS slope
+    const double m = alpha;  // Schlick 1994: k = sqrt(2 m^2 / pi), m = Beckmann RMS slope
     EXPECT_NEAR(SchlickKValue(SchlickK::kBeckmannFit, alpha), std::sqrt(2 * m * m / kPi), 1e-15);
   }
   const Geometry g = MakeGeometry(FromSpherical(0.4, 0), FromSpherical(1.0, 2.0));
@@ -93,7 +95,7 @@ TEST(Masking, SchlickKChoicesMatchSeeds) {
   EXPECT_NEAR((SchlickSmith<SchlickK::kUe4>::G<GgxNdf>(0.3, g)), want, 1e-15);
 }
 
-// Seed 001's visibility family and seed 004's V-groove code.
+// The visibility family of course notes (Tokoi) and the URP workshop 2025's V-groove code.
 TEST(Masking, VisibilityTermsMatchSeedForms) {
   for (const Geometry& g : Geometries()) {
     const double cc = g.cos_i * g.cos_o;
@@ -129,7 +131,7 @@ TEST(Fresnel, DielectricMatchesSnellForm) {
                 1e-12)
           << eta << " " << theta;
     }
-  // F(0) = ((eta - 1) / (eta + 1))^2 (seed 000 eq. 36) and the F0 <-> IOR round trip.
+  // F(0) = ((eta - 1) / (eta + 1))^2 and the F0 <-> IOR round trip.
   for (double eta : {1.2, 1.5, 3.0}) {
     EXPECT_NEAR(FDielectric(eta, 1.0), F0FromIor(eta), 1e-15);
     EXPECT_NEAR(IorFromF0(F0FromIor(eta)), eta, 1e-12);

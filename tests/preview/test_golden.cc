@@ -1,10 +1,10 @@
-// Golden images: the seeds' sphere set-ups rendered headless and compared with PNGs in
-// data/golden/ (docs/preview.md, "Golden images").
-//   seed000_ggx_{directional,point,spot}: seed 000's sample (its metallic/roughness material as
-//     the catalog's ue4 model, alpha = roughness^2) under each of its three light types, with
-//     range, decay, cone and penumbra; the pi punctual convention.
-//   seed004_steps: seed 004's spheres from Lambert to PBR (3, 5, 6, 12, 13, 14, 15) under
-//     Unity's default directional light, seed 004's parameters, no pi factor.
+// Golden images: sphere set-ups of two shading tutorials (docs/models.md) rendered headless and
+// compared with PNGs in data/golden/ (docs/preview.md, "Golden images").
+//   seed000_ggx_{directional,point,spot}: mebiusbox 2018's Three.js sample (its
+//     metallic/roughness material as the catalog's ue4 model, alpha = roughness^2) under each of
+//     its three light types, with range, decay, cone and penumbra; the pi punctual convention.
+//   seed004_steps: the URP workshop 2025's spheres from Lambert to PBR (steps 3, 5, 6, 12, 13,
+//     14, 15) under Unity's default directional light, the workshop's parameters, no pi factor.
 //   mesh_torus: a triangle mesh (data/scenes/torus.obj, scripts/make_torus_obj.py) with
 //     lambert+ggx under a directional and a point light.
 // Origin: rendered by this renderer (Mesa llvmpipe, EGL surfaceless), inspected by eye, and

@@ -1,4 +1,4 @@
-// Scene files: defaults, seed 000 light semantics, strict validation with messages that name
+// Scene files: defaults, Three.js r8x light semantics, strict validation with messages that name
 // the file and the problem.
 #include <gtest/gtest.h>
 
@@ -66,7 +66,7 @@ TEST(Scene, RejectsBadInput) {
                   "lights": [{"type": "area"}]})", "unknown light type 'area'");
 }
 
-// Seed 000's falloff: colour * intensity * (1 - d / distance)^decay, zero outside the range;
+// Three.js r8x's falloff: colour * intensity * (1 - d / distance)^decay, zero outside the range;
 // the spot's smoothstep between cos(angle) and cos(angle (1 - penumbra)).
 TEST(Lights, SeedSemantics) {
   Light point;
