@@ -1,42 +1,30 @@
 // `brdfit fit FILES... --model ggx,beckmann,...`: fits models to tables, prints a metric table,
 // writes every fit to an HDF5 report (docs/formats.md, "Fit reports") and optionally the
-// parameters as JSON. Parallel over (file, model) with --jobs; resumable: entries already in
-// the report with the same options are skipped unless --force. Also demo step 20.
+// parameters as JSON. The batch (parallel, resumable, checkpointed) is pipeline/batch_fit.h;
+// this file parses the options and prints. Also demo step 20.
 #include <fmt/core.h>
 
 #include <algorithm>
-#include <atomic>
-#include <cctype>
-#include <chrono>
-#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <map>
 #include <memory>
-#include <mutex>
-#include <optional>
-#include <set>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "cli/command.h"
 #include "cli/demo.h"
-#include "pipeline/inputs.h"
 #include "cli/progress.h"
-#include "fit/fitter.h"
 #include "io/atomic_file.h"
 #include "core/error.h"
 #include "io/fit_report.h"
-#include "report/report_inputs.h"
-#include "io/table_io.h"
+#include "pipeline/batch_fit.h"
+#include "pipeline/inputs.h"
 
 namespace brdfit::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 struct FitCliOptions {
   std::vector<std::string> files;
@@ -60,67 +48,6 @@ struct FitCliOptions {
   bool no_timings = false;
   bool quiet = false;
   bool no_progress = false;
-};
-
-double MsSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
-// "lafortune:2" -> "lafortune+lafortune" (N lobes of one model). Then --diffuse D: a name N
-// becomes "D+N" when the catalog has it (measured materials have a diffuse part); names that
-// already include a diffuse lobe, diffuse models and names without a "D+N" entry stay as given.
-std::vector<std::string> ResolveModels(const std::vector<std::string>& requested,
-                                       const std::string& diffuse) {
-  if (diffuse != "none" && diffuse != "lambert" && !IsFittable(diffuse)) {
-    throw InputError("--diffuse '" + diffuse +
-                     "' is not a model (expected none or a diffuse model)");
-  }
-  std::vector<std::string> out;
-  for (const std::string& n : requested) {
-    if (n.empty()) continue;
-    std::string name = n;
-    if (const auto colon = n.find(':'); colon != std::string::npos) {
-      const std::string base = n.substr(0, colon), count = n.substr(colon + 1);
-      const bool digits =
-          !count.empty() && count.size() <= 2 && std::all_of(count.begin(), count.end(), ::isdigit);
-      const int lobes = digits ? std::stoi(count) : 0;
-      if (base.empty() || lobes < 1) {
-        throw InputError("model '" + n + "': expected NAME:N with N >= 1 lobes");
-      }
-      name = base;
-      for (int k = 1; k < lobes; ++k) name += "+" + base;
-    }
-    if (diffuse != "none" && IsFittable(diffuse + "+" + name)) name = diffuse + "+" + name;
-    if (!IsFittable(name)) {
-      std::string known;
-      for (const auto& k : FittableModels()) known += (known.empty() ? "" : ", ") + k;
-      throw InputError("unknown model '" + n + "' (known: " + known + ")");
-    }
-    if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
-  }
-  if (out.empty()) throw InputError("--model: no model given");
-  return out;
-}
-
-struct Task {
-  std::size_t file;
-  std::string model;
-};
-
-// A table loaded and prepared once, shared by the fits of its models; freed after the last.
-struct FileState {
-  std::mutex mu;
-  bool ready = false;
-  std::optional<PreparedTable> prepared;
-  std::string error;  // InputError message if loading failed
-  double load_ms = 0, prepare_ms = 0;
-  std::atomic<int> remaining{0};
-};
-
-struct RunSummary {
-  std::vector<FitReportEntry> fresh;  // fits made now
-  std::vector<std::string> input_errors;
-  std::size_t skipped = 0;
 };
 
 void PrintTable(std::FILE* out, const std::vector<FitReportEntry>& entries) {
@@ -175,19 +102,20 @@ void PrintSummary(std::FILE* out, const std::vector<FitReportEntry>& entries,
 }
 
 int RunFit(const FitCliOptions& o) {
-  const std::vector<std::string> files = pipeline::ExpandInputs(o.files);
-  if (files.empty()) throw InputError("no input files");
+  pipeline::BatchFitRequest req;
+  req.inputs = pipeline::ExpandInputs(o.files);
+  if (req.inputs.empty()) throw InputError("no input files");
   if (o.jobs < 1 || o.jobs > 256) throw InputError("--jobs must be in [1, 256]");
   if (o.threads < 1 || o.threads > 256) throw InputError("--threads must be in [1, 256]");
   if (o.multistart < 1 || o.multistart > 1000)
     throw InputError("--multistart must be in [1, 1000]");
   if (o.max_iterations < 1) throw InputError("--max-iterations must be >= 1");
-  SampleOptions so;
+  SampleOptions& so = req.samples;
   so.cutoff_deg = o.cutoff;
   so.weighting = WeightingFromString(o.weighting);
   so.budget = Budget::Parse(o.budget);
   so.seed = o.seed;
-  FitOptions fo;
+  FitOptions& fo = req.fit;
   fo.loss = LossKindFromString(o.loss);
   fo.cosine = !o.no_cosine;
   fo.robust = RobustKindFromString(o.robust);
@@ -198,146 +126,42 @@ int RunFit(const FitCliOptions& o) {
   fo.threads = o.threads;
   fo.seed = o.seed;
   if (!(so.cutoff_deg > 0 && so.cutoff_deg <= 90)) throw InputError("--cutoff must be in (0, 90]");
-  const std::vector<std::string> models = ResolveModels(o.models, o.diffuse);
-  const std::string options = OptionsJson(so, fo);
-  const fs::path out = o.out;
+  req.models = pipeline::ResolveModelNames(o.models, o.diffuse);
+  req.report = o.out;
+  req.force = o.force;
+  req.timings = !o.no_timings;
+  req.jobs = o.jobs;
+  const std::size_t num_inputs = req.inputs.size();
 
-  // Resume: keep what the report holds; skip fits already done with the same options.
-  std::vector<FitReportEntry> kept;
-  if (fs::exists(out) && !o.force) {
-    try {
-      kept = ReadFitReport(out);
-    } catch (const InputError& e) {
-      throw InputError(out, std::string("exists but is not a readable fit report (use --force to "
-                                        "overwrite): ") +
-                                e.what());
-    }
-  }
-  std::set<std::tuple<std::string, std::string, std::string>> done;
-  for (const auto& e : kept) {
-    if (!e.result.Failed()) done.insert({e.source, e.result.model, e.options});
-  }
-  std::vector<Task> tasks;
-  std::vector<std::unique_ptr<FileState>> states;
-  RunSummary summary;
-  for (std::size_t f = 0; f < files.size(); ++f) {
-    states.push_back(std::make_unique<FileState>());
-    for (const std::string& m : models) {
-      if (done.count({files[f], m, options})) {
-        ++summary.skipped;
-        continue;
-      }
-      tasks.push_back({f, m});
-      ++states[f]->remaining;
-    }
-  }
-  // Entries replaced by this run leave the kept set.
-  std::set<std::pair<std::string, std::string>> redo;
-  for (const Task& t : tasks) redo.insert({files[t.file], t.model});
-  std::erase_if(kept, [&](const FitReportEntry& e) {
-    return redo.count({e.source, e.result.model}) && e.options == options;
+  // The progress bar counts the fits still to make: the report may already hold some.
+  std::unique_ptr<Progress> bar;
+  const auto run = pipeline::RunBatchFit(req, [&](std::size_t planned, const std::string& label) {
+    if (!bar) bar = std::make_unique<Progress>(planned, "fitting", !o.no_progress && !o.quiet);
+    bar->Step(label);
   });
+  if (bar) bar->Done();
 
-  std::mutex mu;  // guards summary, progress and checkpoints
-  Progress bar(tasks.size(), "fitting", !o.no_progress && !o.quiet);
-  auto last_write = Clock::now();
-  auto write_report = [&](bool final) {
-    std::vector<FitReportEntry> all = kept;
-    all.insert(all.end(), summary.fresh.begin(), summary.fresh.end());
-    WriteFitReport(std::move(all), out, !o.no_timings);
-    if (!final) last_write = Clock::now();
-  };
-
-  std::atomic<std::size_t> next{0};
-  auto worker = [&] {
-    while (true) {
-      const std::size_t i = next++;
-      if (i >= tasks.size()) return;
-      const Task& t = tasks[i];
-      FileState& fs_ = *states[t.file];
-      {
-        std::lock_guard<std::mutex> lock(mu);
-        bar.Step(fmt::format("{} {}", report::MaterialName(files[t.file]), t.model));
-      }
-      {
-        std::lock_guard<std::mutex> lock(fs_.mu);
-        if (!fs_.ready) {
-          try {
-            auto t0 = Clock::now();
-            Table table = pipeline::LoadInput(files[t.file]);
-            fs_.load_ms = MsSince(t0);
-            t0 = Clock::now();
-            fs_.prepared.emplace(PrepareTable(std::move(table), so, fo));
-            fs_.prepare_ms = MsSince(t0);
-          } catch (const InputError& e) {
-            fs_.error = e.what();
-          } catch (const std::exception& e) {  // e.g. out of memory: reported, not fatal
-            fs_.error = files[t.file] + ": " + e.what();
-          }
-          fs_.ready = true;
-        }
-      }
-      if (fs_.error.empty()) {
-        FitResult r;
-        try {
-          r = FitPrepared(t.model, *fs_.prepared, fo);
-        } catch (const std::exception& e) {  // never expected; a failed entry, not a crash
-          r = FitResult{};
-          r.model = t.model;
-          r.status = FitStatus::kFailed;
-          r.message = std::string("internal error: ") + e.what();
-        }
-        r.times.load = fs_.load_ms;
-        r.times.prepare = fs_.prepare_ms;
-        FitReportEntry e{files[t.file], report::MaterialName(files[t.file]), options, std::move(r)};
-        std::lock_guard<std::mutex> lock(mu);
-        summary.fresh.push_back(std::move(e));
-        if (MsSince(last_write) > 5000) write_report(false);  // checkpoint for resuming
-      }
-      if (--fs_.remaining == 0) {
-        std::lock_guard<std::mutex> lock(fs_.mu);
-        if (!fs_.error.empty()) {
-          std::lock_guard<std::mutex> lock2(mu);
-          summary.input_errors.push_back(fs_.error);
-        }
-        fs_.prepared.reset();
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  const int n_workers =
-      std::min<int>(o.jobs, static_cast<int>(std::max<std::size_t>(tasks.size(), 1)));
-  for (int j = 0; j < n_workers; ++j) pool.emplace_back(worker);
-  for (auto& th : pool) th.join();
-  bar.Done();
-
-  write_report(true);
-  SortEntries(summary.fresh);
-  std::vector<FitReportEntry> all = kept;
-  all.insert(all.end(), summary.fresh.begin(), summary.fresh.end());
   // `--json -`: the parameters are the standard output; the table goes to stderr.
   const bool json_to_stdout = o.json == "-";
   if (json_to_stdout) {
-    fmt::print("{}", FitParamsJson(all));
+    fmt::print("{}", FitParamsJson(run.all));
   } else if (!o.json.empty()) {
-    WriteTextAtomically(o.json, FitParamsJson(all));
+    WriteTextAtomically(o.json, FitParamsJson(run.all));
   }
 
   if (!o.quiet) {
     std::FILE* table_out = json_to_stdout ? stderr : stdout;
-    if (!summary.fresh.empty()) PrintTable(table_out, summary.fresh);
-    if (files.size() > 1 && !summary.fresh.empty()) PrintSummary(table_out, summary.fresh, models);
-    fmt::print(table_out, "{} fits, {} skipped{}; report {}{}\n", summary.fresh.size(),
-               summary.skipped,
-               summary.skipped ? " (already in the report with the same options; --force redoes "
-                                 "them)"
-                               : "",
-               out.string(), o.json.empty() || json_to_stdout ? "" : ", parameters " + o.json);
+    if (!run.fresh.empty()) PrintTable(table_out, run.fresh);
+    if (num_inputs > 1 && !run.fresh.empty()) PrintSummary(table_out, run.fresh, req.models);
+    fmt::print(table_out, "{} fits, {} skipped{}; report {}{}\n", run.fresh.size(), run.skipped,
+               run.skipped ? " (already in the report with the same options; --force redoes "
+                             "them)"
+                           : "",
+               o.out, o.json.empty() || json_to_stdout ? "" : ", parameters " + o.json);
   }
-  std::sort(summary.input_errors.begin(), summary.input_errors.end());
-  for (const auto& e : summary.input_errors) fmt::print(stderr, "brdfit: error: {}\n", e);
-  if (!summary.input_errors.empty()) return kExitBadInput;
-  const bool failed = std::any_of(summary.fresh.begin(), summary.fresh.end(),
+  for (const auto& e : run.input_errors) fmt::print(stderr, "brdfit: error: {}\n", e);
+  if (!run.input_errors.empty()) return kExitBadInput;
+  const bool failed = std::any_of(run.fresh.begin(), run.fresh.end(),
                                   [](const FitReportEntry& e) { return e.result.Failed(); });
   return failed ? kExitFitFailed : kExitOk;
 }

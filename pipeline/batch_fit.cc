@@ -1,0 +1,207 @@
+#include "pipeline/batch_fit.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <thread>
+#include <tuple>
+
+#include "core/error.h"
+#include "fit/fitter.h"
+#include "models/registry.h"
+#include "pipeline/inputs.h"
+#include "report/report_inputs.h"
+
+namespace brdfit::pipeline {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double MsSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+struct Task {
+  std::size_t input;
+  std::string model;
+};
+
+// An input loaded and prepared once, shared by the fits of its models; freed after the last.
+struct InputState {
+  std::mutex mu;
+  bool ready = false;
+  std::optional<PreparedTable> prepared;
+  std::string error;  // InputError message if loading failed
+  double load_ms = 0, prepare_ms = 0;
+  std::atomic<int> remaining{0};
+};
+
+// The report's entries, or none when it does not exist or `force` discards it.
+std::vector<FitReportEntry> ReadKept(const fs::path& report, bool force) {
+  if (force || !fs::exists(report)) return {};
+  try {
+    return ReadFitReport(report);
+  } catch (const InputError& e) {
+    throw InputError(report, std::string("exists but is not a readable fit report (use --force "
+                                         "to overwrite): ") +
+                                 e.what());
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> ResolveModelNames(const std::vector<std::string>& requested,
+                                           const std::string& diffuse) {
+  if (diffuse != "none" && diffuse != "lambert" && !IsFittable(diffuse)) {
+    throw InputError("--diffuse '" + diffuse +
+                     "' is not a model (expected none or a diffuse model)");
+  }
+  std::vector<std::string> out;
+  for (const std::string& n : requested) {
+    if (n.empty()) continue;
+    std::string name = n;
+    if (const auto colon = n.find(':'); colon != std::string::npos) {
+      const std::string base = n.substr(0, colon), count = n.substr(colon + 1);
+      const bool digits =
+          !count.empty() && count.size() <= 2 && std::all_of(count.begin(), count.end(), ::isdigit);
+      const int lobes = digits ? std::stoi(count) : 0;
+      if (base.empty() || lobes < 1) {
+        throw InputError("model '" + n + "': expected NAME:N with N >= 1 lobes");
+      }
+      name = base;
+      for (int k = 1; k < lobes; ++k) name += "+" + base;
+    }
+    if (diffuse != "none" && IsFittable(diffuse + "+" + name)) name = diffuse + "+" + name;
+    if (!IsFittable(name)) {
+      std::string known;
+      for (const auto& k : FittableModels()) known += (known.empty() ? "" : ", ") + k;
+      throw InputError("unknown model '" + n + "' (known: " + known + ")");
+    }
+    if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
+  }
+  if (out.empty()) throw InputError("--model: no model given");
+  return out;
+}
+
+BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_start) {
+  if (req.inputs.empty()) throw InputError("no input files");
+  if (req.models.empty()) throw InputError("no model to fit");
+  if (req.jobs < 1 || req.jobs > 256) throw InputError("jobs must be in [1, 256]");
+  const std::string options = OptionsJson(req.samples, req.fit);
+  const std::vector<std::string>& inputs = req.inputs;
+
+  // Resume: keep what the report holds; skip fits already done with the same options.
+  std::vector<FitReportEntry> kept = ReadKept(req.report, req.force);
+  std::set<std::tuple<std::string, std::string, std::string>> done;
+  for (const auto& e : kept) {
+    if (!e.result.Failed()) done.insert({e.source, e.result.model, e.options});
+  }
+  BatchFitResult result;
+  std::vector<Task> tasks;
+  std::vector<std::unique_ptr<InputState>> states;
+  for (std::size_t f = 0; f < inputs.size(); ++f) {
+    states.push_back(std::make_unique<InputState>());
+    for (const std::string& m : req.models) {
+      if (done.count({inputs[f], m, options})) {
+        ++result.skipped;
+        continue;
+      }
+      tasks.push_back({f, m});
+      ++states[f]->remaining;
+    }
+  }
+  result.planned = tasks.size();
+  // Entries replaced by this run leave the kept set.
+  std::set<std::pair<std::string, std::string>> redo;
+  for (const Task& t : tasks) redo.insert({inputs[t.input], t.model});
+  std::erase_if(kept, [&](const FitReportEntry& e) {
+    return redo.count({e.source, e.result.model}) && e.options == options;
+  });
+
+  std::mutex mu;  // guards result, progress and checkpoints
+  auto last_write = Clock::now();
+  auto write_report = [&](bool final) {
+    std::vector<FitReportEntry> all = kept;
+    all.insert(all.end(), result.fresh.begin(), result.fresh.end());
+    WriteFitReport(std::move(all), req.report, req.timings);
+    if (!final) last_write = Clock::now();
+  };
+
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    while (true) {
+      const std::size_t i = next++;
+      if (i >= tasks.size()) return;
+      const Task& t = tasks[i];
+      const std::string& input = inputs[t.input];
+      InputState& st = *states[t.input];
+      if (on_start) {
+        std::lock_guard<std::mutex> lock(mu);
+        on_start(tasks.size(), report::MaterialName(input) + " " + t.model);
+      }
+      {
+        std::lock_guard<std::mutex> lock(st.mu);
+        if (!st.ready) {
+          try {
+            auto t0 = Clock::now();
+            Table table = LoadInput(input);
+            st.load_ms = MsSince(t0);
+            t0 = Clock::now();
+            st.prepared.emplace(PrepareTable(std::move(table), req.samples, req.fit));
+            st.prepare_ms = MsSince(t0);
+          } catch (const InputError& e) {
+            st.error = e.what();
+          } catch (const std::exception& e) {  // e.g. out of memory: reported, not fatal
+            st.error = input + ": " + e.what();
+          }
+          st.ready = true;
+        }
+      }
+      if (st.error.empty()) {
+        FitResult r;
+        try {
+          r = FitPrepared(t.model, *st.prepared, req.fit);
+        } catch (const std::exception& e) {  // never expected; a failed entry, not a crash
+          r = FitResult{};
+          r.model = t.model;
+          r.status = FitStatus::kFailed;
+          r.message = std::string("internal error: ") + e.what();
+        }
+        r.times.load = st.load_ms;
+        r.times.prepare = st.prepare_ms;
+        FitReportEntry e{input, report::MaterialName(input), options, std::move(r)};
+        std::lock_guard<std::mutex> lock(mu);
+        result.fresh.push_back(std::move(e));
+        if (MsSince(last_write) > 5000) write_report(false);  // checkpoint for resuming
+      }
+      if (--st.remaining == 0) {
+        std::lock_guard<std::mutex> lock(st.mu);
+        if (!st.error.empty()) {
+          std::lock_guard<std::mutex> lock2(mu);
+          result.input_errors.push_back(st.error);
+        }
+        st.prepared.reset();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  const int n_workers =
+      std::min<int>(req.jobs, static_cast<int>(std::max<std::size_t>(tasks.size(), 1)));
+  for (int j = 0; j < n_workers; ++j) pool.emplace_back(worker);
+  for (auto& th : pool) th.join();
+
+  write_report(true);
+  SortEntries(result.fresh);
+  result.all = kept;
+  result.all.insert(result.all.end(), result.fresh.begin(), result.fresh.end());
+  std::sort(result.input_errors.begin(), result.input_errors.end());
+  return result;
+}
+
+}  // namespace brdfit::pipeline
