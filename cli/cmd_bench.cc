@@ -13,14 +13,17 @@
 #include "cli/command.h"
 #include "cli/demo.h"
 #include "cli/progress.h"
+#include "core/error.h"
 #include "fit/fitter.h"
 #include "fit/metrics.h"
 #include "io/atomic_file.h"
-#include "report/bench_csv.h"
-#include "core/error.h"
-#include "report/html_report.h"
 #include "io/input_file.h"
+#include "io/nbrdf.h"
 #include "io/table_io.h"
+#include "pipeline/inputs.h"
+#include "report/bench_csv.h"
+#include "report/html_report.h"
+#include "report/report_inputs.h"
 
 namespace brdfit::cli {
 namespace {
@@ -103,7 +106,9 @@ Plan CheckOptions(const BenchCliOptions& o) {
   if (!(o.cutoff_deg > 0 && o.cutoff_deg <= 90)) {
     throw InputError(fmt::format("--cutoff {} outside (0, 90]", o.cutoff_deg));
   }
-  for (const auto& f : o.files) CheckInputFile(f);
+  for (const auto& f : o.files) {
+    if (!IsNbrdfInput(f)) CheckInputFile(f);
+  }
   return p;
 }
 
@@ -113,7 +118,8 @@ fs::path PlotPath(const BenchCliOptions& o) {
   return p.replace_extension(".html");
 }
 
-int RunBench(const BenchCliOptions& o, std::vector<fs::path>* written = nullptr) {
+int RunBench(BenchCliOptions o, std::vector<fs::path>* written = nullptr) {
+  o.files = pipeline::ExpandInputs(o.files);
   const Plan plan = CheckOptions(o);
   const std::string chart_js = report::ReadChartJs();  // fail before any fit
   const std::size_t fits_per_table = plan.budgets.size() * plan.losses.size() * o.models.size();
@@ -127,8 +133,8 @@ int RunBench(const BenchCliOptions& o, std::vector<fs::path>* written = nullptr)
                "loss", "budget", "status", "time ms", "log_rmse", "cbrt_rmse", "cells");
   }
   for (const std::string& file : o.files) {
-    const Table table = LoadTable(file);
-    const std::string material = fs::path(file).stem().string();
+    const Table table = pipeline::LoadInput(file);
+    const std::string material = report::MaterialName(file);
     for (const LossKind loss : plan.losses) {
       fo.loss = loss;
       for (const Budget& budget : plan.budgets) {
@@ -191,7 +197,9 @@ Registrar reg{
     "bench", "Run time against error: sweep models x sample budgets x losses on your tables",
     [](CLI::App& sub) {
       auto o = std::make_shared<BenchCliOptions>();
-      sub.add_option("files", o->files, "tables (MERL .binary or brdfit .h5)")->required();
+      sub.add_option("files", o->files,
+                     "tables (MERL .binary or brdfit .h5), nbrdf:NAME or nbrdf:all")
+          ->required();
       sub.add_option("--models", o->models, "models to fit, comma-separated (brdfit models)")
           ->delimiter(',')
           ->capture_default_str();

@@ -9,8 +9,10 @@
 #include <string>
 
 #include "cli/command.h"
-#include "io/table_io.h"
 #include "core/table_stats.h"
+#include "io/nbrdf.h"
+#include "io/table_io.h"
+#include "pipeline/inputs.h"
 
 namespace brdfit::cli {
 namespace {
@@ -20,8 +22,21 @@ struct InfoOptions {
   bool json = false;
 };
 
-const char* FormatName(TableFormat f) {
-  return f == TableFormat::kMerl ? "MERL binary" : "brdfit HDF5 table";
+// What `info` says the input is: a file format, or an NBRDF network tabulated on the MERL grid.
+enum class InfoFormat { kMerl, kHdf5, kNbrdf };
+const char* FormatName(InfoFormat f) {
+  switch (f) {
+    case InfoFormat::kMerl:
+      return "MERL binary";
+    case InfoFormat::kHdf5:
+      return "brdfit HDF5 table";
+    case InfoFormat::kNbrdf:
+      return "NBRDF network, tabulated on the MERL grid";
+  }
+  return "?";
+}
+const char* JsonName(InfoFormat f) {
+  return f == InfoFormat::kNbrdf ? "nbrdf" : "?";
 }
 
 double Percent(std::size_t n, std::size_t of) {
@@ -42,17 +57,18 @@ nlohmann::ordered_json ProvenanceJson(const Provenance& p) {
   return j;
 }
 
-void PrintText(const InfoOptions& o, const Table& t, const LoadReport& r, const TableStats& s) {
+void PrintText(const InfoOptions& o, const Table& t, InfoFormat format, const LoadReport& r,
+               const TableStats& s) {
   const Grid& g = t.grid;
   const std::size_t above = s.cells - s.below_horizon;
   fmt::print("file        {}\n", o.path);
-  fmt::print("format      {}\n", FormatName(r.format));
+  fmt::print("format      {}\n", FormatName(format));
   fmt::print("grid        {} x {} x {} (theta_h x theta_d x phi_d), theta_h mapping {}\n",
              g.n_theta_h, g.n_theta_d, g.n_phi_d, ToString(g.theta_h_mapping));
   fmt::print("cells       {}\n", s.cells);
   fmt::print("valid       {} ({:.2f} %)\n", s.valid, Percent(s.valid, s.cells));
   fmt::print("invalid     {} ({:.2f} %)", s.cells - s.valid, Percent(s.cells - s.valid, s.cells));
-  if (r.format == TableFormat::kMerl) fmt::print(", negative in the file: {}", r.negative_cells);
+  if (format == InfoFormat::kMerl) fmt::print(", negative in the file: {}", r.negative_cells);
   fmt::print("\n");
   fmt::print("  below the horizon at the cell centre   {} ({:.2f} % of cells)\n", s.below_horizon,
              Percent(s.below_horizon, s.cells));
@@ -63,7 +79,7 @@ void PrintText(const InfoOptions& o, const Table& t, const LoadReport& r, const 
                s.valid_below_horizon);
   }
   const Provenance& p = t.provenance;
-  if (r.format == TableFormat::kHdf5) {
+  if (format != InfoFormat::kMerl) {
     fmt::print("provenance  source {}, generator {}\n", p.source.empty() ? "-" : p.source,
                p.generator.empty() ? "-" : p.generator);
     if (!p.model.empty()) fmt::print("  model       {}\n", p.model);
@@ -91,22 +107,26 @@ void PrintText(const InfoOptions& o, const Table& t, const LoadReport& r, const 
 
 int RunInfo(const InfoOptions& o) {
   LoadReport report;
-  const Table t = LoadTable(o.path, &report);
+  const bool nbrdf = IsNbrdfInput(o.path);
+  const Table t = nbrdf ? pipeline::LoadInput(o.path) : LoadTable(o.path, &report);
+  const InfoFormat format = nbrdf                                 ? InfoFormat::kNbrdf
+                            : report.format == TableFormat::kMerl ? InfoFormat::kMerl
+                                                                  : InfoFormat::kHdf5;
   const TableStats s = ComputeTableStats(t);
   if (!o.json) {
-    PrintText(o, t, report, s);
+    PrintText(o, t, format, report, s);
     return kExitOk;
   }
   nlohmann::ordered_json j;
   j["file"] = o.path;
-  j["format"] = ToString(report.format);
+  j["format"] = nbrdf ? JsonName(format) : ToString(report.format);
   j["grid"] = {{"n_theta_h", t.grid.n_theta_h},
                {"n_theta_d", t.grid.n_theta_d},
                {"n_phi_d", t.grid.n_phi_d},
                {"theta_h_mapping", ToString(t.grid.theta_h_mapping)}};
   j.update(TableStatsToJson(s));
-  if (report.format == TableFormat::kMerl) j["negative_in_file"] = report.negative_cells;
-  if (report.format == TableFormat::kHdf5) j["provenance"] = ProvenanceJson(t.provenance);
+  if (format == InfoFormat::kMerl) j["negative_in_file"] = report.negative_cells;
+  if (format != InfoFormat::kMerl) j["provenance"] = ProvenanceJson(t.provenance);
   fmt::print("{}\n", j.dump(2));
   return kExitOk;
 }
@@ -114,7 +134,10 @@ int RunInfo(const InfoOptions& o) {
 Registrar reg{"info", "Describe a table: format, grid, valid cells, value ranges, albedo",
               [](CLI::App& sub) {
                 auto opts = std::make_shared<InfoOptions>();
-                sub.add_option("file", opts->path, "MERL .binary or brdfit .h5 table")->required();
+                sub.add_option("file", opts->path,
+                               "MERL .binary or brdfit .h5 table, or nbrdf:NAME (an NBRDF network "
+                               "of ../shared/data/merl_nbrdf.zip)")
+                    ->required();
                 sub.add_flag("--json", opts->json, "machine-readable output");
                 sub.footer(
                     "Exit codes: 0 ok, 2 bad input (the file and the problem are named).\n"

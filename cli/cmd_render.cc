@@ -11,10 +11,11 @@
 #include "cli/command.h"
 #include "cli/demo.h"
 #include "core/error.h"
+#include "io/image_io.h"
+#include "pipeline/comparison_scene.h"
+#include "pipeline/material_loader.h"
 #include "preview/comparison.h"
 #include "preview/gl_context.h"
-#include "io/image_io.h"
-#include "pipeline/material_loader.h"
 #include "preview/renderer.h"
 #include "preview/scene.h"
 #include "preview/window.h"
@@ -69,20 +70,30 @@ int RunWindow(const RenderOptions& o, const preview::Scene& scene,
   if (!o.out.empty() && r.renders > 0) {
     // A PNG holds what the window showed (read back from it); an EXR the linear frame.
     WriteImageByExtension(o.out, r.last_linear,
-                                   r.last_screen.width > 0 ? r.last_screen : r.last_display);
+                          r.last_screen.width > 0 ? r.last_screen : r.last_display);
   }
   if (o.explain) fmt::print("{}", log->Format());
   if (!o.out.empty() && r.renders > 0) fmt::print("wrote {}\n", o.out);
   return kExitOk;
 }
 
-int RunRender(const RenderOptions& o) {
+int RunRender(RenderOptions o) {
   using Clock = std::chrono::steady_clock;
   if (o.out.empty() && !o.window) {
     throw InputError("an output image is needed: -o out.png (or --window)");
   }
   preview::ExplainLog log;
-  preview::Scene scene = preview::LoadScene(o.scene, &log);
+  const bool table_input = pipeline::IsTableInput(o.scene);
+  preview::Scene scene =
+      table_input
+          ? preview::ParseScene(pipeline::ComparisonScene(o.scene, false).dump(), "comparison.json")
+          : preview::LoadScene(o.scene, &log);
+  if (table_input) {
+    log.Add("note", "input " + o.scene +
+                        " is a table: its comparison scene (measured | "
+                        "lambert+ggx fit | factored)");
+    o.compare = true;
+  }
   if (!o.size.empty()) ParseSize(o.size, &scene.width, &scene.height);
   if (o.compare && !scene.has_comparison) {
     throw InputError(o.scene, "--compare needs a 'comparison' section (docs/scenes.md)");
@@ -120,7 +131,10 @@ int RunRender(const RenderOptions& o) {
 Registrar reg{
     "render", "Render a scene with the GLSL preview (headless, or in a window)", [](CLI::App& sub) {
       auto opts = std::make_shared<RenderOptions>();
-      sub.add_option("scene", opts->scene, "scene file (docs/scenes.md)")->required();
+      sub.add_option("scene", opts->scene,
+                     "scene file (docs/scenes.md), or a table (.binary, .h5, nbrdf:NAME): its "
+                     "comparison with a lambert+ggx fit and a factorization")
+          ->required();
       sub.add_option("-o,--out", opts->out,
                      "output image: .png (display) or .exr (linear); required without --window");
       sub.add_flag("--explain", opts->explain,
@@ -141,6 +155,7 @@ Registrar reg{
           "Exit codes: 0 written, 2 bad scene or input (also a fit the scene needs that fails).\n"
           "Examples:\n  brdfit render data/scenes/seed000_ggx.json -o ggx.png\n"
           "  brdfit render scene.json -o cmp.png --compare --size 512x512 --explain\n"
+          "  brdfit render nbrdf:gold-metallic-paint -o gold.png\n"
           "  brdfit render data/scenes/seed000_ggx_spot.json --window");
       return [opts] { return RunRender(*opts); };
     }};
@@ -151,21 +166,7 @@ int DemoRender(DemoContext& ctx) {
     fmt::print("render: no demo table to compare (the synth step wrote none)\n");
     return kExitOk;
   }
-  const std::filesystem::path table = std::filesystem::absolute(ctx.tables.front());
-  const std::string name = table.stem().string();
-  nlohmann::json s = {
-      {"camera", {{"position", {0, 0, 4}}, {"fov_deg", 30}}},
-      {"lights",
-       {{{"name", "key"}, {"type", "directional"}, {"direction", {1, 1, 1.5}}},
-        {{"name", "fill"}, {"type", "point"}, {"position", {-3, 0.5, 3}}, {"intensity", 0.4}}}},
-      {"materials",
-       {{name, {{"type", "measured"}, {"table", table.string()}}},
-        {"fit", {{"type", "analytic"}, {"model", "lambert+ggx"}, {"fit_table", table.string()}}}}},
-      {"objects", {{{"name", "ball"}, {"material", name}}}},
-      {"comparison", {{"measured", name}, {"fitted", "fit"}}}};
-  s["materials"]["factored"] = {
-      {"type", "factored"}, {"table", table.string()}, {"resolution", ctx.quick ? 16 : 32}};
-  s["comparison"]["factored"] = "factored";
+  const nlohmann::json s = pipeline::ComparisonScene(ctx.tables.front().string(), ctx.quick);
   const auto scene_path = ctx.out_dir / "compare_scene.json";
   {
     std::ofstream out(scene_path);

@@ -49,8 +49,7 @@ using BatchProgress = std::function<void(std::size_t planned, const std::string&
 // Throws InputError for an invalid request (no inputs or models, jobs outside [1, 256], an
 // existing report that is not readable without `force`); OutputError if the report cannot be
 // written.
-BatchFitResult RunBatchFit(const BatchFitRequest& request,
-                           const BatchProgress& on_start = nullptr);
+BatchFitResult RunBatchFit(const BatchFitRequest& request, const BatchProgress& on_start = nullptr);
 
 // Model names as `brdfit fit --model` takes them: "NAME:N" is N lobes of NAME
 // ("lafortune:2" -> "lafortune+lafortune"); then, with diffuse D other than "none", a name N

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "core/table.h"
 #include "fit/options.h"
 #include "fit/samples.h"
-#include "core/table.h"
 
 namespace brdfit {
 

@@ -3,8 +3,9 @@
 #include <cstdlib>
 
 #include "io/nbrdf.h"
-#include "report/report_inputs.h"
 #include "io/table_io.h"
+#include "pipeline/cache_key.h"
+#include "report/report_inputs.h"
 
 namespace brdfit::pipeline {
 
@@ -47,6 +48,11 @@ Table LoadInput(const std::string& input) {
   Table t = TabulateNbrdf(net, Grid::Merl(), 1).table;
   t.provenance.source = input;
   return t;
+}
+
+std::string InputContentKey(const std::string& input) {
+  if (!IsNbrdfInput(input)) return FileContentKey(input);
+  return FileContentKey(NbrdfArchive()) + "|" + input;
 }
 
 }  // namespace brdfit::pipeline

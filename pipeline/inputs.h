@@ -22,4 +22,8 @@ std::vector<std::string> ExpandInputs(const std::vector<std::string>& inputs);
 // Loads a file or tabulates an NBRDF network (provenance.source = the input). Throws InputError.
 Table LoadInput(const std::string& input);
 
+// A key of the input's content for caches (pipeline/cache_key.h): the file's bytes, or for
+// nbrdf:NAME the archive's bytes and the name. Throws InputError if it cannot be read.
+std::string InputContentKey(const std::string& input);
+
 }  // namespace brdfit::pipeline

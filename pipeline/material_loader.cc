@@ -9,16 +9,18 @@
 #include <set>
 #include <sstream>
 
+#include "core/error.h"
+#include "factor/factor.h"
 #include "fit/fitter.h"
 #include "fit/options.h"
 #include "io/atomic_file.h"
-#include "core/error.h"
+#include "io/fit_report.h"
+#include "io/nbrdf.h"
 #include "io/table_io.h"
 #include "models/registry.h"
 #include "pipeline/cache_key.h"
-#include "factor/factor.h"
-#include "io/fit_report.h"
 #include "pipeline/factor_export.h"
+#include "pipeline/inputs.h"
 
 namespace brdfit::pipeline {
 using namespace preview;  // the material types this loader fills in
@@ -42,14 +44,16 @@ class TableCache {
  public:
   explicit TableCache(ExplainLog* log) : log_(log) {}
   std::shared_ptr<const Table> Get(const std::filesystem::path& path) {
-    const std::string key = std::filesystem::weakly_canonical(path).string();
+    const std::string key = IsNbrdfInput(path.string())
+                                ? path.string()
+                                : std::filesystem::weakly_canonical(path).string();
     auto it = tables_.find(key);
     if (it != tables_.end()) {
       if (log_) log_->Add("reuse", "table " + path.string() + " (already loaded)");
       return it->second;
     }
     const auto t0 = Clock::now();
-    auto t = std::make_shared<const Table>(LoadTable(path));
+    auto t = std::make_shared<const Table>(LoadInput(path.string()));
     if (log_) {
       log_->Add("load", "table " + path.string() + " (" + std::to_string(t->grid.n_theta_h) + "x" +
                             std::to_string(t->grid.n_theta_d) + "x" +
@@ -73,7 +77,7 @@ std::vector<double> FitCached(const MaterialSpec& m, const std::filesystem::path
   const SampleOptions sample_options;
   const FitOptions fit_options;
   Fnv1a64 h;
-  h.Add(FileContentKey(m.fit_table));
+  h.Add(InputContentKey(m.fit_table.string()));
   h.Add("|fit|" + m.model + "|" + OptionsJson(sample_options, fit_options));
   const std::filesystem::path entry = cache_dir / ("fit-" + h.Hex() + ".json");
   if (std::filesystem::exists(entry)) {
@@ -97,8 +101,8 @@ std::vector<double> FitCached(const MaterialSpec& m, const std::filesystem::path
   const auto t0 = Clock::now();
   const FitResult r = FitTable(m.model, *table, sample_options, fit_options);
   if (r.Failed()) {
-    throw InputError(m.fit_table, "fit of '" + m.model + "' for material '" + m.name +
-                                      "' failed: " + r.message);
+    throw InputError(m.fit_table,
+                     "fit of '" + m.model + "' for material '" + m.name + "' failed: " + r.message);
   }
   nlohmann::json j;
   j["model"] = r.model;
@@ -168,7 +172,7 @@ std::shared_ptr<const FactorTextures> FactorCached(const MaterialSpec& m,
   opt.param = FactorParamFromString(m.factor_param);
   opt.resolution = m.factor_resolution;
   Fnv1a64 h;
-  h.Add(FileContentKey(m.table));
+  h.Add(InputContentKey(m.table.string()));
   // Every solver option (defaults included: a changed default never reuses an old entry).
   char opts[160];
   std::snprintf(opts, sizeof opts, "|factor|%s|%d|%.17g|%d|%.17g", m.factor_param.c_str(),
@@ -196,14 +200,13 @@ std::shared_ptr<const FactorTextures> FactorCached(const MaterialSpec& m,
   SaveFactorization(r, cache_dir, stem, {{"source", m.table.string()}});
   if (log) {
     log->Add("compute", "factorization " + m.factor_param + " " +
-                            std::to_string(m.factor_resolution) + " of " + m.table.string() +
-                            " (" + Fmt(MsSince(t0)) + " ms) -> " + paths.json.string());
+                            std::to_string(m.factor_resolution) + " of " + m.table.string() + " (" +
+                            Fmt(MsSince(t0)) + " ms) -> " + paths.json.string());
   }
   return Textures(std::move(r.brdf));
 }
 
 }  // namespace
-
 
 std::filesystem::path DefaultCacheDir() {
   if (const char* d = std::getenv("BRDFIT_CACHE_DIR"); d && *d) return d;
@@ -239,7 +242,8 @@ MaterialSet LoadMaterials(const Scene& scene, const std::set<std::string>& used,
           r.params = FromReport(m, log);
         } else {
           r.params = m.params;
-          if (log) log->Add("load", "material '" + m.name + "': " + m.model + " from scene parameters");
+          if (log)
+            log->Add("load", "material '" + m.name + "': " + m.model + " from scene parameters");
         }
         break;
       case MaterialKind::kMeasured:

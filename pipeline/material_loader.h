@@ -24,6 +24,6 @@ std::filesystem::path DefaultCacheDir();
 // Throws InputError naming the file for unreadable tables, reports, factor files.
 // `used`: the material names to load (UsedMaterials); the others are skipped and logged.
 preview::MaterialSet LoadMaterials(const preview::Scene& scene, const std::set<std::string>& used,
-                          const LoadOptions& options, preview::ExplainLog* log);
+                                   const LoadOptions& options, preview::ExplainLog* log);
 
 }  // namespace brdfit::pipeline

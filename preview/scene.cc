@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "io/nbrdf.h"
 #include "models/registry.h"
 
 namespace brdfit::preview {
@@ -127,8 +128,10 @@ class Reader {
     return c;
   }
   std::filesystem::path Path(const std::string& k) {
-    std::filesystem::path p = String(k, "");
-    if (p.empty()) return p;
+    const std::string text = String(k, "");
+    // nbrdf:NAME names a network of the NBRDF archive (pipeline/inputs.h), not a file.
+    if (text.empty() || IsNbrdfInput(text)) return text;
+    const std::filesystem::path p = text;
     return p.is_absolute() ? p : file_.parent_path() / p;
   }
   // Every key must have been read.

@@ -1,0 +1,35 @@
+#include "pipeline/comparison_scene.h"
+
+#include <filesystem>
+
+#include "io/nbrdf.h"
+#include "report/report_inputs.h"
+
+namespace brdfit::pipeline {
+
+nlohmann::json ComparisonScene(const std::string& input, bool quick) {
+  const std::string table = IsNbrdfInput(input) ? input : std::filesystem::absolute(input).string();
+  const std::string name = report::MaterialName(input);
+  nlohmann::json s = {
+      {"camera", {{"position", {0, 0, 4}}, {"fov_deg", 30}}},
+      {"lights",
+       {{{"name", "key"}, {"type", "directional"}, {"direction", {1, 1, 1.5}}},
+        {{"name", "fill"}, {"type", "point"}, {"position", {-3, 0.5, 3}}, {"intensity", 0.4}}}},
+      {"materials",
+       {{name, {{"type", "measured"}, {"table", table}}},
+        {"fit", {{"type", "analytic"}, {"model", "lambert+ggx"}, {"fit_table", table}}}}},
+      {"objects", {{{"name", "ball"}, {"material", name}}}},
+      {"comparison", {{"measured", name}, {"fitted", "fit"}}}};
+  s["materials"]["factored"] = {
+      {"type", "factored"}, {"table", table}, {"resolution", quick ? 16 : 32}};
+  s["comparison"]["factored"] = "factored";
+  return s;
+}
+
+bool IsTableInput(const std::string& arg) {
+  if (IsNbrdfInput(arg)) return true;
+  const std::string ext = std::filesystem::path(arg).extension().string();
+  return ext == ".binary" || ext == ".h5" || ext == ".hdf5";
+}
+
+}  // namespace brdfit::pipeline
