@@ -5,9 +5,10 @@
 //                             five NBRDF materials), initializer + LM, one thread, per budget.
 //                             Medians over 5 repetitions; times exclude preparation and metrics.
 //   bench_fit --csv FILE [--models a,b] [--budgets full,stride:32,...] [--nbrdf all|m1,m2]
-//             [--repeats N]   the sweep: every (table, model, budget) fit, median times and the
-//                             metrics relative to the model's full-budget fit, as CSV
-//                             (pipeline/bench_sweep.h), plus a summary of medians on stdout.
+//             [--repeats N]   the sweep of `brdfit bench` (pipeline/bench_sweep.h) on these
+//                             tables: every (table, model, budget) fit, median times, as the
+//                             bench CSV (report/bench_csv.h), plus a summary on stdout of the
+//                             medians and of the metrics relative to the full-budget fit.
 #include <benchmark/benchmark.h>
 #include <fmt/core.h>
 
@@ -19,17 +20,18 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/bench_sweep.h"
+#include "core/synth.h"
 #include "fit/fitter.h"
-#include "io/atomic_file.h"
 #include "io/model_params.h"
 #include "io/nbrdf.h"
-#include "core/synth.h"
 #include "models/registry.h"
+#include "pipeline/bench_sweep.h"
+#include "report/bench_csv.h"
 
 namespace {
 
 using namespace brdfit;
+using pipeline::BenchTable;
 namespace fs = std::filesystem;
 
 const fs::path kZip = fs::path(BRDFIT_SHARED_DATA) / "merl_nbrdf.zip";
@@ -70,7 +72,7 @@ std::vector<BenchTable> LoadTables(const std::vector<std::string>& nbrdf) {
   }
   for (const std::string& name : nbrdf) {
     NbrdfTabulation tab = TabulateNbrdf(ReadNbrdf(kZip, name), Grid::Merl(), 1);
-    tables.push_back({name, "nbrdf", std::move(tab.table)});
+    tables.push_back({name, "nbrdf:" + name, std::move(tab.table)});
   }
   return tables;
 }
@@ -97,28 +99,44 @@ int Sweep(const std::string& csv, const std::vector<std::string>& models,
           const std::vector<std::string>& budgets, const std::vector<std::string>& nbrdf,
           int repeats) {
   const std::vector<BenchTable> tables = LoadTables(nbrdf);
-  BenchConfig config;
+  pipeline::BenchConfig config;
   config.models = models;
-  config.budgets = budgets;
+  config.budgets.clear();
+  for (const std::string& b : budgets) config.budgets.push_back(Budget::Parse(b));
   config.repeats = repeats;
-  const std::vector<BenchRow> rows =
-      RunBenchSweep(tables, config, [](std::size_t done, std::size_t total, const std::string& l) {
-        fmt::print(stderr, "[{}/{}] {}\n", done + 1, total, l);
-      });
-  WriteTextAtomically(csv, BenchRowsCsv(rows));
-  // Summary: medians over the tables per (model, budget).
-  fmt::print("{:<24} {:<12} {:>8} {:>11} {:>11} {:>11} {:>11} {:>11}\n", "model", "budget",
-             "samples", "solve_ms", "solve_cpu", "log_ratio", "cbrt_ratio", "max_log_r");
+  std::vector<report::BenchPoint> rows;
+  std::size_t done = 0;
+  const std::size_t total = tables.size() * budgets.size() * models.size();
+  pipeline::BenchCallbacks callbacks;
+  callbacks.on_start = [&](const std::string& l) {
+    fmt::print(stderr, "[{}/{}] {}\n", ++done, total, l);
+  };
+  for (const BenchTable& t : tables) {
+    const auto points = pipeline::RunBenchSweep(t, config, callbacks);
+    rows.insert(rows.end(), points.begin(), points.end());
+  }
+  report::WriteBenchCsv(csv, rows);
+  // Summary per (model, budget): medians over the tables, and the metrics relative to the same
+  // table and model's full-budget fit (1 = as good; > 1 worse; 0 without a full budget).
+  auto full_of = [&](const report::BenchPoint& p) -> const report::BenchPoint* {
+    for (const auto& q : rows) {
+      if (q.material == p.material && q.model == p.model && q.budget == "full") return &q;
+    }
+    return nullptr;
+  };
+  auto ratio = [](double a, double b) { return b > 0 ? a / b : 0.0; };
+  fmt::print("{:<24} {:<12} {:>8} {:>11} {:>11} {:>11} {:>11}\n", "model", "budget", "cells",
+             "solve_ms", "log_ratio", "cbrt_ratio", "max_log_r");
   for (const std::string& model : models) {
     for (const std::string& budget : budgets) {
-      std::vector<double> ms, cpu, lr, cr, n;
-      for (const BenchRow& r : rows) {
-        if (r.model != model || r.budget != budget) continue;
-        ms.push_back(r.solve_ms);
-        cpu.push_back(r.solve_cpu_ms);
-        lr.push_back(r.log_rmse_ratio);
-        cr.push_back(r.cbrt_rmse_ratio);
-        n.push_back(static_cast<double>(r.fit_samples));
+      std::vector<double> ms, lr, cr, n;
+      for (const report::BenchPoint& r : rows) {
+        if (r.model != model || r.budget != Budget::Parse(budget).ToString()) continue;
+        const report::BenchPoint* full = full_of(r);
+        ms.push_back(r.init_ms + r.solve_ms);
+        lr.push_back(full ? ratio(r.metrics.log_rmse, full->metrics.log_rmse) : 0.0);
+        cr.push_back(full ? ratio(r.metrics.cbrt_rmse, full->metrics.cbrt_rmse) : 0.0);
+        n.push_back(static_cast<double>(r.fit_cells));
       }
       auto median = [](std::vector<double> v) {
         if (v.empty()) return 0.0;
@@ -126,8 +144,8 @@ int Sweep(const std::string& csv, const std::vector<std::string>& models,
         return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
       };
       const double worst = lr.empty() ? 0.0 : *std::max_element(lr.begin(), lr.end());
-      fmt::print("{:<24} {:<12} {:>8.0f} {:>11.1f} {:>11.1f} {:>11.4f} {:>11.4f} {:>11.4f}\n",
-                 model, budget, median(n), median(ms), median(cpu), median(lr), median(cr), worst);
+      fmt::print("{:<24} {:<12} {:>8.0f} {:>11.1f} {:>11.4f} {:>11.4f} {:>11.4f}\n", model, budget,
+                 median(n), median(ms), median(lr), median(cr), worst);
     }
   }
   fmt::print("wrote {} ({} rows)\n", csv, rows.size());

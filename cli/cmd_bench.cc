@@ -5,7 +5,6 @@
 #include <fmt/core.h>
 
 #include <algorithm>
-#include <chrono>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -14,12 +13,13 @@
 #include "cli/demo.h"
 #include "cli/progress.h"
 #include "core/error.h"
+#include "core/metrics.h"
+#include "core/result.h"
 #include "fit/fitter.h"
-#include "fit/metrics.h"
 #include "io/atomic_file.h"
 #include "io/input_file.h"
 #include "io/nbrdf.h"
-#include "io/table_io.h"
+#include "pipeline/bench_sweep.h"
 #include "pipeline/inputs.h"
 #include "report/bench_csv.h"
 #include "report/html_report.h"
@@ -29,7 +29,6 @@ namespace brdfit::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 struct BenchCliOptions {
   std::vector<std::string> files;
@@ -43,43 +42,6 @@ struct BenchCliOptions {
   int threads = 1;
   bool quiet = false;
 };
-
-double MsSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
-double Median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-report::BenchPoint ToPoint(const std::string& material, const std::string& table,
-                           const std::string& loss, const std::string& budget, const FitResult& r,
-                           double prepare_ms) {
-  report::BenchPoint b;
-  b.material = material;
-  b.table = table;
-  b.model = r.model;
-  b.loss = loss;
-  b.budget = budget;
-  b.status = ToString(r.status);
-  b.message = r.message;
-  b.prepare_ms = prepare_ms;
-  b.init_ms = r.times.init;
-  b.solve_ms = r.times.solve;
-  b.time_ms = prepare_ms + r.times.init + r.times.solve;
-  b.fit_cells = r.fit_cells;
-  b.iterations = r.iterations;
-  b.metrics.ok = r.metrics.ok;
-  b.metrics.log_rmse = r.metrics.log_rmse;
-  b.metrics.cbrt_rmse = r.metrics.cbrt_rmse;
-  b.metrics.rel_l2 = r.metrics.rel_l2;
-  b.metrics.cells = r.metrics.cells;
-  b.metrics.weighting = r.metrics.weighting;
-  b.metrics.cutoff_deg = r.metrics.cutoff_deg;
-  return b;
-}
 
 struct Plan {
   std::vector<Budget> budgets;
@@ -132,45 +94,28 @@ int RunBench(BenchCliOptions o, std::vector<fs::path>* written = nullptr) {
     fmt::print("{:<24} {:<16} {:<5} {:<11} {:<14} {:>10} {:>10} {:>10} {:>9}\n", "table", "model",
                "loss", "budget", "status", "time ms", "log_rmse", "cbrt_rmse", "cells");
   }
-  for (const std::string& file : o.files) {
-    const Table table = pipeline::LoadInput(file);
-    const std::string material = report::MaterialName(file);
-    for (const LossKind loss : plan.losses) {
-      fo.loss = loss;
-      for (const Budget& budget : plan.budgets) {
-        SampleOptions so;
-        so.cutoff_deg = o.cutoff_deg;
-        so.budget = budget;
-        const auto t0 = Clock::now();
-        const PreparedTable prepared = PrepareTable(table, so, fo);
-        const double prepare_ms = MsSince(t0);
-        for (const std::string& model : o.models) {
-          bar.Step(fmt::format("{} {} {}", material, model, budget.ToString()));
-          // Repeats: the median time of each stage; metrics are those of the first run (the fit
-          // is deterministic).
-          FitResult first;
-          std::vector<double> init, solve;
-          for (int k = 0; k < o.repeat; ++k) {
-            FitResult r = FitPrepared(model, prepared, fo);
-            init.push_back(r.times.init);
-            solve.push_back(r.times.solve);
-            if (k == 0) first = std::move(r);
-          }
-          first.times.init = Median(init);
-          first.times.solve = Median(solve);
-          report::BenchPoint b =
-              ToPoint(material, file, ToString(loss), budget.ToString(), first, prepare_ms);
-          if (first.Failed()) code = kExitFitFailed;
-          bar.Clear();
-          if (!o.quiet) {
-            fmt::print("{:<24} {:<16} {:<5} {:<11} {:<14} {:>10.1f} {:>10.4g} {:>10.4g} {:>9}\n",
-                       material, model, b.loss, b.budget, b.status, b.time_ms, b.metrics.log_rmse,
-                       b.metrics.cbrt_rmse, b.fit_cells);
-          }
-          points.push_back(std::move(b));
-        }
-      }
+  pipeline::BenchConfig config;
+  config.models = o.models;
+  config.budgets = plan.budgets;
+  config.losses = plan.losses;
+  config.samples.cutoff_deg = o.cutoff_deg;
+  config.fit = fo;
+  config.repeats = o.repeat;
+  pipeline::BenchCallbacks callbacks;
+  callbacks.on_start = [&](const std::string& label) { bar.Step(label); };
+  callbacks.on_point = [&](const report::BenchPoint& b) {
+    if (b.status == ToString(FitStatus::kFailed)) code = kExitFitFailed;
+    bar.Clear();
+    if (!o.quiet) {
+      fmt::print("{:<24} {:<16} {:<5} {:<11} {:<14} {:>10.1f} {:>10.4g} {:>10.4g} {:>9}\n",
+                 b.material, b.model, b.loss, b.budget, b.status, b.time_ms, b.metrics.log_rmse,
+                 b.metrics.cbrt_rmse, b.fit_cells);
     }
+  };
+  for (const std::string& file : o.files) {
+    const pipeline::BenchTable table{report::MaterialName(file), file, pipeline::LoadInput(file)};
+    const auto rows = pipeline::RunBenchSweep(table, config, callbacks);
+    points.insert(points.end(), rows.begin(), rows.end());
   }
   bar.Done();
   report::WriteBenchCsv(o.out, points);
