@@ -91,17 +91,11 @@ TEST(RenderedMetric, CpuMetricAgreesWithGpuComparison) {
   fp.back() = 0.3;                                  // ggx.alpha
 
   MaterialSet mats;
-  ResolvedMaterial m;
-  m.name = "measured";
-  m.kind = MaterialKind::kMeasured;
-  m.table = table;
-  mats["measured"] = m;
-  ResolvedMaterial f;
-  f.name = "fit";
-  f.kind = MaterialKind::kAnalytic;
-  f.model = fit.name;
-  f.params = fp;
-  mats["fit"] = f;
+  mats["measured"].kind = MaterialKind::kMeasured;
+  mats["measured"].table = table;
+  mats["fit"].model = fit.name;  // kAnalytic
+  mats["fit"].params = fp;
+  for (auto& [name, mat] : mats) mat.name = name;
 
   const double a = 45 * kPi / 180;
   Scene scene = DistantScene({std::sin(a), 0, std::cos(a)});
