@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_tables.h"
 #include "core/synth.h"
 #include "fit/fitter.h"
 #include "io/model_params.h"
@@ -51,16 +52,7 @@ std::vector<std::string> Split(const std::string& s) {
 }
 
 BenchTable SyntheticTable() {
-  const ModelInfo& m = *FindModel("lambert+ggx");
-  const std::vector<double> p = ResolveModelParams(
-      m, {"kd_r=0.2", "kd_g=0.1", "kd_b=0.05", "ks_r=0.5", "ks_g=0.4", "ks_b=0.3", "alpha=0.08"});
-  SynthOptions o;
-  o.noise = 0.05;
-  o.missing_fraction = 0.1;
-  o.seed = 1;
-  Table t = SynthesizeTable(
-      Grid::Merl(), [&](const Geometry& g, double rgb[3]) { m.eval(p.data(), g, rgb); }, o);
-  return {"synthetic-lambert-ggx-0.08", "synthetic", std::move(t)};
+  return {"synthetic-lambert-ggx-0.08", "synthetic", bench::SyntheticLambertGgxTable()};
 }
 
 std::vector<BenchTable> LoadTables(const std::vector<std::string>& nbrdf) {

@@ -35,6 +35,43 @@ struct WorstCell {
   double log_error = 0;  // max over channels of |ln(1 + f c) - ln(1 + m c)|
 };
 
+// The rendered-image metric (fit/rendered_error.h; definitions in docs/accuracy.md, "Rendered-image
+// metric"): a unit sphere seen orthographically along +z under one directional light per image,
+// the measured table against an approximation. Plain data, every number finite (when the
+// metric cannot be computed: ok = false, a problem, zeros).
+inline constexpr int kRenderedMaxLights = 8;
+// PSNR of identical images (MSE = 0) and any PSNR above it are reported as this cap (dB).
+inline constexpr double kRenderedPsnrCapDb = 200.0;
+
+struct RenderedLightError {
+  double light_deg = 0;         // angle between the light and the view direction
+  double psnr_db = 0;           // linear PSNR of this image, peak = max of its measured image
+  double median_rel_error = 0;  // |Y_a - Y_m| / Y_m over its compared pixels
+  double p95_rel_error = 0;
+  std::size_t lit_pixels = 0;       // n.l and n.v above the cut-off, measured lookup valid
+  std::size_t masked_pixels = 0;    // n.l and n.v above the cut-off, measured lookup invalid
+  std::size_t compared_pixels = 0;  // lit, and Y_m above the floor
+};
+
+struct RenderedError {
+  bool ok = false;  // false: see problem; the numbers are then zeros
+  std::string problem;
+  double psnr_db = 0;           // linear PSNR over all lit pixels of all light images
+  double psnr_srgb_db = 0;      // tone-mapped (exposure, clamp, sRGB OETF) PSNR, peak 1
+  double median_rel_error = 0;  // relative luminance error over all compared pixels
+  double p95_rel_error = 0;
+  double peak = 0;                     // max measured radiance over pixels, channels and lights
+  double exposure = 0;                 // 1 / (99th percentile of the measured luminance)
+  int resolution = 0;                  // N: the images are N x N
+  int num_lights = 0;                  // entries of `lights` in use
+  std::size_t sphere_pixels = 0;       // pixel centres on the sphere (per image)
+  std::size_t lit_pixels = 0;          // sum over the images
+  std::size_t masked_pixels = 0;       // excluded: measured lookup invalid (never read as 0)
+  std::size_t compared_pixels = 0;     // lit and Y_m above the floor
+  std::size_t below_floor_pixels = 0;  // lit but Y_m at or below the floor: no relative error
+  std::array<RenderedLightError, kRenderedMaxLights> lights{};
+};
+
 struct FitMetrics {
   bool ok = false;  // false: no samples or non-finite predictions (see problem)
   std::string problem;
@@ -48,6 +85,8 @@ struct FitMetrics {
   // not comparable without them).
   std::string weighting;  // "bin-measure" or "uniform"
   double cutoff_deg = 0;
+  // Not computed by the fitter yet (ok = false, problem empty) and not written by any report.
+  RenderedError rendered;
 };
 
 // One line describing the metric definitions, for reports (io/fit_report.cc writes it).

@@ -1,0 +1,260 @@
+#include "fit/rendered_error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace brdfit {
+namespace {
+
+// Rec. 709 luminance of linear RGB (ITU-R BT.709-6, item 3.3), as preview/comparison.cc.
+double Luminance(const double* rgb) {
+  return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+}
+
+// sRGB OETF (IEC 61966-2-1): linear [0, 1] -> encoded [0, 1].
+double SrgbOetf(double x) {
+  return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
+}
+
+// 10 log10(peak^2 / mse), capped at kRenderedPsnrCapDb (identical images: mse = 0).
+double Psnr(double peak, double mse) {
+  if (!(mse > 0)) return kRenderedPsnrCapDb;
+  return std::min(kRenderedPsnrCapDb, 10.0 * std::log10(peak * peak / mse));
+}
+
+// Nearest-rank percentile: the element of 0-based rank min(n - 1, floor(n p / 100)) of the
+// sorted values; p = 50 is the upper median, as preview/comparison.cc. Reorders v.
+double Percentile(std::vector<double>& v, double p) {
+  if (v.empty()) return 0;
+  const auto k = std::min(v.size() - 1, static_cast<std::size_t>(std::floor(v.size() * p / 100)));
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+  return v[k];
+}
+
+// A pixel of the sphere seen at n.v > min_cos: its normal and tangent frame (world space).
+struct SpherePixel {
+  int x = 0, y = 0;
+  Vec3 n, t, b;
+  Vec3 wo;  // v in the local frame
+};
+
+// Duff, Burgess, Christensen, Hery, Kensler, Liani, Villemin 2017, "Building an Orthonormal
+// Basis, Revisited" (JCGT 6(1)), Listing 3: the preview's frame (preview/glsl/common.glsl).
+// The camera looks along -z with y up, so world space is the preview's view space.
+void BuildFrame(const Vec3& n, Vec3* t, Vec3* b) {
+  const double s = n.z >= 0 ? 1.0 : -1.0;
+  const double a = -1.0 / (s + n.z), c = n.x * n.y * a;
+  *t = {1.0 + s * n.x * n.x * a, s * c, -s * n.x};
+  *b = {c, s + n.y * n.y * a, -n.y};
+}
+
+// The pixels seen at n.v > min_cos; *on_sphere: every pixel centre on the sphere.
+std::vector<SpherePixel> SpherePixels(int res, double min_cos, std::size_t* on_sphere) {
+  std::vector<SpherePixel> out;
+  *on_sphere = 0;
+  const Vec3 v{0, 0, 1};
+  for (int y = 0; y < res; ++y) {
+    for (int x = 0; x < res; ++x) {
+      // Pixel centre in [-1, 1]^2, row 0 at the top (+y), as an image.
+      const double px = 2.0 * (x + 0.5) / res - 1.0, py = 1.0 - 2.0 * (y + 0.5) / res;
+      const double r2 = px * px + py * py;
+      if (r2 >= 1) continue;
+      ++*on_sphere;
+      SpherePixel p;
+      p.x = x;
+      p.y = y;
+      p.n = {px, py, std::sqrt(1 - r2)};
+      if (!(p.n.z > min_cos)) continue;
+      BuildFrame(p.n, &p.t, &p.b);
+      p.wo = {Dot(v, p.t), Dot(v, p.b), Dot(v, p.n)};
+      out.push_back(p);
+    }
+  }
+  return out;
+}
+
+// ok = false with a problem: the metrics are zeroed, the pixel counts kept.
+RenderedError Fail(RenderedError r, std::string problem) {
+  r.ok = false;
+  r.problem = std::move(problem);
+  r.psnr_db = r.psnr_srgb_db = r.median_rel_error = r.p95_rel_error = r.peak = r.exposure = 0;
+  for (RenderedLightError& le : r.lights) le.psnr_db = le.median_rel_error = le.p95_rel_error = 0;
+  return r;
+}
+
+void CheckOptions(const RenderedErrorOptions& o) {
+  auto bad = [](const std::string& what) {
+    throw std::invalid_argument("rendered error: " + what);
+  };
+  if (o.resolution < 1 || o.resolution > 4096) bad("resolution must be in [1, 4096]");
+  if (o.light_angles_deg.empty() ||
+      o.light_angles_deg.size() > static_cast<std::size_t>(kRenderedMaxLights)) {
+    bad("1 to " + std::to_string(kRenderedMaxLights) + " lights");
+  }
+  for (double a : o.light_angles_deg) {
+    if (!(a >= 0 && a < 90)) bad("light angles must be in [0, 90) degrees");
+  }
+  if (!(o.min_cos >= 0 && o.min_cos < 1)) bad("min_cos must be in [0, 1)");
+  if (!(o.luminance_floor >= 0 && o.luminance_floor < 1)) bad("luminance_floor must be in [0, 1)");
+  if (!(o.exposure_percentile > 0 && o.exposure_percentile <= 100)) {
+    bad("exposure_percentile must be in (0, 100]");
+  }
+}
+
+bool Finite3(const std::array<double, 3>& v) {
+  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+}
+
+}  // namespace
+
+RenderedError ComputeRenderedError(const Table& measured, const BrdfFunction& approx,
+                                   const RenderedErrorOptions& options) {
+  CheckOptions(options);
+  RenderedError r;
+  r.resolution = options.resolution;
+  r.num_lights = static_cast<int>(options.light_angles_deg.size());
+  const std::vector<SpherePixel> pixels =
+      SpherePixels(options.resolution, options.min_cos, &r.sphere_pixels);
+
+  // Radiances of the lit pixels, light after light: 3 measured then 3 approximated per pixel.
+  std::vector<double> radiance;
+  std::vector<std::size_t> begin = {0};  // light k: pixels [begin[k], begin[k + 1])
+  radiance.reserve(6 * pixels.size() * options.light_angles_deg.size());
+  for (std::size_t k = 0; k < options.light_angles_deg.size(); ++k) {
+    const double a = options.light_angles_deg[k] * kPi / 180;
+    const Vec3 l{std::sin(a), 0, std::cos(a)};
+    RenderedLightError& le = r.lights[k];
+    le.light_deg = options.light_angles_deg[k];
+    for (const SpherePixel& p : pixels) {
+      const double cos_l = Dot(p.n, l);
+      if (!(cos_l > options.min_cos)) continue;
+      const Vec3 wi{Dot(l, p.t), Dot(l, p.b), cos_l};
+      const auto m = RenderedLookup(measured, wi, p.wo);
+      if (!m || !Finite3(*m)) {
+        ++le.masked_pixels;
+        continue;
+      }
+      const std::array<double, 3> f = approx(wi, p.wo);
+      if (!Finite3(f)) {
+        return Fail(r, "the approximation is not finite at pixel (" + std::to_string(p.x) + ", " +
+                           std::to_string(p.y) + ") under the light at " +
+                           std::to_string(le.light_deg) + " deg");
+      }
+      for (int c = 0; c < 3; ++c) radiance.push_back((*m)[c] * cos_l);
+      for (int c = 0; c < 3; ++c) radiance.push_back(f[c] * cos_l);
+      ++le.lit_pixels;
+    }
+    begin.push_back(radiance.size() / 6);
+    r.lit_pixels += le.lit_pixels;
+    r.masked_pixels += le.masked_pixels;
+  }
+  if (r.lit_pixels == 0) {
+    return Fail(r, r.masked_pixels ? "every lit pixel's measured lookup is masked"
+                                   : "no lit pixel (resolution too small)");
+  }
+
+  const double* L = radiance.data();
+  double sq_sum = 0;
+  std::vector<double> all_errors, all_lum;
+  all_lum.reserve(r.lit_pixels);
+  for (int k = 0; k < r.num_lights; ++k) {
+    RenderedLightError& le = r.lights[static_cast<std::size_t>(k)];
+    const std::string which = "the light at " + std::to_string(le.light_deg) + " deg";
+    if (le.lit_pixels == 0) return Fail(r, which + " lights no pixel with a valid measurement");
+    double peak = 0, peak_y = 0, sq = 0;
+    for (std::size_t i = begin[k]; i < begin[k + 1]; ++i) {
+      const double* m = L + 6 * i;
+      for (int c = 0; c < 3; ++c) {
+        peak = std::max(peak, m[c]);
+        sq += (m[3 + c] - m[c]) * (m[3 + c] - m[c]);
+      }
+      peak_y = std::max(peak_y, Luminance(m));
+      all_lum.push_back(Luminance(m));
+    }
+    if (!(peak > 0) || !(peak_y > 0)) return Fail(r, which + ": the measured image is black");
+    sq_sum += sq;
+    r.peak = std::max(r.peak, peak);
+    le.psnr_db = Psnr(peak, sq / (3.0 * static_cast<double>(le.lit_pixels)));
+    std::vector<double> errors;
+    for (std::size_t i = begin[k]; i < begin[k + 1]; ++i) {
+      const double* m = L + 6 * i;
+      const double ym = Luminance(m);
+      if (!(ym > options.luminance_floor * peak_y)) continue;
+      errors.push_back(std::abs(Luminance(m + 3) - ym) / ym);
+    }
+    le.compared_pixels = errors.size();
+    r.compared_pixels += errors.size();
+    all_errors.insert(all_errors.end(), errors.begin(), errors.end());
+    le.median_rel_error = Percentile(errors, 50);
+    le.p95_rel_error = Percentile(errors, 95);
+  }
+  r.below_floor_pixels = r.lit_pixels - r.compared_pixels;
+  r.psnr_db = Psnr(r.peak, sq_sum / (3.0 * static_cast<double>(r.lit_pixels)));
+  r.median_rel_error = Percentile(all_errors, 50);
+  r.p95_rel_error = Percentile(all_errors, 95);
+
+  // Tone-mapped sRGB PSNR: exposure from the measured luminance percentile, clamp to [0, 1],
+  // sRGB OETF, peak 1 (not quantized to 8 bits).
+  const double y_ref = Percentile(all_lum, options.exposure_percentile);
+  if (!(y_ref > 0)) {
+    return Fail(r, "the measured luminance's " + std::to_string(options.exposure_percentile) +
+                       "th percentile is not positive");
+  }
+  r.exposure = 1.0 / y_ref;
+  double sq_t = 0;
+  for (std::size_t i = 0; i < r.lit_pixels; ++i) {
+    const double* m = L + 6 * i;
+    for (int c = 0; c < 3; ++c) {
+      const double d = SrgbOetf(std::clamp(r.exposure * m[3 + c], 0.0, 1.0)) -
+                       SrgbOetf(std::clamp(r.exposure * m[c], 0.0, 1.0));
+      sq_t += d * d;
+    }
+  }
+  r.psnr_srgb_db = Psnr(1.0, sq_t / (3.0 * static_cast<double>(r.lit_pixels)));
+
+  // Every number finite, or the reason (a huge approximation overflows the squared error).
+  bool finite = std::isfinite(r.psnr_db) && std::isfinite(r.psnr_srgb_db) &&
+                std::isfinite(r.median_rel_error) && std::isfinite(r.p95_rel_error) &&
+                std::isfinite(r.exposure) && std::isfinite(r.peak);
+  for (int k = 0; k < r.num_lights; ++k) {
+    const RenderedLightError& le = r.lights[static_cast<std::size_t>(k)];
+    finite = finite && std::isfinite(le.psnr_db) && std::isfinite(le.median_rel_error) &&
+             std::isfinite(le.p95_rel_error);
+  }
+  if (!finite) return Fail(r, "an error overflows (the approximation is too large)");
+  r.ok = true;
+  return r;
+}
+
+BrdfFunction ModelBrdf(const ModelInfo& model, std::vector<double> params) {
+  return [eval = model.eval, p = std::move(params)](const Vec3& wi, const Vec3& wo) {
+    std::array<double, 3> rgb{};
+    eval(p.data(), MakeGeometry(wi, wo), rgb.data());
+    return rgb;
+  };
+}
+
+}  // namespace brdfit
+
+namespace brdfit {
+
+std::optional<std::array<double, 3>> RenderedLookup(const Table& table, const Vec3& wi,
+                                                    const Vec3& wo) {
+  HalfDiffAngles a = ToHalfDiff(wi, wo);
+  if (a.theta_d < 1e-6) a.phi_d = 0;
+  return table.LookupTrilinear(a);
+}
+
+BrdfFunction TableBrdf(const Table& table) {
+  return [&table](const Vec3& wi, const Vec3& wo) {
+    const auto v = RenderedLookup(table, wi, wo);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return v ? *v : std::array<double, 3>{nan, nan, nan};
+  };
+}
+
+}  // namespace brdfit

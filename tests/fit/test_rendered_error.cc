@@ -1,0 +1,362 @@
+// The rendered-image metric (fit/rendered_error.h, docs/accuracy.md "Rendered-image metric")
+// against an independent per-pixel evaluation written here: its own sphere geometry (normal
+// from spherical angles), its own local frame (a rotation taking n to the pole, not the Duff
+// frame of the metric: the BRDFs are isotropic, so the values agree to rounding), its own
+// statistics (full sorts). Plus the metric's exact properties: identical images, a scaled
+// approximation, masked cells, failures.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "fit/rendered_error.h"
+#include "fit_test_util.h"
+#include "models/registry.h"
+
+namespace brdfit {
+namespace {
+
+using testing::Params;
+using testing::SmallGrid;
+using testing::SynthModel;
+
+using Rgb = std::array<double, 3>;
+using LocalBrdf = std::function<Rgb(const Vec3& wi, const Vec3& wo)>;
+
+struct RefLight {
+  double psnr = 0, median = 0, p95 = 0;
+  std::size_t lit = 0, masked = 0, compared = 0;
+  std::vector<double> lm, la;  // lit pixels' radiances, RGB
+};
+struct Ref {
+  double psnr = 0, psnr_srgb = 0, median = 0, p95 = 0, peak = 0;
+  std::size_t lit = 0, masked = 0, compared = 0;
+  std::vector<RefLight> lights;
+};
+
+double Y(const double* c) {
+  return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+}
+
+double SortedAt(std::vector<double> v, std::size_t percent) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[std::min(v.size() - 1, v.size() * percent / 100)];
+}
+
+double PsnrDb(double peak, double mse) {
+  return mse == 0 ? kRenderedPsnrCapDb : 10 * std::log10(peak * peak / mse);
+}
+
+// Straight from the definitions in docs/accuracy.md.
+Ref Reference(const Table& t, const LocalBrdf& approx, int n,
+              const std::vector<double>& angles_deg) {
+  Ref r;
+  std::vector<double> all_e, all_y, all_m, all_a;
+  for (double deg : angles_deg) {
+    const double a = deg * kPi / 180;
+    const double lx = std::sin(a), lz = std::cos(a);
+    RefLight rl;
+    for (int row = 0; row < n; ++row) {
+      for (int col = 0; col < n; ++col) {
+        const double sx = (col + 0.5) / n * 2 - 1, sy = 1 - (row + 0.5) / n * 2;
+        const double rho = std::hypot(sx, sy);
+        if (rho >= 1) continue;
+        // Normal n = (sin th cos ph, sin th sin ph, cos th); the rotation R = R_y(-th) R_z(-ph)
+        // takes it to +z: local coordinates are R applied to world vectors.
+        const double th = std::asin(rho), ph = std::atan2(sy, sx);
+        auto local = [&](double x, double y, double z) {
+          const double c = std::cos(-ph), s = std::sin(-ph);
+          const double x1 = c * x - s * y, y1 = s * x + c * y;
+          const double ct = std::cos(-th), st = std::sin(-th);
+          return Vec3{ct * x1 + st * z, y1, -st * x1 + ct * z};
+        };
+        const Vec3 wo = local(0, 0, 1), wi = local(lx, 0, lz);
+        if (!(wo.z > 1e-3) || !(wi.z > 1e-3)) continue;
+        // phi_d is undefined at theta_d = 0 (the 0-degree light): the metric takes 0.
+        HalfDiffAngles hd = ToHalfDiff(wi, wo);
+        if (hd.theta_d < 1e-6) hd.phi_d = 0;
+        const auto m = t.LookupTrilinear(hd);
+        if (!m) {
+          ++rl.masked;
+          continue;
+        }
+        const Rgb f = approx(wi, wo);
+        for (int c = 0; c < 3; ++c) {
+          rl.lm.push_back((*m)[c] * wi.z);
+          rl.la.push_back(f[c] * wi.z);
+        }
+        ++rl.lit;
+      }
+    }
+    double peak = 0, peak_y = 0, se = 0;
+    for (std::size_t i = 0; i < rl.lm.size(); ++i) {
+      peak = std::max(peak, rl.lm[i]);
+      se += (rl.la[i] - rl.lm[i]) * (rl.la[i] - rl.lm[i]);
+    }
+    for (std::size_t p = 0; p < rl.lit; ++p) peak_y = std::max(peak_y, Y(&rl.lm[3 * p]));
+    std::vector<double> e;
+    for (std::size_t p = 0; p < rl.lit; ++p) {
+      const double ym = Y(&rl.lm[3 * p]);
+      all_y.push_back(ym);
+      if (ym > 1e-4 * peak_y) e.push_back(std::abs(Y(&rl.la[3 * p]) - ym) / ym);
+    }
+    rl.psnr = PsnrDb(peak, se / static_cast<double>(rl.lm.size()));
+    rl.median = SortedAt(e, 50);
+    rl.p95 = SortedAt(e, 95);
+    rl.compared = e.size();
+    r.peak = std::max(r.peak, peak);
+    r.lit += rl.lit;
+    r.masked += rl.masked;
+    r.compared += rl.compared;
+    all_e.insert(all_e.end(), e.begin(), e.end());
+    all_m.insert(all_m.end(), rl.lm.begin(), rl.lm.end());
+    all_a.insert(all_a.end(), rl.la.begin(), rl.la.end());
+    r.lights.push_back(std::move(rl));
+  }
+  double se = 0;
+  for (std::size_t i = 0; i < all_m.size(); ++i) se += std::pow(all_a[i] - all_m[i], 2);
+  r.psnr = PsnrDb(r.peak, se / static_cast<double>(all_m.size()));
+  r.median = SortedAt(all_e, 50);
+  r.p95 = SortedAt(all_e, 95);
+  const double k = 1 / SortedAt(all_y, 99);
+  auto srgb = [k](double x) {
+    x = std::min(1.0, std::max(0.0, k * x));
+    return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1 / 2.4) - 0.055;
+  };
+  double st = 0;
+  for (std::size_t i = 0; i < all_m.size(); ++i) st += std::pow(srgb(all_a[i]) - srgb(all_m[i]), 2);
+  r.psnr_srgb = PsnrDb(1, st / static_cast<double>(all_m.size()));
+  return r;
+}
+
+LocalBrdf Model(const std::string& name, const std::vector<double>& p) {
+  const ModelInfo* m = FindModel(name);
+  return [m, p](const Vec3& wi, const Vec3& wo) {
+    Rgb v;
+    m->eval(p.data(), MakeGeometry(wi, wo), v.data());
+    return v;
+  };
+}
+
+const std::vector<double> kAngles = {0, 30, 45, 60, 70, 80};
+
+void ExpectMatches(const RenderedError& got, const Ref& ref) {
+  ASSERT_TRUE(got.ok) << got.problem;
+  EXPECT_NEAR(got.psnr_db, ref.psnr, 1e-9);
+  EXPECT_NEAR(got.psnr_srgb_db, ref.psnr_srgb, 1e-9);
+  EXPECT_NEAR(got.median_rel_error, ref.median, 1e-9);
+  EXPECT_NEAR(got.p95_rel_error, ref.p95, 1e-9);
+  EXPECT_NEAR(got.peak, ref.peak, 1e-12 * ref.peak);
+  EXPECT_EQ(got.lit_pixels, ref.lit);
+  EXPECT_EQ(got.masked_pixels, ref.masked);
+  EXPECT_EQ(got.compared_pixels, ref.compared);
+  EXPECT_EQ(got.below_floor_pixels, ref.lit - ref.compared);
+  ASSERT_EQ(got.num_lights, static_cast<int>(ref.lights.size()));
+  for (std::size_t k = 0; k < ref.lights.size(); ++k) {
+    SCOPED_TRACE("light " + std::to_string(k));
+    const RenderedLightError& g = got.lights[k];
+    EXPECT_NEAR(g.psnr_db, ref.lights[k].psnr, 1e-9);
+    EXPECT_NEAR(g.median_rel_error, ref.lights[k].median, 1e-9);
+    EXPECT_NEAR(g.p95_rel_error, ref.lights[k].p95, 1e-9);
+    EXPECT_EQ(g.lit_pixels, ref.lights[k].lit);
+    EXPECT_EQ(g.masked_pixels, ref.lights[k].masked);
+    EXPECT_EQ(g.compared_pixels, ref.lights[k].compared);
+  }
+}
+
+// (a) Three (table, approximation, resolution) cases against the independent evaluation.
+TEST(RenderedError, MatchesIndependentPerPixelEvaluation) {
+  struct Case {
+    std::string table_model;
+    std::vector<std::string> table_params;
+    std::string approx_model;
+    std::vector<std::string> approx_params;
+    int n;
+  };
+  const std::vector<Case> cases = {
+      {"lambert+ggx",
+       {"ggx.alpha=0.1"},
+       "lambert+beckmann",
+       {"beckmann.alpha=0.15", "lambert.kd_g=0.3"},
+       16},
+      {"lambert+ggx", {"ggx.alpha=0.3", "lambert.kd_g=0.2"}, "lambert+ggx", {"ggx.alpha=0.2"}, 33},
+      {"lambert+cook-torrance", {"lambert.kd_b=0.2"}, "lambert+ward", {"ward.alpha=0.2"}, 64},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.table_model + " vs " + c.approx_model + " N=" + std::to_string(c.n));
+    const Table t = SynthModel(c.table_model, Params(c.table_model, c.table_params), SmallGrid());
+    const std::vector<double> p = Params(c.approx_model, c.approx_params);
+    RenderedErrorOptions o;
+    o.resolution = c.n;
+    const RenderedError got = ComputeRenderedError(t, ModelBrdf(*FindModel(c.approx_model), p), o);
+    ExpectMatches(got, Reference(t, Model(c.approx_model, p), c.n, kAngles));
+    std::printf("%s vs %s, N=%d: PSNR %.3f dB, sRGB %.3f dB, median %.4f, p95 %.4f, %zu lit\n",
+                c.table_model.c_str(), c.approx_model.c_str(), c.n, got.psnr_db, got.psnr_srgb_db,
+                got.median_rel_error, got.p95_rel_error, got.lit_pixels);
+    EXPECT_EQ(got.resolution, c.n);
+    EXPECT_GT(got.median_rel_error, 0.01);  // a real difference is being measured
+    EXPECT_LT(got.psnr_db, 60);
+  }
+}
+
+// Other lights than the default six (one of them beyond 80 degrees).
+TEST(RenderedError, CustomLights) {
+  const Table t = SynthModel("lambert+ggx", Params("lambert+ggx", {}), SmallGrid());
+  const std::vector<double> p = Params("lambert+ggx", {"ggx.alpha=0.3"});
+  RenderedErrorOptions o;
+  o.resolution = 24;
+  o.light_angles_deg = {10, 85};
+  const RenderedError got = ComputeRenderedError(t, ModelBrdf(*FindModel("lambert+ggx"), p), o);
+  ExpectMatches(got, Reference(t, Model("lambert+ggx", p), 24, o.light_angles_deg));
+  EXPECT_EQ(got.lights[1].light_deg, 85);
+}
+
+// (b) The approximation is the measured lookup itself: PSNR at the documented cap, no error.
+TEST(RenderedError, IdenticalImagesGiveThePsnrCapAndZeroError) {
+  const Table t = SynthModel("lambert+ggx", Params("lambert+ggx", {"ggx.alpha=0.1"}), SmallGrid());
+  const RenderedError r = ComputeRenderedError(t, TableBrdf(t));
+  ASSERT_TRUE(r.ok) << r.problem;
+  EXPECT_EQ(r.psnr_db, kRenderedPsnrCapDb);
+  EXPECT_EQ(r.psnr_srgb_db, kRenderedPsnrCapDb);
+  EXPECT_EQ(r.median_rel_error, 0.0);
+  EXPECT_EQ(r.p95_rel_error, 0.0);
+  for (int k = 0; k < r.num_lights; ++k) {
+    EXPECT_EQ(r.lights[k].psnr_db, kRenderedPsnrCapDb);
+    EXPECT_EQ(r.lights[k].median_rel_error, 0.0);
+  }
+  EXPECT_EQ(r.num_lights, 6);
+  EXPECT_EQ(r.resolution, 64);
+  EXPECT_EQ(r.masked_pixels, 0u);
+  EXPECT_GT(r.lit_pixels, 6u * 64 * 64 / 4);
+}
+
+// (c) (1 + s) times the measurement: every relative luminance error is exactly s (the doubling
+// is exact in floating point for s = 1), and the PSNR is 20 log10(peak / rms(L_m)) - 20 log10 s.
+TEST(RenderedError, ScaledApproximationHasPredictableErrors) {
+  const Table t = SynthModel("lambert+ggx", Params("lambert+ggx", {"ggx.alpha=0.15"}), SmallGrid());
+  auto scaled = [&](double s) {
+    const BrdfFunction same = TableBrdf(t);
+    return BrdfFunction([same, s](const Vec3& wi, const Vec3& wo) {
+      Rgb v = same(wi, wo);
+      for (double& c : v) c *= 1 + s;
+      return v;
+    });
+  };
+  const RenderedError twice = ComputeRenderedError(t, scaled(1.0));
+  ASSERT_TRUE(twice.ok) << twice.problem;
+  EXPECT_EQ(twice.median_rel_error, 1.0);
+  EXPECT_EQ(twice.p95_rel_error, 1.0);
+  for (int k = 0; k < twice.num_lights; ++k) EXPECT_EQ(twice.lights[k].median_rel_error, 1.0);
+  // PSNR of 2x: MSE = mean(L_m^2).
+  const Ref ref = Reference(t, TableBrdf(t), 64, kAngles);
+  double sum2 = 0, count = 0;
+  for (const RefLight& l : ref.lights) {
+    for (double v : l.lm) sum2 += v * v;
+    count += static_cast<double>(l.lm.size());
+  }
+  EXPECT_NEAR(twice.psnr_db, 20 * std::log10(ref.peak / std::sqrt(sum2 / count)), 1e-9);
+  const RenderedError tenth = ComputeRenderedError(t, scaled(0.1));
+  ASSERT_TRUE(tenth.ok);
+  EXPECT_NEAR(tenth.psnr_db - twice.psnr_db, 20.0, 1e-9);  // -20 log10(0.1)
+  for (int k = 0; k < twice.num_lights; ++k) {
+    EXPECT_NEAR(tenth.lights[k].psnr_db - twice.lights[k].psnr_db, 20.0, 1e-9);
+  }
+  EXPECT_NEAR(tenth.median_rel_error, 0.1, 1e-12);
+  // Too dark by the same factor gives the same relative error.
+  EXPECT_NEAR(ComputeRenderedError(t, scaled(-0.1)).median_rel_error, 0.1, 1e-12);
+}
+
+// (d) Masked cells: a band of theta_h bins is masked (values set to NaN, which must never be
+// read). Pixels whose trilinear lookup has no valid neighbour are excluded and counted; the
+// metric over the rest equals the independent evaluation that skips them. Were the holes read
+// as zero, the lit pixels would be black there and the PSNR against the full table would drop.
+TEST(RenderedError, MaskedCellsAreExcludedNotZero) {
+  const std::vector<double> truth = Params("lambert+ggx", {"ggx.alpha=0.2"});
+  const Table full = SynthModel("lambert+ggx", truth, SmallGrid());
+  Table holed = full;
+  const Grid& g = holed.grid;
+  for (int ih = 10; ih < 16; ++ih) {
+    for (int id = 0; id < g.n_theta_d; ++id) {
+      for (int ip = 0; ip < g.n_phi_d; ++ip) {
+        const std::size_t idx = g.Index(ih, id, ip);
+        holed.valid[idx] = 0;
+        for (int c = 0; c < 3; ++c) holed.Value(idx)[c] = std::numeric_limits<double>::quiet_NaN();
+      }
+    }
+  }
+  const BrdfFunction full_lookup = TableBrdf(full);
+  const RenderedError r = ComputeRenderedError(holed, full_lookup);
+  const Ref ref = Reference(holed, full_lookup, 64, kAngles);
+  ExpectMatches(r, ref);
+  EXPECT_GT(r.masked_pixels, 1000u);
+  // Lit + masked is the geometrically lit set of the full table.
+  const RenderedError rf = ComputeRenderedError(full, full_lookup);
+  EXPECT_EQ(r.lit_pixels + r.masked_pixels, rf.lit_pixels);
+  EXPECT_EQ(rf.masked_pixels, 0u);
+  // The holes' neighbours are renormalized trilinear values, close to the full table's.
+  EXPECT_GT(r.psnr_db, 30);
+  EXPECT_LT(r.median_rel_error, 1e-3);
+  // Holes in the approximation (TableBrdf gives NaN there) fail the metric, never score black.
+  const RenderedError bad = ComputeRenderedError(full, TableBrdf(holed));
+  EXPECT_FALSE(bad.ok);
+  EXPECT_NE(bad.problem.find("not finite"), std::string::npos) << bad.problem;
+}
+
+TEST(RenderedError, FailuresAreReportedWithFiniteNumbers) {
+  const Table t = SynthModel("lambert", Params("lambert", {}), SmallGrid());
+  const BrdfFunction nan = [](const Vec3&, const Vec3& wo) {
+    return Rgb{0.1, wo.z > 0.5 ? std::numeric_limits<double>::quiet_NaN() : 0.1, 0.1};
+  };
+  RenderedError r = ComputeRenderedError(t, nan);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.problem.find("not finite"), std::string::npos) << r.problem;
+  EXPECT_EQ(r.psnr_db, 0);
+  // Overflowing squared errors.
+  r = ComputeRenderedError(t, [](const Vec3&, const Vec3&) { return Rgb{1e300, 1e300, 1e300}; });
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(std::isfinite(r.psnr_db) && std::isfinite(r.median_rel_error));
+  // Every cell masked.
+  Table empty = Table::Empty(t.grid);
+  r = ComputeRenderedError(empty, ModelBrdf(*FindModel("lambert"), Params("lambert", {})));
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.problem.find("masked"), std::string::npos) << r.problem;
+  EXPECT_GT(r.masked_pixels, 0u);
+  // A black measurement.
+  Table black = t;
+  std::fill(black.rgb.begin(), black.rgb.end(), 0.0);
+  r = ComputeRenderedError(black, ModelBrdf(*FindModel("lambert"), Params("lambert", {})));
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.problem.find("black"), std::string::npos) << r.problem;
+  // Bad options throw.
+  const BrdfFunction lambert = ModelBrdf(*FindModel("lambert"), Params("lambert", {}));
+  RenderedErrorOptions o;
+  o.resolution = 0;
+  EXPECT_THROW(ComputeRenderedError(t, lambert, o), std::invalid_argument);
+  o = {};
+  o.light_angles_deg = std::vector<double>(kRenderedMaxLights + 1, 10.0);
+  EXPECT_THROW(ComputeRenderedError(t, lambert, o), std::invalid_argument);
+  o = {};
+  o.light_angles_deg = {90};
+  EXPECT_THROW(ComputeRenderedError(t, lambert, o), std::invalid_argument);
+}
+
+TEST(RenderedError, Deterministic) {
+  const Table t = SynthModel("lambert+ggx", Params("lambert+ggx", {}), SmallGrid(), 0.05, 0.1);
+  const BrdfFunction f =
+      ModelBrdf(*FindModel("lambert+ggx"), Params("lambert+ggx", {"ggx.alpha=0.3"}));
+  const RenderedError a = ComputeRenderedError(t, f), b = ComputeRenderedError(t, f);
+  ASSERT_TRUE(a.ok);
+  EXPECT_EQ(a.psnr_db, b.psnr_db);
+  EXPECT_EQ(a.psnr_srgb_db, b.psnr_srgb_db);
+  EXPECT_EQ(a.median_rel_error, b.median_rel_error);
+  EXPECT_EQ(a.p95_rel_error, b.p95_rel_error);
+  EXPECT_EQ(a.exposure, b.exposure);
+}
+
+}  // namespace
+}  // namespace brdfit
