@@ -5,6 +5,7 @@
 
 #include "fit/model_ops.h"
 #include "core/error.h"
+#include "models/registry.h"
 
 namespace brdfit {
 
@@ -45,6 +46,7 @@ PreparedTable PrepareSampleSets(const Table& table, const SampleOptions& sample_
     t.metric_own = PrepareSamples(table, full);
     t.has_own_metric = true;
   }
+  t.rendered = PrepareRenderedReference(table);
   return t;
 }
 
@@ -67,7 +69,16 @@ PreparedTable PrepareTable(Table&& table, const SampleOptions& sample_options,
 
 FitResult FitPrepared(std::string_view model, const PreparedTable& table,
                       const FitOptions& options) {
-  return internal::FitWithOps(Find(model), table.fit, table.loss, table.metric(), options);
+  FitResult r = internal::FitWithOps(Find(model), table.fit, table.loss, table.metric(), options);
+  const ModelInfo* info = FindModel(model);
+  if (!r.Failed() && info && !table.rendered.Empty()) {
+    // The rendered-image metric of the fitted parameters (docs/accuracy.md).
+    const auto t0 = std::chrono::steady_clock::now();
+    r.metrics.rendered = ScoreRendered(table.rendered, ModelBrdf(*info, r.params));
+    r.times.metrics +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  }
+  return r;
 }
 
 FitResult FitTable(std::string_view model, const Table& table, const SampleOptions& sample_options,

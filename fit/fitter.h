@@ -17,6 +17,7 @@
 #include "fit/loss.h"
 #include "fit/options.h"
 #include "core/result.h"
+#include "fit/rendered_error.h"
 #include "fit/samples.h"
 #include "core/table.h"
 
@@ -29,6 +30,9 @@ struct PreparedTable {
   LossData loss;
   Samples metric_own;
   bool has_own_metric = false;
+  // The measured side of the rendered-image metric (fit/rendered_error.h); every fit of the
+  // table is scored against it. Empty: no rendered metric (metrics.rendered.ok = false).
+  RenderedReference rendered;
   const Samples& metric() const { return has_own_metric ? metric_own : fit; }
 };
 

@@ -111,19 +111,18 @@ bool Finite3(const std::array<double, 3>& v) {
 
 }  // namespace
 
-RenderedError ComputeRenderedError(const Table& measured, const BrdfFunction& approx,
-                                   const RenderedErrorOptions& options) {
+RenderedReference PrepareRenderedReference(const Table& measured,
+                                           const RenderedErrorOptions& options) {
   CheckOptions(options);
-  RenderedError r;
+  RenderedReference ref;
+  RenderedError& r = ref.counts;
   r.resolution = options.resolution;
   r.num_lights = static_cast<int>(options.light_angles_deg.size());
+  ref.luminance_floor = options.luminance_floor;
+  ref.exposure_percentile = options.exposure_percentile;
   const std::vector<SpherePixel> pixels =
       SpherePixels(options.resolution, options.min_cos, &r.sphere_pixels);
-
-  // Radiances of the lit pixels, light after light: 3 measured then 3 approximated per pixel.
-  std::vector<double> radiance;
-  std::vector<std::size_t> begin = {0};  // light k: pixels [begin[k], begin[k + 1])
-  radiance.reserve(6 * pixels.size() * options.light_angles_deg.size());
+  ref.begin = {0};
   for (std::size_t k = 0; k < options.light_angles_deg.size(); ++k) {
     const double a = options.light_angles_deg[k] * kPi / 180;
     const Vec3 l{std::sin(a), 0, std::cos(a)};
@@ -138,20 +137,36 @@ RenderedError ComputeRenderedError(const Table& measured, const BrdfFunction& ap
         ++le.masked_pixels;
         continue;
       }
-      const std::array<double, 3> f = approx(wi, p.wo);
-      if (!Finite3(f)) {
-        return Fail(r, "the approximation is not finite at pixel (" + std::to_string(p.x) + ", " +
-                           std::to_string(p.y) + ") under the light at " +
-                           std::to_string(le.light_deg) + " deg");
-      }
-      for (int c = 0; c < 3; ++c) radiance.push_back((*m)[c] * cos_l);
-      for (int c = 0; c < 3; ++c) radiance.push_back(f[c] * cos_l);
+      ref.pixels.push_back({wi, p.wo, cos_l, {(*m)[0] * cos_l, (*m)[1] * cos_l, (*m)[2] * cos_l},
+                            p.x, p.y});
       ++le.lit_pixels;
     }
-    begin.push_back(radiance.size() / 6);
+    ref.begin.push_back(ref.pixels.size());
     r.lit_pixels += le.lit_pixels;
     r.masked_pixels += le.masked_pixels;
   }
+  return ref;
+}
+
+RenderedError ScoreRendered(const RenderedReference& ref, const BrdfFunction& approx) {
+  RenderedError r = ref.counts;
+  // Radiances of the lit pixels, light after light: 3 measured then 3 approximated per pixel.
+  std::vector<double> radiance;
+  radiance.reserve(6 * ref.pixels.size());
+  for (int k = 0; k < r.num_lights; ++k) {
+    for (std::size_t i = ref.begin[k]; i < ref.begin[k + 1]; ++i) {
+      const RenderedReference::Pixel& p = ref.pixels[i];
+      const std::array<double, 3> f = approx(p.wi, p.wo);
+      if (!Finite3(f)) {
+        return Fail(r, "the approximation is not finite at pixel (" + std::to_string(p.x) + ", " +
+                           std::to_string(p.y) + ") under the light at " +
+                           std::to_string(r.lights[k].light_deg) + " deg");
+      }
+      for (int c = 0; c < 3; ++c) radiance.push_back(p.measured[c]);
+      for (int c = 0; c < 3; ++c) radiance.push_back(f[c] * p.cos_l);
+    }
+  }
+  const std::vector<std::size_t>& begin = ref.begin;
   if (r.lit_pixels == 0) {
     return Fail(r, r.masked_pixels ? "every lit pixel's measured lookup is masked"
                                    : "no lit pixel (resolution too small)");
@@ -183,7 +198,7 @@ RenderedError ComputeRenderedError(const Table& measured, const BrdfFunction& ap
     for (std::size_t i = begin[k]; i < begin[k + 1]; ++i) {
       const double* m = L + 6 * i;
       const double ym = Luminance(m);
-      if (!(ym > options.luminance_floor * peak_y)) continue;
+      if (!(ym > ref.luminance_floor * peak_y)) continue;
       errors.push_back(std::abs(Luminance(m + 3) - ym) / ym);
     }
     le.compared_pixels = errors.size();
@@ -199,9 +214,9 @@ RenderedError ComputeRenderedError(const Table& measured, const BrdfFunction& ap
 
   // Tone-mapped sRGB PSNR: exposure from the measured luminance percentile, clamp to [0, 1],
   // sRGB OETF, peak 1 (not quantized to 8 bits).
-  const double y_ref = Percentile(all_lum, options.exposure_percentile);
+  const double y_ref = Percentile(all_lum, ref.exposure_percentile);
   if (!(y_ref > 0)) {
-    return Fail(r, "the measured luminance's " + std::to_string(options.exposure_percentile) +
+    return Fail(r, "the measured luminance's " + std::to_string(ref.exposure_percentile) +
                        "th percentile is not positive");
   }
   r.exposure = 1.0 / y_ref;
@@ -228,6 +243,11 @@ RenderedError ComputeRenderedError(const Table& measured, const BrdfFunction& ap
   if (!finite) return Fail(r, "an error overflows (the approximation is too large)");
   r.ok = true;
   return r;
+}
+
+RenderedError ComputeRenderedError(const Table& measured, const BrdfFunction& approx,
+                                   const RenderedErrorOptions& options) {
+  return ScoreRendered(PrepareRenderedReference(measured, options), approx);
 }
 
 BrdfFunction ModelBrdf(const ModelInfo& model, std::vector<double> params) {

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <functional>
+#include <cstddef>
 #include <optional>
 #include <vector>
 
@@ -41,7 +42,32 @@ struct RenderedErrorOptions {
   double exposure_percentile = 99.0;
 };
 
-// Throws std::invalid_argument on options outside the ranges above. Failures of the inputs (no
+// The measured side of the metric, computed once per table: the lit pixels' directions and
+// measured radiances (masked lookups counted and left out). Scoring an approximation then
+// costs one evaluation per lit pixel (~20,000 at the defaults), so every fit of a table can be
+// scored without the table (fit/fitter.h keeps one in PreparedTable).
+struct RenderedReference {
+  struct Pixel {
+    Vec3 wi, wo;                    // local frame of the pixel's normal
+    double cos_l = 0;               // n.l
+    std::array<double, 3> measured; // L_m = f_m(wi, wo) n.l
+    int x = 0, y = 0;
+  };
+  RenderedError counts;                // resolution, lights, sphere/lit/masked pixel counts
+  std::vector<Pixel> pixels;           // light after light
+  std::vector<std::size_t> begin;      // light k: pixels [begin[k], begin[k + 1])
+  double luminance_floor = 0, exposure_percentile = 0;
+  bool Empty() const { return pixels.empty() && counts.num_lights == 0; }
+};
+
+// Throws std::invalid_argument on options outside the ranges above.
+RenderedReference PrepareRenderedReference(const Table& measured,
+                                           const RenderedErrorOptions& options = {});
+// The metric of an approximation against a prepared reference; failures as below.
+RenderedError ScoreRendered(const RenderedReference& reference, const BrdfFunction& approx);
+
+// PrepareRenderedReference + ScoreRendered. Throws std::invalid_argument on options outside the
+// ranges above. Failures of the inputs (no
 // lit pixel, black measurement, non-finite approximation) give ok = false and a problem.
 RenderedError ComputeRenderedError(const Table& measured, const BrdfFunction& approx,
                                    const RenderedErrorOptions& options = {});
