@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "models/catalog.h"
-#include "models/seed_variants.h"
 #include "tests/models/catalog_types.h"
 #include "tests/models/oracle_cases.h"
 #include "tests/models/oracles.h"
+#include "tests/models/seed_variants.h"
 
 namespace brdfit {
 namespace {
@@ -146,7 +146,7 @@ TEST(ModelOracles, WardAnisotropic) {
                                    oracle::WardAniso);
 }
 
-// ---- tutorial variants (models/seed_variants.h), against the sources' own code forms ---------
+// ---- tutorial variants (tests/models/seed_variants.h), against the sources' code forms -------
 // Their GGX and Beckmann forms ((n.h)^2 (a^2 - 1) + 1, 1 - (n.h)^2) cancel near theta_h = 0 for
 // small alpha; these grids keep alpha >= 0.1 where those forms are accurate. Sources:
 // docs/models.md, "Formula variants in tutorials and course notes".

@@ -15,7 +15,9 @@
 #include "models/microfacet/ndf.h"
 #include "models/registry.h"
 #include "tests/models/catalog_types.h"
+#include "tests/models/param_sets.h"
 #include "tests/models/quadrature.h"
+#include "tests/models/variant_terms.h"
 
 namespace brdfit {
 namespace {
@@ -151,7 +153,7 @@ double Albedo(const ModelInfo& m, const std::vector<double>& p, double theta_i) 
 // shape parameters); colour weights at `weight`. `grid` overrides the values of named shape
 // parameters.
 using Grid = std::map<std::string, std::vector<double>>;
-using ParamSets = std::vector<std::vector<double>>;
+using test::ParamSets;
 ParamSets LobeFurnaceParams(const std::vector<ParamSpec>& specs, const Grid& grid, double weight) {
   ParamSets sets = {{}};
   const auto shapes = std::count_if(specs.begin(), specs.end(),
@@ -198,21 +200,12 @@ struct FurnaceParams {
     return LobeFurnaceParams({M::kParams.begin(), M::kParams.end()}, LobeGrid(M::kName), weight);
   }
 };
-// A sum: colour weights 1 / (number of lobes); its k-th set joins lobe i's set (k + i) mod (its
-// count), so every lobe's grid appears (a full product of the lobes' grids would be slow).
+// A sum: colour weights 1 / (number of lobes), the lobes' grids joined (JoinLobeSets; a full
+// product of the lobes' grids would be slow).
 template <class... L>
 struct FurnaceParams<Sum<L...>> {
   static ParamSets Get() {
-    const std::vector<ParamSets> lobes = {FurnaceParams<L>::Get(1.0 / sizeof...(L))...};
-    std::size_t count = 0;
-    for (const auto& s : lobes) count = std::max(count, s.size());
-    ParamSets out(count);
-    for (std::size_t k = 0; k < count; ++k)
-      for (std::size_t i = 0; i < lobes.size(); ++i) {
-        const auto& p = lobes[i][(k + i) % lobes[i].size()];
-        out[k].insert(out[k].end(), p.begin(), p.end());
-      }
-    return out;
+    return test::JoinLobeSets({FurnaceParams<L>::Get(1.0 / sizeof...(L))...});
   }
 };
 
