@@ -5,8 +5,8 @@
 // The catalog holds what users fit or render: every single model and Lambert plus each
 // specular lobe, two-lobe GGX and two/three-lobe Lafortune. Each entry costs one Ceres autodiff
 // instantiation in fit/, so variants that reproduce tutorials (Schlick-k choices, legacy
-// normalizations, anisotropic Ward, ...) are types outside the catalog
-// (models/seed_variants.h, docs/models.md).
+// normalizations, anisotropic Ward, ...) are types outside the catalog, tested in
+// tests/models/seed_variants.h (docs/models.md).
 #pragma once
 
 #include <string>

@@ -51,14 +51,4 @@ T PowCos(double cos, double sin2, const T& n) {
   return exp(n * log_cos);
 }
 
-// x^n for a parameter-dependent base x and exponent n >= 1. x <= 0 returns 0: the lobe is
-// clipped there (max(0, x)^n), and log(x) would make Jet derivatives NaN.
-template <class T>
-T PowClipped(const T& x, const T& n) {
-  using std::exp;
-  using std::log;
-  if (x <= 0.0) return T(0.0);
-  return exp(n * log(x));
-}
-
 }  // namespace brdfit

@@ -1,4 +1,5 @@
-// Ward's anisotropic Gaussian lobe ("ward", "ward-duer"; anisotropic types for the preview).
+// Ward's Gaussian lobe, isotropic ("ward", "ward-duer"); the anisotropic form is
+// tests/models/seed_variants.h's WardAniso.
 #pragma once
 
 #include <array>
@@ -74,38 +75,6 @@ struct WardDuer : WardLobe<WardNormalization::kDuer2006> {
   static constexpr std::string_view kName = "ward-duer";
   static constexpr std::string_view kDoc =
       "isotropic Ward lobe with Duer 2006 normalization 1/(cos_i cos_o)";
-};
-
-// Anisotropic Ward lobe, Ward 1992 eq. 5:
-//   f_r = rho_s exp(-tan^2 th_h (cos^2 ph_h / ax^2 + sin^2 ph_h / ay^2))
-//         / (4 pi ax ay sqrt(cos_i cos_o))
-//       = rho_s exp(-((h.x/ax)^2 + (h.y/ay)^2) / h.z^2) / (4 pi ax ay sqrt(cos_i cos_o)),
-// x = the tangent direction of the local frame. For the preview and synthetic anisotropic
-// data; NOT in the catalog (fitted tables are isotropic). Parameters: rho_s RGB weights,
-// alpha_x, alpha_y [1e-4, 1] (log).
-template <WardNormalization N = WardNormalization::kWard1992>
-struct WardAniso {
-  static constexpr std::string_view kName = "ward-aniso";
-  static constexpr std::string_view kDoc = "anisotropic Ward lobe (Ward 1992 eq. 5)";
-  static constexpr bool kEnergyConserving = false;
-  static constexpr std::array<ParamSpec, 5> kParams = {{
-      detail::kWardWeights[0],
-      detail::kWardWeights[1],
-      detail::kWardWeights[2],
-      {"alpha_x", "1", 1e-4, 1.0, 0.1, true, "Ward roughness along the tangent x"},
-      {"alpha_y", "1", 1e-4, 1.0, 0.1, true, "Ward roughness along the bitangent y"},
-  }};
-
-  template <class T>
-  static void Eval(const T* p, const Geometry& g, T rgb[3]) {
-    using std::exp;
-    const T& ax = p[3];
-    const T& ay = p[4];
-    const double hz2 = g.h.z * g.h.z;
-    const T e = (g.h.x * g.h.x / hz2) / (ax * ax) + (g.h.y * g.h.y / hz2) / (ay * ay);
-    const T spec = exp(-e) * detail::WardNormalizationFactor(N, ax, ay, g);
-    for (int c = 0; c < 3; ++c) rgb[c] = p[c] * spec;
-  }
 };
 
 }  // namespace brdfit

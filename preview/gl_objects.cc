@@ -36,7 +36,9 @@ GLuint Compile(GLenum stage, const std::string& src) {
     GLint len = 0;
     glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
     std::string log(static_cast<size_t>(std::max(len, 1)), '\0');
-    glGetShaderInfoLog(s, len, nullptr, log.data());
+    GLsizei written = 0;  // without the terminating NUL, which would cut the message short
+    glGetShaderInfoLog(s, len, &written, log.data());
+    log.resize(static_cast<size_t>(written));
     glDeleteShader(s);
     throw std::runtime_error(std::string(stage == GL_VERTEX_SHADER ? "vertex" : "fragment") +
                              " shader failed to compile:\n" + log + "\n" + Numbered(src));
@@ -67,13 +69,17 @@ Program::Program(const std::string& vertex_src, const std::string& fragment_src)
     GLint len = 0;
     glGetProgramiv(id_, GL_INFO_LOG_LENGTH, &len);
     std::string log(static_cast<size_t>(std::max(len, 1)), '\0');
-    glGetProgramInfoLog(id_, len, nullptr, log.data());
+    GLsizei written = 0;
+    glGetProgramInfoLog(id_, len, &written, log.data());
+    log.resize(static_cast<size_t>(written));
     glDeleteProgram(id_);
     throw std::runtime_error("shader program failed to link:\n" + log);
   }
 }
 
-Program::~Program() { glDeleteProgram(id_); }
+Program::~Program() {
+  glDeleteProgram(id_);
+}
 
 GLint Program::Uniform(const std::string& name) {
   auto it = locations_.find(name);
@@ -156,7 +162,7 @@ Image Framebuffer::ReadRgba() const {
 }
 
 GpuMesh::GpuMesh(const std::vector<float>& vertices, const std::vector<int>& attribute_sizes,
-              const std::vector<unsigned>& indices) {
+                 const std::vector<unsigned>& indices) {
   int stride = 0;
   for (int s : attribute_sizes) stride += s;
   glGenVertexArrays(1, &vao_);
@@ -177,8 +183,9 @@ GpuMesh::GpuMesh(const std::vector<float>& vertices, const std::vector<int>& att
     indexed_ = true;
     glGenBuffers(1, &ebo_);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(unsigned)),
-                 indices.data(), GL_STATIC_DRAW);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(indices.size() * sizeof(unsigned)), indices.data(),
+                 GL_STATIC_DRAW);
     count_ = static_cast<GLsizei>(indices.size());
   } else {
     count_ = static_cast<GLsizei>(vertices.size() / static_cast<size_t>(stride));
@@ -203,8 +210,12 @@ void GpuMesh::Draw() const {
   glBindVertexArray(0);
 }
 
-Texture::Texture(GLenum target) : target_(target) { glGenTextures(1, &id_); }
-Texture::~Texture() { glDeleteTextures(1, &id_); }
+Texture::Texture(GLenum target) : target_(target) {
+  glGenTextures(1, &id_);
+}
+Texture::~Texture() {
+  glDeleteTextures(1, &id_);
+}
 void Texture::Bind(int unit) const {
   glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(unit));
   glBindTexture(target_, id_);

@@ -7,6 +7,8 @@
 #include "core/error.h"
 #include "models/catalog.h"
 #include "models/registry.h"
+#include "preview/glsl_microfacet.h"
+#include "preview/glsl_params.h"
 #include "preview/glsl_sources.h"
 
 namespace brdfit::preview {
@@ -17,8 +19,22 @@ struct LobesOf {
   static void Append(std::vector<GlslLobe>* out) {
     const std::size_t offset = out->empty() ? 0 : out->back().offset + out->back().count;
     const std::string name(M::kName);
-    out->push_back({name, "models/glsl/" + name + ".glsl", GlslFunctionName(name), offset,
-                    kNumParams<M>});
+    GlslLobe lobe;
+    lobe.name = name;
+    lobe.function = GlslFunctionName(name);
+    lobe.params_struct = GlslParamStructName(name);
+    for (const ParamSpec& p : M::kParams) lobe.param_names.emplace_back(p.name);
+    lobe.param_block =
+        GlslParamStruct(name, std::vector<ParamSpec>(M::kParams.begin(), M::kParams.end()));
+    if constexpr (MicrofacetLobe<M>) {
+      lobe.file = "models/glsl/microfacet.glsl";
+      lobe.entry_point = GlslMicrofacetEntryPoint<M>(lobe.function, lobe.params_struct);
+    } else {
+      lobe.file = "models/glsl/" + name + ".glsl";
+    }
+    lobe.offset = offset;
+    lobe.count = kNumParams<M>;
+    out->push_back(std::move(lobe));
   }
 };
 template <class... L>

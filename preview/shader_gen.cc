@@ -3,6 +3,7 @@
 #include <set>
 
 #include "preview/glsl_models.h"
+#include "preview/glsl_params.h"
 #include "preview/glsl_sources.h"
 
 namespace brdfit::preview {
@@ -31,22 +32,29 @@ void Include(const std::string& file, std::set<std::string>* included, std::stri
   *src += "// ---- " + file + "\n" + std::string(text) + "\n";
 }
 
-// EvalBrdf for an analytic model: each lobe's twin on its slice of uParams.
+// EvalBrdf for an analytic model: each lobe's generated parameter block (preview/glsl_params.h),
+// its GLSL (the twin file, or the generated microfacet entry point) and a call on its slice of
+// uParams.
 std::string AnalyticEval(const std::string& model) {
   const auto lobes = GlslLobes(model);
   std::string src;
-  std::set<std::string> included;
-  for (const auto& lobe : lobes) Include(lobe.file, &included, &src);
+  std::set<std::string> included, declared;
+  for (const auto& lobe : lobes) {
+    if (!declared.insert(lobe.name).second) continue;
+    src += "// ---- generated: " + lobe.params_struct + " from the kParams of " + lobe.name + "\n" +
+           lobe.param_block;
+    Include(lobe.file, &included, &src);
+    if (!lobe.entry_point.empty()) {
+      src += "// ---- generated: " + lobe.function + " from the term types of " + lobe.name + "\n" +
+             lobe.entry_point;
+    }
+  }
   const std::size_t n = lobes.back().offset + lobes.back().count;
   src += "uniform float uParams[" + std::to_string(n) + "];\n";
   src += "vec3 EvalBrdf(const in BrdfGeometry g) {\n  vec3 f = vec3(0.0);\n";
   for (const auto& lobe : lobes) {
-    const std::string c = std::to_string(lobe.count);
-    src += "  {\n    float p[" + c + "] = float[" + c + "](";
-    for (std::size_t i = 0; i < lobe.count; ++i) {
-      src += (i ? ", " : "") + std::string("uParams[") + std::to_string(lobe.offset + i) + "]";
-    }
-    src += ");\n    f += " + lobe.function + "(p, g);\n  }\n";
+    src += "  f += " + lobe.function + "(" +
+           GlslParamConstructor(lobe.name, "uParams", lobe.offset, lobe.count) + ", g);\n";
   }
   src += "  return f;\n}\n";
   return src;

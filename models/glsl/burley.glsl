@@ -3,19 +3,12 @@
 // f_d = kd / pi F(cos_i) F(cos_o) lerp(1, 1/1.51, r), F(c) = 1 + (F_D90 - 1)(1 - c)^5,
 // F_D90 = 0.5 r + 2 r cos_d^2. f_r in 1/sr, without the cosine.
 // brdfit-requires: models/glsl/math.glsl
-/* brdfit-params burley
-   name  unit lower upper init scale  role
-   kd_r  1    0     1     0.5  linear weight_r
-   kd_g  1    0     1     0.5  linear weight_g
-   kd_b  1    0     1     0.5  linear weight_b
-   alpha 1    1e-4  1     0.25 linear shape
-*/
-vec3 brdfit_burley(const in float p[4], const in BrdfGeometry g) {
-  float r = sqrt(p[3]);
+vec3 brdfit_burley(const in brdfit_burley_params p, const in BrdfGeometry g) {
+  float r = sqrt(p.alpha);
   float bias = 0.5 * r;
   float factor = 1.0 + (1.0 / 1.51 - 1.0) * r;
   float fd90 = bias + 2.0 * (g.cos_d * g.cos_d) * r;
   float fl = 1.0 + (fd90 - 1.0) * brdfit_Pow5(1.0 - g.cos_i);
   float fv = 1.0 + (fd90 - 1.0) * brdfit_Pow5(1.0 - g.cos_o);
-  return vec3(p[0], p[1], p[2]) * (fl * fv * factor * RECIPROCAL_PI);
+  return vec3(p.kd_r, p.kd_g, p.kd_b) * (fl * fv * factor * RECIPROCAL_PI);
 }

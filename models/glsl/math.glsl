@@ -15,16 +15,10 @@ float brdfit_Log1p(float x) {
   return x * s;
 }
 
-// cos(theta)^n from sin^2(theta): exp(n/2 log1p(-sin2)) (twin of PowCosFromSin2).
+// cos(theta)^n from sin^2(theta): exp(n/2 log1p(-sin2)) (twin of PowCos near the pole).
 float brdfit_PowCosFromSin2(float sin2, float n) {
   if (sin2 >= 1.0) return 0.0;
   return exp(0.5 * n * brdfit_Log1p(-sin2));
-}
-
-// max(0, x)^n for n >= 1 (twin of PowClipped).
-float brdfit_PowClipped(float x, float n) {
-  if (x <= 0.0) return 0.0;
-  return exp(n * log(x));
 }
 
 // Complementary error function with fractional error < 1.2e-7 everywhere: Press, Teukolsky,

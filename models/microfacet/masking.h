@@ -5,7 +5,8 @@
 // Ndf supplies Lambda for the Smith terms; the others ignore it. Every G is symmetric in
 // (wi, wo), so every microfacet lobe built from them is reciprocal. docs/models.md ("Formula
 // variants in tutorials and course notes") maps the G and visibility forms printed in tutorials
-// and lecture notes (Schlick-k choices, V-groove denominators, visibility terms) onto these types.
+// and lecture notes (Schlick-k choices, V-groove denominators, visibility terms) onto these types;
+// the visibility terms no catalog model uses are in tests/models/variant_terms.h.
 #pragma once
 
 #include <algorithm>
@@ -16,14 +17,6 @@
 #include "models/math.h"
 
 namespace brdfit {
-
-// Smith G1 for GGX in Walter et al. 2007's closed form (eq. 34):
-//   G1(v) = 2 / (1 + sqrt(1 + alpha^2 tan^2 theta_v)) = 1 / (1 + Lambda_GGX(v)).
-template <class T>
-T G1SmithGgx(const T& alpha, const Vec3& v) {
-  using std::sqrt;
-  return 2.0 / (1.0 + sqrt(1.0 + alpha * alpha * Tan2Theta(v)));
-}
 
 // Separable ("uncorrelated") Smith masking-shadowing, Heitz 2014 eq. 98:
 //   G2 = G1(wi) G1(wo),  G1(v) = 1 / (1 + Lambda(v))   (Smith 1967; Walter et al. 2007 eq. 23).
@@ -102,57 +95,6 @@ struct VGroove {
   static T G(const T& /*alpha*/, const Geometry& g) {
     const double s = 2.0 * g.cos_h / g.cos_d;
     return T(std::min({1.0, s * g.cos_o, s * g.cos_i}));
-  }
-};
-
-// Implicit G = cos_i cos_o: visibility G / (4 cos_i cos_o) = 1/4 (Hoffman 2010, "Physics and
-// Math of Shading", SIGGRAPH course: the G hidden in the Blinn-Phong BRDF).
-struct ImplicitG {
-  static constexpr std::string_view kName = "implicit";
-  template <class Ndf, class T>
-  static T G(const T& /*alpha*/, const Geometry& g) {
-    return T(g.cos_i * g.cos_o);
-  }
-};
-
-// Kelemen & Szirmay-Kalos 2001, "A Microfacet Based Coupled Specular-Matte BRDF Model with
-// Importance Sampling" (Eurographics short): G / (cos_i cos_o) ~ 2 / (1 + wi.wo) = 1 / cos_d^2
-// (their approximation of the Torrance-Sparrow / Cook-Torrance G).
-struct KelemenG {
-  static constexpr std::string_view kName = "Kelemen";
-  template <class Ndf, class T>
-  static T G(const T& /*alpha*/, const Geometry& g) {
-    return T(g.cos_i * g.cos_o / (g.cos_d * g.cos_d));
-  }
-};
-
-// Neumann, Neumann, Szirmay-Kalos 1999, "Compact Metallic Reflectance Models" (CGF 18(3)):
-//   G / (cos_i cos_o) = 1 / max(cos_i, cos_o).
-struct NeumannG {
-  static constexpr std::string_view kName = "Neumann";
-  template <class Ndf, class T>
-  static T G(const T& /*alpha*/, const Geometry& g) {
-    return T(std::min(g.cos_i, g.cos_o));  // cos_i cos_o / max(cos_i, cos_o)
-  }
-};
-
-// Ashikhmin & Premoze 2007, "Distribution-based BRDFs" (tech. report):
-//   G / (cos_i cos_o) = 1 / (cos_i + cos_o - cos_i cos_o).
-struct AshikhminPremozeG {
-  static constexpr std::string_view kName = "Ashikhmin-Premoze";
-  template <class Ndf, class T>
-  static T G(const T& /*alpha*/, const Geometry& g) {
-    return T(g.cos_i * g.cos_o / (g.cos_i + g.cos_o - g.cos_i * g.cos_o));
-  }
-};
-
-// No masking, G = 1 (Ward 1992's implicit visibility 1 / (cos_i cos_o); too bright at grazing
-// angles).
-struct NoMasking {
-  static constexpr std::string_view kName = "none";
-  template <class Ndf, class T>
-  static T G(const T& /*alpha*/, const Geometry& /*g*/) {
-    return T(1.0);
   }
 };
 

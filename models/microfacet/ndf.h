@@ -75,17 +75,6 @@ T LambdaBeckmann(const T& alpha, double tan2) {
   return 0.5 * (exp(-a * a) * inv_a / std::sqrt(kPi) - erfc(a));
 }
 
-// --- Blinn-Phong (power of cosine) ---------------------------------------------------------
-
-// Walter et al. 2007 eq. 30 (Blinn 1977 normalized as a microfacet distribution):
-//   D(h) = (n + 2) / (2 pi) cos^n th.
-// The normalized Blinn-Phong BRDF (models/blinn_phong.h) uses (n + 8)/(8 pi) instead: that is
-// the BRDF normalization including an implicit G and the 1/(4 cos cos).
-template <class T>
-T DBlinnPhong(const T& n, double cos_h, double sin2_h) {
-  return (n + 2.0) / (2.0 * kPi) * PowCos(cos_h, sin2_h, n);
-}
-
 // --- Policy types ------------------------------------------------------------------------------
 
 struct GgxNdf {

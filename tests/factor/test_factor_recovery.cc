@@ -10,6 +10,7 @@
 #include "factor/factor.h"
 #include "models/ggx.h"
 #include "tests/factor/factor_test_util.h"
+#include "tests/models/variant_terms.h"
 
 namespace brdfit {
 namespace {

@@ -8,6 +8,7 @@
 #include "models/microfacet/masking.h"
 #include "models/microfacet/ndf.h"
 #include "tests/models/oracles.h"
+#include "tests/models/variant_terms.h"
 
 namespace brdfit {
 namespace {
