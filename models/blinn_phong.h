@@ -23,7 +23,7 @@ namespace brdfit {
 struct BlinnPhong {
   static constexpr std::string_view kName = "blinn-phong";
   static constexpr std::string_view kDoc =
-      "normalized Blinn-Phong lobe ks (n+8)/(8 pi) cos^n theta_h (Blinn 1977; seed 001)";
+      "normalized Blinn-Phong lobe ks (n+8)/(8 pi) cos^n theta_h (Blinn 1977)";
   static constexpr bool kEnergyConserving = false;
   static constexpr std::array<ParamSpec, 4> kParams = {{
       {"ks_r", "1", 0.0, 1e3, 0.1, false, "specular weight, red", ParamRole::kWeightR},

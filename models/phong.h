@@ -24,7 +24,7 @@ namespace brdfit {
 struct Phong {
   static constexpr std::string_view kName = "phong";
   static constexpr std::string_view kDoc =
-      "normalized Phong lobe ks (n+2)/(2 pi) cos^n alpha_r (Lewis 1994; seed 001)";
+      "normalized Phong lobe ks (n+2)/(2 pi) cos^n alpha_r (Lewis 1994)";
   static constexpr bool kEnergyConserving = true;
   static constexpr std::array<ParamSpec, 4> kParams = {{
       {"ks_r", "1", 0.0, 1e3, 0.1, false, "specular weight, red", ParamRole::kWeightR},

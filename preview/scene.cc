@@ -184,7 +184,8 @@ Light ParseLight(Reader r, int index) {
     l.distance = r.NonNegative("distance", 0.0);
     l.decay = r.NonNegative("decay", 0.0);
     if (l.decay > 0 && l.distance == 0) {
-      r.Fail("'decay' > 0 needs 'distance' > 0 (seed 000 attenuates by (1 - d / distance)^decay)");
+      r.Fail("'decay' > 0 needs 'distance' > 0 (the falloff is (1 - d / distance)^decay, as "
+             "Three.js point lights)");
     }
     if (l.type == LightType::kSpot) {
       l.target = r.Vector("target", l.target);

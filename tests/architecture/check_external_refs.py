@@ -54,12 +54,7 @@ DISAGREEMENT = re.compile(r'(?<![\w.])D(?:[1-9]|1\d|2\d)(?![\w.])')
 # byte-identical. Each entry is (path, exact text on the line, why). An entry whose file
 # exists but no longer holds the text is reported, so the list cannot go stale.
 ALLOWED = (
-    ('models/blinn_phong.h', '(Blinn 1977; seed 001)";',
-     'kDoc string printed by `brdfit models`'),
-    ('models/phong.h', '(Lewis 1994; seed 001)";',
-     'kDoc string printed by `brdfit models`'),
-    ('preview/scene.cc', '(seed 000 attenuates by (1 - d / distance)^decay)"',
-     'scene-file error message printed to users'),
+    # Empty: no user-visible string cites an outside document any more.
 )
 
 
