@@ -69,7 +69,8 @@ std::vector<BenchTable> LoadTables(const std::vector<std::string>& nbrdf) {
   return tables;
 }
 
-// Google Benchmark: init + LM of lambert+ggx, metrics excluded (a one-sample metric set).
+// Google Benchmark: init + LM of lambert+ggx, metrics excluded (a one-sample metric set, no
+// rendered-image metric).
 void BM_LambertGgx(benchmark::State& state, const BenchTable* table, std::string budget) {
   SampleOptions so;
   so.budget = Budget::Parse(budget);
@@ -77,6 +78,7 @@ void BM_LambertGgx(benchmark::State& state, const BenchTable* table, std::string
   PreparedTable prepared = PrepareTable(table->table, so, fo);
   prepared.metric_own = Subsample(prepared.fit, 1, 1);
   prepared.has_own_metric = true;
+  prepared.rendered = RenderedReference{};  // metrics excluded (bench_metrics times them)
   FitResult r;
   for (auto _ : state) {
     r = FitPrepared("lambert+ggx", prepared, fo);
