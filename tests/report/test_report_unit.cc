@@ -313,8 +313,8 @@ TEST(Compare, TimeRegressionOnlyWhenAsked) {
 }
 
 TEST(Compare, MetricChoice) {
-  EXPECT_EQ(MetricNameFromString("cbrt_rmse"), MetricName::kCbrtRmse);
-  EXPECT_THROW(MetricNameFromString("psnr"), InputError);
+  EXPECT_EQ(FromString<MetricName>("cbrt_rmse"), MetricName::kCbrtRmse);
+  EXPECT_THROW(FromString<MetricName>("psnr"), InputError);
 }
 
 // ---- inputs ---------------------------------------------------------------------------------
