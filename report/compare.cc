@@ -20,7 +20,7 @@ bool Usable(const Entry& e) {
 }
 }  // namespace
 
-double MetricValue(const Metrics& m, MetricName name) {
+double MetricValue(const FitMetrics& m, MetricName name) {
   switch (name) {
     case MetricName::kCbrtRmse:
       return m.cbrt_rmse;
@@ -147,7 +147,7 @@ namespace {
 nlohmann::ordered_json Num(double v) {
   return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
 }
-nlohmann::ordered_json MetricsJson(const Metrics& m) {
+nlohmann::ordered_json MetricsJson(const FitMetrics& m) {
   return {{"ok", m.ok}, {"log_rmse", Num(m.log_rmse)}, {"cbrt_rmse", Num(m.cbrt_rmse)},
           {"rel_l2", Num(m.rel_l2)}};
 }

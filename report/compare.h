@@ -20,7 +20,7 @@ inline constexpr auto kMetricNames =
 constexpr const auto& EnumNamesOf(MetricName) {
   return kMetricNames;
 }
-double MetricValue(const Metrics& m, MetricName name);
+double MetricValue(const FitMetrics& m, MetricName name);
 
 struct CompareOptions {
   MetricName metric = MetricName::kLogRmse;  // the metric that decides
@@ -67,7 +67,7 @@ struct EntryDelta {
   std::string status_old, status_new;
   double old_value = 0, new_value = 0;  // the deciding metric (NaN when absent or unusable)
   double rel_change = 0;                // (new - old) / old; NaN when undefined
-  Metrics old_metrics, new_metrics;
+  FitMetrics old_metrics, new_metrics;
   double old_time_ms = 0, new_time_ms = 0;
 };
 
