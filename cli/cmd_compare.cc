@@ -32,7 +32,7 @@ report::Report Load(const std::string& path) {
 }
 
 int RunCompare(CompareCliOptions o) {
-  o.options.metric = report::MetricNameFromString(o.metric);
+  o.options.metric = FromString<report::MetricName>(o.metric);
   o.options.missing_is_regression = !o.ignore_missing;
   if (!(o.options.threshold >= 0) || !(o.options.abs_floor >= 0) ||
       !(o.options.time_threshold >= 0)) {

@@ -82,7 +82,7 @@ FactorOptions CheckOptions(const FactorCliOptions& o) {
   f.param = FactorParamFromString(o.param);
   f.resolution = o.resolution;
   f.lambda = o.lambda;
-  f.weighting = FactorWeightingFromString(o.weighting);
+  f.weighting = FromString<FactorWeighting>(o.weighting);
   if (!(o.max_theta_deg > 0 && o.max_theta_deg <= 90)) {
     throw InputError(fmt::format("--max-theta {} outside (0, 90]", o.max_theta_deg));
   }

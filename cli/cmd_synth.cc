@@ -67,7 +67,7 @@ Grid ParseGrid(const std::string& text, const std::string& mapping) {
   g.n_theta_h = static_cast<int>(n[0]);
   g.n_theta_d = static_cast<int>(n[1]);
   g.n_phi_d = static_cast<int>(n[2]);
-  g.theta_h_mapping = ThetaHMappingFromString(mapping);
+  g.theta_h_mapping = FromString<ThetaHMapping>(mapping);
   return g;
 }
 
@@ -155,7 +155,7 @@ int RunSynth(const SynthCliOptions& o) {
   }
   const fs::path out = o.out;
   const std::optional<TableFormat> format =
-      o.format.empty() ? TableFormatFromExtension(out) : TableFormatFromString(o.format);
+      o.format.empty() ? TableFormatFromExtension(out) : FromString<TableFormat>(o.format);
   if (!format) {
     throw InputError(out,
                      "cannot tell the format from the extension: use .binary or .h5, or "

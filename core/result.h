@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_names.h"
 #include "core/metrics.h"
 #include "core/sample_counts.h"
 
@@ -15,16 +16,12 @@ enum class FitStatus {
   kNoConvergence,  // iteration limit reached; parameters are the best found, still usable
   kFailed,         // no usable result (see message); parameters are the initial guess or 0
 };
-inline const char* ToString(FitStatus s) {
-  switch (s) {
-    case FitStatus::kConverged:
-      return "converged";
-    case FitStatus::kNoConvergence:
-      return "no_convergence";
-    case FitStatus::kFailed:
-      return "failed";
-  }
-  return "failed";
+inline constexpr auto kFitStatusNames =
+    MakeEnumNames<FitStatus>("fit status", {{FitStatus::kConverged, "converged"},
+                                            {FitStatus::kNoConvergence, "no_convergence"},
+                                            {FitStatus::kFailed, "failed"}});
+constexpr const auto& EnumNamesOf(FitStatus) {
+  return kFitStatusNames;
 }
 
 // Milliseconds. Wall clock, and the fitting thread's CPU time (CLOCK_THREAD_CPUTIME_ID): on a

@@ -11,14 +11,6 @@ namespace {
 constexpr double kHalfPi = kPi / 2;
 }
 
-const char* ToString(ThetaHMapping m) { return m == ThetaHMapping::kSqrt ? "sqrt" : "linear"; }
-
-ThetaHMapping ThetaHMappingFromString(const std::string& s) {
-  if (s == "sqrt" || s == "merl") return ThetaHMapping::kSqrt;
-  if (s == "linear") return ThetaHMapping::kLinear;
-  throw InputError("unknown theta_h mapping '" + s + "' (expected sqrt or linear)");
-}
-
 void Grid::Unindex(std::size_t idx, int* ih, int* id, int* ip) const {
   *ip = static_cast<int>(idx % n_phi_d);
   idx /= n_phi_d;

@@ -20,14 +20,21 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_names.h"
 #include "models/geometry.h"
 
 namespace brdfit {
 
 enum class ThetaHMapping { kSqrt, kLinear };
 
-const char* ToString(ThetaHMapping m);
-ThetaHMapping ThetaHMappingFromString(const std::string& s);  // throws InputError
+// "merl" is accepted for "sqrt".
+inline constexpr auto kThetaHMappingNames =
+    MakeEnumNames<ThetaHMapping>("theta_h mapping", {{ThetaHMapping::kSqrt, "sqrt"},
+                                                     {ThetaHMapping::kLinear, "linear"},
+                                                     {ThetaHMapping::kSqrt, "merl", true}});
+constexpr const auto& EnumNamesOf(ThetaHMapping) {
+  return kThetaHMappingNames;
+}
 
 struct Grid {
   int n_theta_h = 90;

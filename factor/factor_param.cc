@@ -4,37 +4,6 @@
 
 namespace brdfit {
 
-const char* ToString(FactorParam p) {
-  return p == FactorParam::kMcCool ? "mccool" : "halfdiff";
-}
-
-FactorParam FactorParamFromString(const std::string& s) {
-  if (s == "mccool") return FactorParam::kMcCool;
-  if (s == "halfdiff") return FactorParam::kHalfDiff;
-  throw InputError("unknown parameterization '" + s + "' (expected mccool or halfdiff)");
-}
-
-const char* ToString(FactorMap m) {
-  switch (m) {
-    case FactorMap::kDiskParabolic:
-      return "disk-parabolic";
-    case FactorMap::kDiskSqrtTheta:
-      return "disk-sqrt-theta";
-    case FactorMap::kThetaDPhiD:
-      return "theta_d-phi_d";
-  }
-  return "?";
-}
-
-FactorMap FactorMapFromString(const std::string& s) {
-  for (FactorMap m :
-       {FactorMap::kDiskParabolic, FactorMap::kDiskSqrtTheta, FactorMap::kThetaDPhiD}) {
-    if (s == ToString(m)) return m;
-  }
-  throw InputError("unknown texture map '" + s +
-                   "' (expected disk-parabolic, disk-sqrt-theta or theta_d-phi_d)");
-}
-
 const char* MapFormula(FactorMap m) {
   switch (m) {
     case FactorMap::kDiskParabolic:

@@ -45,20 +45,33 @@
 #include <cmath>
 #include <string>
 
+#include "core/enum_names.h"
 #include "models/geometry.h"
 
 namespace brdfit {
 
 enum class FactorParam { kMcCool, kHalfDiff };
 
-const char* ToString(FactorParam p);
-FactorParam FactorParamFromString(const std::string& s);  // throws InputError
+inline constexpr auto kFactorParamNames = MakeEnumNames<FactorParam>(
+    "parameterization", {{FactorParam::kMcCool, "mccool"}, {FactorParam::kHalfDiff, "halfdiff"}});
+constexpr const auto& EnumNamesOf(FactorParam) {
+  return kFactorParamNames;
+}
+// FromString<FactorParam> under the name its callers use.
+inline FactorParam FactorParamFromString(const std::string& s) {
+  return FromString<FactorParam>(s);
+}
 
 // The map of one factor texture.
 enum class FactorMap { kDiskParabolic, kDiskSqrtTheta, kThetaDPhiD };
 
-const char* ToString(FactorMap m);
-FactorMap FactorMapFromString(const std::string& s);  // throws InputError
+inline constexpr auto kFactorMapNames =
+    MakeEnumNames<FactorMap>("texture map", {{FactorMap::kDiskParabolic, "disk-parabolic"},
+                                             {FactorMap::kDiskSqrtTheta, "disk-sqrt-theta"},
+                                             {FactorMap::kThetaDPhiD, "theta_d-phi_d"}});
+constexpr const auto& EnumNamesOf(FactorMap) {
+  return kFactorMapNames;
+}
 // The map's formula and texel convention in one line (written into the EXR headers).
 const char* MapFormula(FactorMap m);
 

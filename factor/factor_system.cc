@@ -9,20 +9,10 @@
 #include <cmath>
 #include <cstring>
 
-#include "fit/bin_measure.h"
 #include "core/error.h"
+#include "fit/bin_measure.h"
 
 namespace brdfit {
-
-const char* ToString(FactorWeighting w) {
-  return w == FactorWeighting::kSolidAngle ? "solid-angle" : "cell";
-}
-
-FactorWeighting FactorWeightingFromString(const std::string& s) {
-  if (s == "solid-angle") return FactorWeighting::kSolidAngle;
-  if (s == "cell") return FactorWeighting::kCell;
-  throw InputError("unknown weighting '" + s + "' (expected solid-angle or cell)");
-}
 
 std::uint64_t HashMask(const std::vector<std::uint8_t>& mask) {
   // FNV-1a, 64 bit.

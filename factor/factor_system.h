@@ -24,8 +24,8 @@
 #include <string>
 #include <vector>
 
-#include "factor/factor_param.h"
 #include "core/table.h"
+#include "factor/factor_param.h"
 
 namespace brdfit {
 
@@ -41,8 +41,11 @@ namespace brdfit {
 // without them give the same matrix.
 enum class FactorWeighting { kSolidAngle, kCell };
 
-const char* ToString(FactorWeighting w);
-FactorWeighting FactorWeightingFromString(const std::string& s);  // throws InputError
+inline constexpr auto kFactorWeightingNames = MakeEnumNames<FactorWeighting>(
+    "weighting", {{FactorWeighting::kSolidAngle, "solid-angle"}, {FactorWeighting::kCell, "cell"}});
+constexpr const auto& EnumNamesOf(FactorWeighting) {
+  return kFactorWeightingNames;
+}
 
 // Everything the system matrix depends on besides the cell mask.
 struct FactorSystemOptions {

@@ -51,25 +51,4 @@ bool CompressGram(const double* gram, int P, double cost, double* residuals, dou
   return jac.allFinite() && std::isfinite(residuals[P]);
 }
 
-void Robustify(const ceres::LossFunction* robust, double e, double* cost, double* res_scale,
-               double* jac_scale) {
-  const double s = e * e;
-  if (robust == nullptr) {
-    *cost = s;
-    *res_scale = *jac_scale = 1.0;
-    return;
-  }
-  double rho[3];
-  robust->Evaluate(s, rho);
-  *cost = rho[0];
-  const double sqrt_rho1 = std::sqrt(std::max(rho[1], 0.0));
-  if (s == 0.0 || rho[2] <= 0.0 || !(rho[1] > 0.0)) {
-    *res_scale = *jac_scale = sqrt_rho1;
-    return;
-  }
-  const double alpha = 1.0 - std::sqrt(1.0 + 2.0 * s * rho[2] / rho[1]);
-  *res_scale = sqrt_rho1 / (1.0 - alpha);
-  *jac_scale = sqrt_rho1 * (1.0 - alpha);
-}
-
 }  // namespace brdfit::internal

@@ -2,8 +2,6 @@
 // per-model autodiff instantiations to keep compile times down.
 #pragma once
 
-#include <ceres/loss_function.h>
-
 namespace brdfit::internal {
 
 // gram ((cols x cols), column-major, lower triangle used) += rows^T rows, rows row-major n x cols.
@@ -13,10 +11,5 @@ void AccumulateGram(const double* rows, int n, int cols, double* gram);
 // cost, writes residuals (P + 1) and the row-major (P + 1) x P Jacobian of the compressed block:
 // R^T R = J^T J, R^T z = J^T r, |z|^2 + rho^2 = cost (fit/block_cost.h). False if non-finite.
 bool CompressGram(const double* gram, int P, double cost, double* residuals, double* jacobian);
-
-// Robust weighting of one unweighted residual e: the cost term rho(e^2) and the factors of the
-// residual and of its Jacobian row (Triggs correction, as ceres::Corrector). robust may be null.
-void Robustify(const ceres::LossFunction* robust, double e, double* cost, double* res_scale,
-               double* jac_scale);
 
 }  // namespace brdfit::internal

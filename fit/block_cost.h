@@ -11,11 +11,9 @@
 // directly, in the same order with and without Jacobians, so LM's accept/reject ratio stays
 // exact near zero residual (noise-free recovery reaches costs ~1e-30).
 //
-// Robust losses are applied per residual, as ceres::Corrector does (Triggs et al. 2000,
-// "Bundle Adjustment — A Modern Synthesis", §4.3): with s = e^2 and rho', rho'' of the
-// robust function, the row is scaled by sqrt(rho') (1 - a) and the residual by
-// sqrt(rho') / (1 - a), a = 1 - sqrt(1 + 2 s rho'' / rho') when rho'' > 0, else 0; the cost
-// adds rho(s). For concave rho (Huber, Cauchy) rho(s) >= s rho'(s) keeps rho^2 >= 0 above.
+// Robust losses are applied per residual, as ceres::Corrector does (fit/residual.h: the row is
+// scaled by jac_scale, the residual by res_scale, the cost adds rho(e^2)). For concave rho
+// (Huber, Cauchy) rho(s) >= s rho'(s) keeps rho^2 >= 0 above.
 #pragma once
 
 #include <ceres/cost_function.h>
@@ -28,6 +26,7 @@
 #include "fit/block_compress.h"
 #include "fit/loss.h"
 #include "fit/param_layout.h"
+#include "fit/residual.h"
 #include "fit/samples.h"
 #include "models/param.h"
 
@@ -75,11 +74,8 @@ class BlockCost final : public ceres::CostFunction {
       for (int ch = 0; ch < 3; ++ch) {
         for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
           const double w = l_.sqrt_w[o];
-          const double e = l_.Inv(o, ch) *
-                           (LossTransform(l_.kind, rgb[ch] * l_.mult[o]) - l_.target[3 * o + ch]);
-          double term, rs, js;
-          Robustify(robust_, e, &term, &rs, &js);
-          cost += w * w * term;
+          const RobustTerm r = Robustify(robust_, LossResidual(l_, o, ch, rgb[ch]));
+          cost += w * w * r.cost;
         }
       }
     }
@@ -92,7 +88,6 @@ class BlockCost final : public ceres::CostFunction {
   // (sum a_j^2) grad f grad f^T and J^T r gains (sum a_j b_j) grad f (b_j the weighted,
   // robustified residual): one rank-1 row [sqrt(sum a^2) grad f, sum a b / sqrt(sum a^2)].
   bool WithJacobian(const double* x, double* residuals, double* jacobian) const {
-    using Slope = ceres::Jet<double, 1>;
     constexpr int kCols = P + 1;
     constexpr int kChunk = 64;
     std::array<double, kChunk * kCols> rows;
@@ -111,15 +106,13 @@ class BlockCost final : public ceres::CostFunction {
       for (int ch = 0; ch < 3; ++ch) {
         double saa = 0, sab = 0;
         for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
-          const double c = l_.mult[o], w = l_.sqrt_w[o], inv = l_.Inv(o, ch);
-          const Slope t = LossTransform(l_.kind, Slope(rgb[ch].a * c, 0));
-          const double e = inv * (t.a - l_.target[3 * o + ch]);
-          double term, rs, js;
-          Robustify(robust_, e, &term, &rs, &js);
-          cost += w * w * term;
-          const double a = w * js * inv * t.v[0] * c;
+          const double w = l_.sqrt_w[o];
+          const SlopedResidual e = LossResidualWithSlope(l_, o, ch, rgb[ch].a);
+          const RobustTerm r = Robustify(robust_, e.e);
+          cost += w * w * r.cost;
+          const double a = e.Slope(w * r.jac_scale);
           saa += a * a;
-          sab += a * (w * rs * e);
+          sab += a * (w * r.res_scale * e.e);
         }
         if (!(saa > 0)) continue;
         const double sq = std::sqrt(saa);

@@ -1,13 +1,12 @@
 #include "fit/grid_init.h"
 
-#include <ceres/jet.h>
-
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "fit/box_lsq.h"
+#include "fit/residual.h"
 
 namespace brdfit::internal {
 
@@ -77,7 +76,7 @@ GridInitializer::GridInitializer(const Samples& s, const LossData& l, const Para
   for (std::size_t o = 0; o < n; ++o) {
     for (int ch = 0; ch < 3; ++ch) {
       const double m = s.value[3 * o + ch];
-      const double d = l.Inv(o, ch) * Slope(m * l.mult[o]) * l.mult[o];
+      const double d = LossResidualWithSlope(l, o, ch, m).Slope();
       w_data_[3 * o + ch] = l.sqrt_w[o] * l.sqrt_w[o] * d * d;
       y_data_[3 * o + ch] = m;
     }
@@ -137,7 +136,6 @@ std::vector<double> GridInitializer::Spacing(const std::vector<int>& dims,
   return out;
 }
 
-// d T(x) / dx of the loss transform, through a Jet (same guards as the loss).
 InitCandidate GridInitializer::EvaluatePoint(std::vector<double> p) {
   ComputeBasis(p);
   SolveWeights(w_data_, y_data_, &p);
@@ -183,11 +181,6 @@ void GridInitializer::PatternSearch(InitCandidate* c, const std::vector<int>& di
       step[d] = improved ? std::min(2.0 * step[d], 0.25 * range) : 0.5 * step[d];
     }
   }
-}
-
-double GridInitializer::Slope(double x) const {
-  const ceres::Jet<double, 1> j(x, 0);
-  return LossTransform(l_.kind, j).v[0];
 }
 
 // basis_[(s * K + k) * 3 + ch]: lobe k's value in channel ch with unit weights.
@@ -257,16 +250,10 @@ void GridInitializer::Relinearize(std::vector<double>* p) {
     for (int ch = 0; ch < 3; ++ch) {
       const double f0 = Predict(*p, s, ch);
       for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
-        const double c = l_.mult[o], inv = l_.Inv(o, ch);
-        const double e0 = inv * (LossTransform(l_.kind, f0 * c) - l_.target[3 * o + ch]);
-        const double d = inv * Slope(f0 * c) * c;
+        const SlopedResidual r = LossResidualWithSlope(l_, o, ch, f0);
+        const double e0 = r.e, d = r.Slope();
         if (!(std::abs(d) > 0) || !std::isfinite(e0)) continue;
-        double irls = 1.0;
-        if (robust_ != nullptr) {
-          double rho[3];
-          robust_->Evaluate(e0 * e0, rho);
-          irls = std::max(rho[1], 0.0);
-        }
+        const double irls = Robustify(robust_, e0).weight;
         w[3 * o + ch] = l_.sqrt_w[o] * l_.sqrt_w[o] * d * d * irls;
         y[3 * o + ch] = f0 - e0 / d;
       }
@@ -282,14 +269,7 @@ double GridInitializer::Score(const std::vector<double>& p) const {
     for (int ch = 0; ch < 3; ++ch) {
       const double f = Predict(p, s, ch);
       for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
-        const double e =
-            l_.Inv(o, ch) * (LossTransform(l_.kind, f * l_.mult[o]) - l_.target[3 * o + ch]);
-        double term = e * e;
-        if (robust_ != nullptr) {
-          double rho[3];
-          robust_->Evaluate(term, rho);
-          term = rho[0];
-        }
+        const double term = Robustify(robust_, LossResidual(l_, o, ch, f)).cost;
         cost += l_.sqrt_w[o] * l_.sqrt_w[o] * term;
       }
     }

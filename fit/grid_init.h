@@ -59,7 +59,6 @@ class GridInitializer {
                      int max_evaluations);
   std::vector<double> Spacing(const std::vector<int>& dims,
                               const std::vector<double>& fractions) const;
-  double Slope(double x) const;
   void ComputeBasis(const std::vector<double>& p);
   double Predict(const std::vector<double>& p, std::size_t s, int ch) const;
   void SolveWeights(const std::vector<double>& w, const std::vector<double>& y,

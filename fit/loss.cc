@@ -8,47 +8,6 @@
 
 namespace brdfit {
 
-const char* ToString(LossKind k) {
-  switch (k) {
-    case LossKind::kLog:
-      return "log";
-    case LossKind::kCbrt:
-      return "cbrt";
-    case LossKind::kRel:
-      return "rel";
-    case LossKind::kL2:
-      return "l2";
-  }
-  return "log";
-}
-
-LossKind LossKindFromString(const std::string& s) {
-  if (s == "log") return LossKind::kLog;
-  if (s == "cbrt") return LossKind::kCbrt;
-  if (s == "rel") return LossKind::kRel;
-  if (s == "l2") return LossKind::kL2;
-  throw InputError("unknown loss '" + s + "' (expected log, cbrt, rel or l2)");
-}
-
-const char* ToString(RobustKind k) {
-  switch (k) {
-    case RobustKind::kNone:
-      return "none";
-    case RobustKind::kHuber:
-      return "huber";
-    case RobustKind::kCauchy:
-      return "cauchy";
-  }
-  return "none";
-}
-
-RobustKind RobustKindFromString(const std::string& s) {
-  if (s == "none") return RobustKind::kNone;
-  if (s == "huber") return RobustKind::kHuber;
-  if (s == "cauchy") return RobustKind::kCauchy;
-  throw InputError("unknown robust loss '" + s + "' (expected none, huber or cauchy)");
-}
-
 LossData PrepareLoss(const Samples& samples, const FitOptions& options) {
   LossData d;
   d.kind = options.loss;

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <string>
 
+#include "core/enum_names.h"
+
 namespace brdfit {
 
 // The data term of a residual, per cell and channel (f: model, m: measured, c = cos theta_i,
@@ -16,14 +18,31 @@ enum class LossKind {
   kRel,   // (f - m) / (|m| + eps)                relative error
   kL2,    // f c - m c                            cosine-weighted L2 (Ngan et al. 2005)
 };
-const char* ToString(LossKind k);
-LossKind LossKindFromString(const std::string& s);  // throws InputError
+inline constexpr auto kLossKindNames = MakeEnumNames<LossKind>("loss", {{LossKind::kLog, "log"},
+                                                                        {LossKind::kCbrt, "cbrt"},
+                                                                        {LossKind::kRel, "rel"},
+                                                                        {LossKind::kL2, "l2"}});
+constexpr const auto& EnumNamesOf(LossKind) {
+  return kLossKindNames;
+}
+// FromString<LossKind> under the name its callers use.
+inline LossKind LossKindFromString(const std::string& s) {
+  return FromString<LossKind>(s);
+}
 
 // Robust loss on each residual (ceres::HuberLoss / ceres::CauchyLoss with scale robust_scale,
 // in the units of the loss's data term, e.g. log units for kLog).
 enum class RobustKind { kNone, kHuber, kCauchy };
-const char* ToString(RobustKind k);
-RobustKind RobustKindFromString(const std::string& s);  // throws InputError
+inline constexpr auto kRobustKindNames = MakeEnumNames<RobustKind>(
+    "robust loss",
+    {{RobustKind::kNone, "none"}, {RobustKind::kHuber, "huber"}, {RobustKind::kCauchy, "cauchy"}});
+constexpr const auto& EnumNamesOf(RobustKind) {
+  return kRobustKindNames;
+}
+// FromString<RobustKind> under the name its callers use.
+inline RobustKind RobustKindFromString(const std::string& s) {
+  return FromString<RobustKind>(s);
+}
 
 struct FitOptions {
   LossKind loss = LossKind::kLog;

@@ -5,10 +5,10 @@
 #include <charconv>
 #include <cmath>
 
+#include "core/error.h"
 #include "fit/bin_measure.h"
 #include "fit/loss.h"
 #include "fit/stratified.h"
-#include "core/error.h"
 
 namespace brdfit {
 
@@ -81,16 +81,6 @@ std::string Budget::ToString() const {
       return "random:" + std::to_string(count);
   }
   return "full";
-}
-
-const char* ToString(Weighting w) {
-  return w == Weighting::kBinMeasure ? "bin-measure" : "uniform";
-}
-
-Weighting WeightingFromString(const std::string& s) {
-  if (s == "bin-measure" || s == "measure") return Weighting::kBinMeasure;
-  if (s == "uniform") return Weighting::kUniform;
-  throw InputError("unknown weighting '" + s + "' (expected bin-measure or uniform)");
 }
 
 Samples PrepareSamples(const Table& table, const SampleOptions& options) {

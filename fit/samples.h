@@ -43,8 +43,18 @@ enum class Weighting {
   kBinMeasure,  // each cell weighted by its measure in (wi, wo) space (fit/bin_measure.h)
   kUniform,     // every cell weighs 1 (as tools that ignore the non-uniform MERL bins)
 };
-const char* ToString(Weighting w);
-Weighting WeightingFromString(const std::string& s);  // throws InputError
+// "measure" is accepted for "bin-measure".
+inline constexpr auto kWeightingNames =
+    MakeEnumNames<Weighting>("weighting", {{Weighting::kBinMeasure, "bin-measure"},
+                                           {Weighting::kUniform, "uniform"},
+                                           {Weighting::kBinMeasure, "measure", true}});
+constexpr const auto& EnumNamesOf(Weighting) {
+  return kWeightingNames;
+}
+// FromString<Weighting> under the name its callers use.
+inline Weighting WeightingFromString(const std::string& s) {
+  return FromString<Weighting>(s);
+}
 
 struct SampleOptions {
   double cutoff_deg = 80.0;  // cells with theta_i or theta_o above it are skipped

@@ -13,7 +13,7 @@
 #include <thread>
 
 #include "core/error.h"
-#include "io/hdf5_storage.h"
+#include "io/hdf5_util.h"
 #include "io/input_file.h"
 
 namespace brdfit {
@@ -88,29 +88,20 @@ std::vector<char> ReadMember(const fs::path& path, zip_t* z, const std::string& 
 }
 
 // Reads dataset `name` ([rows][cols] or [cols]) as doubles in row-major order.
-Eigen::MatrixXd ReadWeights(const fs::path& path, const std::string& member, const H5::H5File& f,
-                            const std::string& name, hsize_t rows, hsize_t cols) {
-  if (!f.nameExists(name)) throw InputError(path, member + ": missing dataset " + name);
-  H5::DataSet ds = f.openDataSet(name);
-  const H5::DataSpace space = ds.getSpace();
-  std::vector<hsize_t> dims(space.getSimpleExtentNdims());
-  space.getSimpleExtentDims(dims.data());
+Eigen::MatrixXd ReadWeights(const hdf5::Reader& in, const H5::H5File& f, const std::string& name,
+                            hsize_t rows, hsize_t cols) {
+  std::vector<hsize_t> dims;
+  const H5::DataSet ds = in.Dataset(f, "/", name, H5T_FLOAT, &dims);
   const bool ok = (rows == 0) ? (dims.size() == 1 && dims[0] == cols)
                               : (dims.size() == 2 && dims[0] == rows && dims[1] == cols);
-  // libhdf5 sizes its conversion buffer by the declared element size (fuzz_nbrdf: a float type
-  // of gigabytes per element made it calloc 2.4 GB).
-  if (ds.getTypeClass() != H5T_FLOAT || ds.getDataType().getSize() > 8 || !ok) {
-    throw InputError(path, fmt::format("{}: dataset {} has the wrong type or shape (expected "
-                                       "float [{}][{}])",
-                                       member, name, rows, cols));
+  if (!ok) {
+    in.Fail(
+        fmt::format("dataset /{} has the wrong shape (expected float [{}][{}])", name, rows, cols));
   }
-  const hsize_t r = std::max<hsize_t>(rows, 1);
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> m(r, cols);
-  if (const std::string why = DamagedStorage(ds); !why.empty()) {
-    throw InputError(path, member + ": dataset " + name + " is damaged: " + why);
-  }
-  ds.read(m.data(), H5::PredType::NATIVE_DOUBLE);
-  if (!m.allFinite()) throw InputError(path, member + ": non-finite weight in " + name);
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> m(
+      std::max<hsize_t>(rows, 1), cols);
+  const std::vector<double> v = in.ReadFinite(ds, "dataset /" + name);
+  std::copy(v.begin(), v.end(), m.data());
   return m;
 }
 
@@ -142,7 +133,8 @@ NbrdfNetwork ReadNbrdf(const fs::path& zip, const std::string& material) {
   }
   std::vector<char> image = ReadMember(zip, z.get(), member);
 
-  H5::Exception::dontPrint();
+  hdf5::Quiet();
+  const hdf5::Reader in(zip, member + ": ");
   NbrdfNetwork net;
   net.material = material;
   net.source = zip.string() + ":" + member;
@@ -160,15 +152,15 @@ NbrdfNetwork ReadNbrdf(const fs::path& zip, const std::string& material) {
       throw InputError(zip, fmt::format("{}: hidden layers of {} and {} units (at most {})", member,
                                         h1, h2, kMaxHiddenUnits));
     }
-    net.k1 = ReadWeights(zip, member, f, l1 + "kernel:0", 6, h1);
-    net.b1 = ReadWeights(zip, member, f, l1 + "bias:0", 0, h1);
-    net.k2 = ReadWeights(zip, member, f, l2 + "kernel:0", h1, h2);
-    net.b2 = ReadWeights(zip, member, f, l2 + "bias:0", 0, h2);
-    net.k3 = ReadWeights(zip, member, f, l3 + "kernel:0", h2, 3);
-    net.b3 = ReadWeights(zip, member, f, l3 + "bias:0", 0, 3);
+    net.k1 = ReadWeights(in, f, l1 + "kernel:0", 6, h1);
+    net.b1 = ReadWeights(in, f, l1 + "bias:0", 0, h1);
+    net.k2 = ReadWeights(in, f, l2 + "kernel:0", h1, h2);
+    net.b2 = ReadWeights(in, f, l2 + "bias:0", 0, h2);
+    net.k3 = ReadWeights(in, f, l3 + "kernel:0", h2, 3);
+    net.b3 = ReadWeights(in, f, l3 + "bias:0", 0, 3);
     if (h1 == 0 || h2 == 0) throw InputError(zip, member + ": empty hidden layer");
   } catch (const H5::Exception& e) {
-    throw InputError(zip, member + ": HDF5: " + e.getFuncName() + ": " + e.getDetailMsg());
+    throw InputError(zip, member + ": " + hdf5::Describe(e));
   }
   return net;
 }

@@ -13,16 +13,6 @@ namespace brdfit {
 
 namespace fs = std::filesystem;
 
-const char* ToString(TableFormat f) {
-  return f == TableFormat::kMerl ? "merl" : "h5";
-}
-
-TableFormat TableFormatFromString(const std::string& s) {
-  if (s == "merl" || s == "binary") return TableFormat::kMerl;
-  if (s == "h5" || s == "hdf5") return TableFormat::kHdf5;
-  throw InputError("unknown table format '" + s + "' (expected merl or h5)");
-}
-
 TableFormat DetectTableFormat(const fs::path& path) {
   CheckInputFile(path);
   // HDF5 format specification, "Format Signature": \211HDF\r\n\032\n at offset 0 (brdfit never

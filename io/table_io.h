@@ -7,14 +7,22 @@
 #include <optional>
 #include <string>
 
+#include "core/enum_names.h"
 #include "core/table.h"
 
 namespace brdfit {
 
 enum class TableFormat { kMerl, kHdf5 };
 
-const char* ToString(TableFormat f);                      // "merl", "h5"
-TableFormat TableFormatFromString(const std::string& s);  // merl|binary|h5|hdf5; InputError
+// "binary" is accepted for "merl", "hdf5" for "h5".
+inline constexpr auto kTableFormatNames =
+    MakeEnumNames<TableFormat>("table format", {{TableFormat::kMerl, "merl"},
+                                                {TableFormat::kHdf5, "h5"},
+                                                {TableFormat::kMerl, "binary", true},
+                                                {TableFormat::kHdf5, "hdf5", true}});
+constexpr const auto& EnumNamesOf(TableFormat) {
+  return kTableFormatNames;
+}
 
 // Format of an existing file by its first bytes. Throws InputError for a missing path or a
 // directory.

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -12,30 +13,6 @@
 #include "models/registry.h"
 
 namespace brdfit::preview {
-
-const char* ToString(LightType t) {
-  switch (t) {
-    case LightType::kDirectional:
-      return "directional";
-    case LightType::kPoint:
-      return "point";
-    case LightType::kSpot:
-      return "spot";
-  }
-  return "?";
-}
-
-const char* ToString(MaterialKind k) {
-  switch (k) {
-    case MaterialKind::kAnalytic:
-      return "analytic";
-    case MaterialKind::kMeasured:
-      return "measured";
-    case MaterialKind::kFactored:
-      return "factored";
-  }
-  return "?";
-}
 
 const MaterialSpec* Scene::FindMaterial(const std::string& name) const {
   for (const auto& m : materials) {
@@ -171,14 +148,15 @@ Light ParseLight(Reader r, int index) {
   Light l;
   l.name = r.String("name", "light" + std::to_string(index));
   const std::string type = r.RequiredString("type");
+  const std::optional<LightType> kind = kLightTypeNames.Find(type);
+  if (!kind) r.Fail(kLightTypeNames.Unknown(type));
+  l.type = *kind;
   l.colour = r.Colour("color");
   l.intensity = r.NonNegative("intensity", 1.0);
-  if (type == "directional") {
-    l.type = LightType::kDirectional;
+  if (l.type == LightType::kDirectional) {
     if (!r.Has("direction")) r.Fail("a directional light needs 'direction' (towards the light)");
     l.direction = r.Direction("direction", l.direction);
-  } else if (type == "point" || type == "spot") {
-    l.type = type == "point" ? LightType::kPoint : LightType::kSpot;
+  } else {
     if (!r.Has("position")) r.Fail("a " + type + " light needs 'position'");
     l.position = r.Vector("position", l.position);
     l.distance = r.NonNegative("distance", 0.0);
@@ -195,8 +173,6 @@ Light ParseLight(Reader r, int index) {
       l.penumbra = r.NonNegative("penumbra", 0.0);
       if (l.penumbra > 1) r.Fail("'penumbra' must be in [0, 1]");
     }
-  } else {
-    r.Fail("unknown light type '" + type + "' (expected directional, point, spot)");
   }
   r.Done();
   return l;
@@ -346,8 +322,8 @@ Scene ParseScene(const std::string& text, const std::filesystem::path& source) {
   if (r.Has("display")) {
     Reader dr(r.Raw("display"), "display", source);
     try {
-      s.display.tone_map = ToneMapFromString(dr.String("tone_map", "linear"));
-      s.display.encoding = EncodingFromString(dr.String("encoding", "srgb"));
+      s.display.tone_map = FromString<ToneMap>(dr.String("tone_map", "linear"));
+      s.display.encoding = FromString<Encoding>(dr.String("encoding", "srgb"));
     } catch (const InputError& e) {
       dr.Fail(e.what());
     }

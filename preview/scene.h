@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_names.h"
 #include "models/geometry.h"
 #include "preview/explain.h"
 #include "preview/mesh.h"
@@ -25,7 +26,13 @@ struct Camera {
 };
 
 enum class LightType { kDirectional, kPoint, kSpot };
-const char* ToString(LightType t);
+inline constexpr auto kLightTypeNames =
+    MakeEnumNames<LightType>("light type", {{LightType::kDirectional, "directional"},
+                                            {LightType::kPoint, "point"},
+                                            {LightType::kSpot, "spot"}});
+constexpr const auto& EnumNamesOf(LightType) {
+  return kLightTypeNames;
+}
 
 // Three.js r8x punctual lights. The shader receives colour * intensity; with punctual_pi the
 // irradiance is pi (n.l) colour intensity (Three.js without PHYSICALLY_CORRECT_LIGHTS).
@@ -44,7 +51,13 @@ struct Light {
 };
 
 enum class MaterialKind { kAnalytic, kMeasured, kFactored };
-const char* ToString(MaterialKind k);
+inline constexpr auto kMaterialKindNames =
+    MakeEnumNames<MaterialKind>("material kind", {{MaterialKind::kAnalytic, "analytic"},
+                                                  {MaterialKind::kMeasured, "measured"},
+                                                  {MaterialKind::kFactored, "factored"}});
+constexpr const auto& EnumNamesOf(MaterialKind) {
+  return kMaterialKindNames;
+}
 
 struct MaterialSpec {
   std::string name;

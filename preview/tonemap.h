@@ -8,15 +8,27 @@
 #include <cmath>
 #include <string>
 
+#include "core/enum_names.h"
+
 namespace brdfit::preview {
 
 enum class ToneMap { kLinear = 0, kReinhard = 1, kUncharted2 = 2, kCineon = 3 };
 enum class Encoding { kLinear = 0, kSrgb = 1, kGamma2 = 2 };
 
-ToneMap ToneMapFromString(const std::string& s);    // throws InputError
-Encoding EncodingFromString(const std::string& s);  // throws InputError
-const char* ToString(ToneMap t);
-const char* ToString(Encoding e);
+inline constexpr auto kToneMapNames =
+    MakeEnumNames<ToneMap>("tone map", {{ToneMap::kLinear, "linear"},
+                                        {ToneMap::kReinhard, "reinhard"},
+                                        {ToneMap::kUncharted2, "uncharted2"},
+                                        {ToneMap::kCineon, "cineon"}});
+inline constexpr auto kEncodingNames = MakeEnumNames<Encoding>(
+    "output encoding",
+    {{Encoding::kSrgb, "srgb"}, {Encoding::kGamma2, "gamma2"}, {Encoding::kLinear, "linear"}});
+constexpr const auto& EnumNamesOf(ToneMap) {
+  return kToneMapNames;
+}
+constexpr const auto& EnumNamesOf(Encoding) {
+  return kEncodingNames;
+}
 
 struct DisplaySettings {
   ToneMap tone_map = ToneMap::kLinear;

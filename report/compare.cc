@@ -15,29 +15,12 @@ namespace brdfit::report {
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-bool Usable(const Entry& e) { return !e.Failed() && e.metrics.ok; }
+bool Usable(const Entry& e) {
+  return !e.Failed() && e.metrics.ok;
+}
 }  // namespace
 
-const char* ToString(MetricName m) {
-  switch (m) {
-    case MetricName::kCbrtRmse:
-      return "cbrt_rmse";
-    case MetricName::kRelL2:
-      return "rel_l2";
-    case MetricName::kLogRmse:
-      break;
-  }
-  return "log_rmse";
-}
-
-MetricName MetricNameFromString(const std::string& s) {
-  for (MetricName m : {MetricName::kLogRmse, MetricName::kCbrtRmse, MetricName::kRelL2}) {
-    if (s == ToString(m)) return m;
-  }
-  throw InputError("unknown metric '" + s + "'; expected log_rmse, cbrt_rmse or rel_l2");
-}
-
-double MetricValue(const Metrics& m, MetricName name) {
+double MetricValue(const FitMetrics& m, MetricName name) {
   switch (name) {
     case MetricName::kCbrtRmse:
       return m.cbrt_rmse;
@@ -47,21 +30,6 @@ double MetricValue(const Metrics& m, MetricName name) {
       break;
   }
   return m.log_rmse;
-}
-
-const char* ToString(Change c) {
-  switch (c) {
-    case Change::kSame: return "same";
-    case Change::kBetter: return "better";
-    case Change::kWorse: return "worse";
-    case Change::kSlower: return "slower";
-    case Change::kNowFails: return "now-fails";
-    case Change::kFixed: return "fixed";
-    case Change::kStillFails: return "still-fails";
-    case Change::kMissing: return "missing";
-    case Change::kAdded: return "added";
-  }
-  return "?";
 }
 
 int Comparison::Count(Change c) const {
@@ -179,7 +147,7 @@ namespace {
 nlohmann::ordered_json Num(double v) {
   return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
 }
-nlohmann::ordered_json MetricsJson(const Metrics& m) {
+nlohmann::ordered_json MetricsJson(const FitMetrics& m) {
   return {{"ok", m.ok}, {"log_rmse", Num(m.log_rmse)}, {"cbrt_rmse", Num(m.cbrt_rmse)},
           {"rel_l2", Num(m.rel_l2)}};
 }

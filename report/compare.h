@@ -7,14 +7,20 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_names.h"
 #include "report/report_model.h"
 
 namespace brdfit::report {
 
 enum class MetricName { kLogRmse, kCbrtRmse, kRelL2 };
-const char* ToString(MetricName m);
-MetricName MetricNameFromString(const std::string& s);  // throws InputError
-double MetricValue(const Metrics& m, MetricName name);
+inline constexpr auto kMetricNames =
+    MakeEnumNames<MetricName>("metric", {{MetricName::kLogRmse, "log_rmse"},
+                                         {MetricName::kCbrtRmse, "cbrt_rmse"},
+                                         {MetricName::kRelL2, "rel_l2"}});
+constexpr const auto& EnumNamesOf(MetricName) {
+  return kMetricNames;
+}
+double MetricValue(const FitMetrics& m, MetricName name);
 
 struct CompareOptions {
   MetricName metric = MetricName::kLogRmse;  // the metric that decides
@@ -40,7 +46,19 @@ enum class Change {
   kMissing,     // only in the old report (a regression if missing_is_regression)
   kAdded,       // only in the new report
 };
-const char* ToString(Change c);
+inline constexpr auto kChangeNames =
+    MakeEnumNames<Change>("change", {{Change::kSame, "same"},
+                                     {Change::kBetter, "better"},
+                                     {Change::kWorse, "worse"},
+                                     {Change::kSlower, "slower"},
+                                     {Change::kNowFails, "now-fails"},
+                                     {Change::kFixed, "fixed"},
+                                     {Change::kStillFails, "still-fails"},
+                                     {Change::kMissing, "missing"},
+                                     {Change::kAdded, "added"}});
+constexpr const auto& EnumNamesOf(Change) {
+  return kChangeNames;
+}
 
 struct EntryDelta {
   std::string material, name, loss, budget;
@@ -49,7 +67,7 @@ struct EntryDelta {
   std::string status_old, status_new;
   double old_value = 0, new_value = 0;  // the deciding metric (NaN when absent or unusable)
   double rel_change = 0;                // (new - old) / old; NaN when undefined
-  Metrics old_metrics, new_metrics;
+  FitMetrics old_metrics, new_metrics;
   double old_time_ms = 0, new_time_ms = 0;
 };
 

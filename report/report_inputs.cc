@@ -7,11 +7,11 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "report/bench_csv.h"
 #include "core/error.h"
 #include "io/fit_report.h"
 #include "io/nbrdf.h"
 #include "io/table_io.h"
+#include "report/bench_csv.h"
 
 namespace brdfit::report {
 
@@ -58,6 +58,21 @@ double Get(const json& j, const char* key, double fallback = 0) {
   return it != j.end() && it->is_number() ? it->get<double>() : fallback;
 }
 
+// The metrics of a factorization sidecar ("fit_metrics") or a fit parameters file ("metrics",
+// without "ok": ok_default) as the writers name them (core/metrics.h); absent fields are 0.
+FitMetrics MetricsFromJson(const json& j, bool ok_default) {
+  FitMetrics m;
+  m.ok = j.value("ok", ok_default);
+  m.problem = j.value("problem", std::string());
+  m.log_rmse = Get(j, "log_rmse");
+  m.cbrt_rmse = Get(j, "cbrt_rmse");
+  m.rel_l2 = Get(j, "rel_l2");
+  m.cells = j.value("cells", std::size_t{0});
+  m.weighting = j.value("weighting", std::string());
+  m.cutoff_deg = Get(j, "cutoff_deg");
+  return m;
+}
+
 // A table the report can load for the theta_h slices: a file, or an NBRDF input "nbrdf:NAME"
 // (tabulated by the CLI's loader, pipeline/inputs.h).
 bool LoadableTable(const std::string& source) {
@@ -93,13 +108,7 @@ Entry FactorEntry(const fs::path& sidecar, std::string* material, std::string* t
   e.times_ms = {{"system", 1e3 * system}, {"solve", 1e3 * (seconds - system)}};
   if (stats.value("system_reused", false)) e.message = "factored system reused";
   const json fm = j.value("metrics", json::object()).value("fit_metrics", json::object());
-  e.metrics.ok = fm.value("ok", false);
-  e.metrics.log_rmse = Get(fm, "log_rmse");
-  e.metrics.cbrt_rmse = Get(fm, "cbrt_rmse");
-  e.metrics.rel_l2 = Get(fm, "rel_l2");
-  e.metrics.cells = fm.value("cells", std::size_t{0});
-  e.metrics.weighting = fm.value("weighting", std::string());
-  e.metrics.cutoff_deg = Get(fm, "cutoff_deg");
+  e.metrics = MetricsFromJson(fm, false);
   if (!e.metrics.ok) {
     e.status = "failed";
     e.message = fm.value("problem", std::string("no metrics in the sidecar"));
@@ -151,13 +160,7 @@ Entry FitEntry(const FitReportEntry& f) {
   e.params = r.params;
   e.at_bound = r.at_bound;
   e.iterations = r.iterations;
-  e.metrics.ok = r.metrics.ok;
-  e.metrics.log_rmse = r.metrics.log_rmse;
-  e.metrics.cbrt_rmse = r.metrics.cbrt_rmse;
-  e.metrics.rel_l2 = r.metrics.rel_l2;
-  e.metrics.cells = r.metrics.cells;
-  e.metrics.weighting = r.metrics.weighting;
-  e.metrics.cutoff_deg = r.metrics.cutoff_deg;
+  e.metrics = r.metrics;
   if (!e.metrics.ok && e.message.empty()) e.message = r.metrics.problem;
   const FitTimes& t = r.times;
   e.times_ms = {
@@ -203,13 +206,8 @@ bool AddFitParamsJson(const fs::path& p, ReportSources* out) {
       e.param_names.push_back(name);
       e.params.push_back(value.get<double>());
     }
-    const json m = f.value("metrics", nlohmann::ordered_json::object());
-    e.metrics.ok = e.status != "failed";
-    e.metrics.log_rmse = Get(m, "log_rmse");
-    e.metrics.cbrt_rmse = Get(m, "cbrt_rmse");
-    e.metrics.rel_l2 = Get(m, "rel_l2");
-    e.metrics.weighting = m.value("weighting", std::string());
-    e.metrics.cutoff_deg = Get(m, "cutoff_deg");
+    e.metrics =
+        MetricsFromJson(f.value("metrics", nlohmann::ordered_json::object()), e.status != "failed");
     const std::string source = f.value("source", std::string());
     const std::string material = f.value("material", MaterialName(source));
     AddEntry(out->report, material, source, std::move(e));

@@ -10,18 +10,9 @@
 #include <utility>
 #include <vector>
 
-namespace brdfit::report {
+#include "core/metrics.h"
 
-// Fit metrics as fit/metrics.h defines them (same names, same meaning).
-struct Metrics {
-  bool ok = false;  // false: not computed or not finite (see Entry::message)
-  double log_rmse = 0;
-  double cbrt_rmse = 0;
-  double rel_l2 = 0;
-  std::size_t cells = 0;
-  std::string weighting;  // "bin-measure" or "uniform"
-  double cutoff_deg = 0;
-};
+namespace brdfit::report {
 
 // One approximation of one material.
 struct Entry {
@@ -36,7 +27,7 @@ struct Entry {
   std::vector<double> params;
   std::vector<bool> at_bound;
   int iterations = 0;
-  Metrics metrics;
+  FitMetrics metrics;  // core/metrics.h; ok false: not computed or not finite (see message)
   // Named stage times in milliseconds, in display order ("init", "solve", ...).
   std::vector<std::pair<std::string, double>> times_ms;
   // The time a user pays to get this approximation from a loaded table (fits: prepare + init +
@@ -79,7 +70,7 @@ struct BenchPoint {
   double prepare_ms = 0, init_ms = 0, solve_ms = 0;
   std::size_t fit_cells = 0;  // observations the fit used (the budget's effect)
   int iterations = 0;
-  Metrics metrics;
+  FitMetrics metrics;
 };
 
 struct Render {

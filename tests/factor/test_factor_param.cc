@@ -22,10 +22,10 @@ TEST(FactorParam, NamesRoundTripAndBadNamesThrow) {
   }
   for (FactorMap m :
        {FactorMap::kDiskParabolic, FactorMap::kDiskSqrtTheta, FactorMap::kThetaDPhiD}) {
-    EXPECT_EQ(FactorMapFromString(ToString(m)), m);
+    EXPECT_EQ(FromString<FactorMap>(ToString(m)), m);
   }
   EXPECT_THROW(FactorParamFromString("svd"), InputError);
-  EXPECT_THROW(FactorMapFromString("cube"), InputError);
+  EXPECT_THROW(FromString<FactorMap>("cube"), InputError);
 }
 
 TEST(FactorParam, ParabolicMapIsHeidrichSeidel) {

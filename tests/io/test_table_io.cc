@@ -39,7 +39,7 @@ TEST(TableIo, SaveChoosesTheFormatFromTheExtension) {
   EXPECT_EQ(TableFormatFromExtension(dir / "x.hdf5"), TableFormat::kHdf5);
   EXPECT_EQ(TableFormatFromExtension(dir / "x.txt"), std::nullopt);
   EXPECT_THROW(SaveTable(t, dir / "t.txt"), InputError);
-  EXPECT_THROW(TableFormatFromString("exr"), InputError);
+  EXPECT_THROW(FromString<TableFormat>("exr"), InputError);
 }
 
 TEST(TableIo, MissingAndDirectoryInputsAreNamed) {

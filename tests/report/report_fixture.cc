@@ -28,7 +28,7 @@ Entry Fit(const std::string& model, const std::string& budget, double log_rmse, 
   e.params = params;
   e.at_bound.assign(params.size(), false);
   e.iterations = 12;
-  e.metrics = {true, log_rmse, 1.5 * log_rmse, 3 * log_rmse, 1000, "bin-measure", 80};
+  e.metrics = Scored(log_rmse, 1.5 * log_rmse, 3 * log_rmse, 1000);
   e.times_ms = {{"prepare", 0.1 * ms}, {"init", 0.2 * ms}, {"solve", 0.7 * ms}};
   e.time_ms = ms;
   return e;
@@ -69,7 +69,7 @@ report::Report MakeFixtureReport(const fs::path& dir) {
     factor.loss = "log (linear)";
     factor.budget = "res 32";
     factor.status = "converged";
-    factor.metrics = {true, 0.02, 0.03, 0.2, 1000, "bin-measure", 80};
+    factor.metrics = Scored(0.02, 0.03, 0.2, 1000);
     factor.time_ms = 60;
     mat.entries.push_back(factor);
     mat.slices = report::ComputeThetaHSlices(
@@ -93,8 +93,7 @@ report::Report MakeFixtureReport(const fs::path& dir) {
         b.status = "converged";
         const double scale = std::string(budget) == "full" ? 1 : std::string(budget) == "stride:4" ? 0.3 : 0.1;
         b.time_ms = 1000 * scale * (model[8] == 'g' ? 1 : 2);
-        b.metrics = {true, 0.01 / std::sqrt(scale) * (model[8] == 'g' ? 1 : 1.5), 0.02, 0.1, 1000,
-                     "bin-measure", 80};
+        b.metrics = Scored(0.01 / std::sqrt(scale) * (model[8] == 'g' ? 1 : 1.5), 0.02, 0.1, 1000);
         r.bench.push_back(b);
       }
     }

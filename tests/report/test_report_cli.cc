@@ -13,6 +13,7 @@
 #include "report/bench_csv.h"
 #include "io/fit_report.h"
 #include "models/registry.h"
+#include "tests/report/report_fixture.h"
 
 namespace brdfit::report {
 namespace {
@@ -68,7 +69,7 @@ class Cli : public ::testing::Test {
       b.budget = "full";
       b.status = "converged";
       b.time_ms = 100;
-      b.metrics = {true, err, 2 * err, 3 * err, 100, "bin-measure", 80};
+      b.metrics = testing::Scored(err, 2 * err, 3 * err, 100);
       pts.push_back(b);
     };
     add("gold", "lambert+ggx", gold_ggx);

@@ -188,7 +188,7 @@ TEST(BenchCsv, RoundTripsEveryFieldIncludingQuotedText) {
   b.solve_ms = 8.75;
   b.fit_cells = 1234;
   b.iterations = 17;
-  b.metrics = {true, 0.01, 0.02, 0.125, 999, "bin-measure", 80};
+  b.metrics = testing::Scored(0.01, 0.02, 0.125, 999);
   BenchPoint c = b;
   c.material = "plain";
   c.metrics.ok = false;
@@ -313,8 +313,8 @@ TEST(Compare, TimeRegressionOnlyWhenAsked) {
 }
 
 TEST(Compare, MetricChoice) {
-  EXPECT_EQ(MetricNameFromString("cbrt_rmse"), MetricName::kCbrtRmse);
-  EXPECT_THROW(MetricNameFromString("psnr"), InputError);
+  EXPECT_EQ(FromString<MetricName>("cbrt_rmse"), MetricName::kCbrtRmse);
+  EXPECT_THROW(FromString<MetricName>("psnr"), InputError);
 }
 
 // ---- inputs ---------------------------------------------------------------------------------

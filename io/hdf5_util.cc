@@ -1,0 +1,229 @@
+#include "io/hdf5_util.h"
+
+#include <fmt/core.h>
+#include <hdf5.h>
+
+#include <cmath>
+#include <type_traits>
+
+#include "core/error.h"
+#include "io/input_file.h"
+
+namespace brdfit::hdf5 {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Longest fixed-length string attribute (provenance parameters, fit options: JSON of a few
+// hundred bytes).
+constexpr std::size_t kMaxStringBytes = std::size_t{1} << 20;
+// Largest non-string element: libhdf5 sizes its conversion buffers by the declared element size
+// (fuzz_hdf5_table, fuzz_fit_report, fuzz_nbrdf: float and integer types of gigabytes per
+// element made it calloc that much).
+constexpr std::size_t kMaxElementBytes = 8;
+
+template <class T>
+void WriteScalarAttr(const H5::H5Object& obj, const char* name, const H5::PredType& file_type,
+                     const H5::PredType& mem_type, T value) {
+  obj.createAttribute(name, file_type, H5::DataSpace(H5S_SCALAR)).write(mem_type, &value);
+}
+
+}  // namespace
+
+void Quiet() {
+  static const bool once = [] {
+    H5::Exception::dontPrint();
+    return true;
+  }();
+  (void)once;
+}
+
+std::string Describe(const H5::Exception& e) {
+  return "HDF5: " + e.getFuncName() + ": " + e.getDetailMsg();
+}
+
+std::string Join(const std::string& where, const std::string& name) {
+  return (where == "/" ? "" : where) + "/" + name;
+}
+
+// ---- writing ------------------------------------------------------------------------------
+
+H5::DSetCreatPropList NoTimestamps() {
+  H5::DSetCreatPropList dcpl;
+  H5Pset_obj_track_times(dcpl.getId(), 0);
+  return dcpl;
+}
+
+void WriteStringAttr(const H5::H5Object& obj, const char* name, const std::string& value) {
+  const H5::StrType type(H5::PredType::C_S1, value.size() + 1);  // NUL-terminated
+  obj.createAttribute(name, type, H5::DataSpace(H5S_SCALAR)).write(type, value.c_str());
+}
+
+void WriteDoubleAttr(const H5::H5Object& obj, const char* name, double value) {
+  WriteScalarAttr(obj, name, H5::PredType::IEEE_F64LE, H5::PredType::NATIVE_DOUBLE, value);
+}
+
+void WriteIntAttr(const H5::H5Object& obj, const char* name, std::int64_t value) {
+  WriteScalarAttr(obj, name, H5::PredType::STD_I64LE, H5::PredType::NATIVE_INT64, value);
+}
+
+void WriteInt32Attr(const H5::H5Object& obj, const char* name, std::int32_t value) {
+  WriteScalarAttr(obj, name, H5::PredType::STD_I32LE, H5::PredType::NATIVE_INT32, value);
+}
+
+void WriteUint64Attr(const H5::H5Object& obj, const char* name, std::uint64_t value) {
+  WriteScalarAttr(obj, name, H5::PredType::STD_U64LE, H5::PredType::NATIVE_UINT64, value);
+}
+
+H5::DataSet WriteDataset(const H5::Group& parent, const char* name, const H5::PredType& file_type,
+                         const H5::PredType& mem_type, const std::vector<hsize_t>& dims,
+                         const void* data) {
+  const H5::DataSpace space(static_cast<int>(dims.size()), dims.data());
+  H5::DataSet ds = parent.createDataSet(name, file_type, space, NoTimestamps());
+  if (space.getSimpleExtentNpoints() > 0) ds.write(data, mem_type);
+  return ds;
+}
+
+H5::DataSet WriteDoubles(const H5::Group& parent, const char* name, const std::vector<double>& v) {
+  return WriteDataset(parent, name, H5::PredType::IEEE_F64LE, H5::PredType::NATIVE_DOUBLE,
+                      {v.size()}, v.data());
+}
+
+// ---- reading ------------------------------------------------------------------------------
+
+Reader::Reader(fs::path file, std::string prefix)
+    : file_(std::move(file)), prefix_(std::move(prefix)) {}
+
+void Reader::Fail(const std::string& problem) const {
+  throw InputError(file_, prefix_ + problem);
+}
+
+H5::H5File Reader::Open() const {
+  Quiet();
+  CheckInputFile(file_);
+  if (H5Fis_hdf5(file_.c_str()) <= 0) Fail("not an HDF5 file");
+  H5::H5File f;
+  try {
+    f.openFile(file_.string(), H5F_ACC_RDONLY);
+  } catch (const H5::Exception&) {
+    Fail("has the HDF5 signature but cannot be opened (truncated or corrupt)");
+  }
+  return f;
+}
+
+H5::Attribute Reader::Attr(const H5::H5Object& obj, const std::string& where, const char* name,
+                           H5T_class_t cls, const char* class_name) const {
+  if (!obj.attrExists(name)) Fail(fmt::format("missing attribute '{}' on {}", name, where));
+  H5::Attribute a = obj.openAttribute(name);
+  const std::string what = fmt::format("{}@{}", where, name);
+  if (a.getTypeClass() != cls) Fail(fmt::format("{} is not {}", what, class_name));
+  // The C++ API reads a string attribute as one element whatever its extent
+  // (fuzz/regressions/hdf5_table/crafted-vlen-string-array-attr.h5: stack overflow).
+  const H5::DataType type = a.getDataType();
+  const std::size_t max = cls == H5T_STRING ? kMaxStringBytes : kMaxElementBytes;
+  if (!(cls == H5T_STRING && type.isVariableStr()) && type.getSize() > max) {
+    Fail(fmt::format("{} has {}-byte elements (at most {})", what, type.getSize(), max));
+  }
+  if (a.getSpace().getSimpleExtentNpoints() != 1) Fail(what + " must hold a single value");
+  return a;
+}
+
+template <class T>
+T Reader::Scalar(const H5::H5Object& obj, const std::string& where, const char* name,
+                 const H5::PredType& mem_type) const {
+  const bool is_float = std::is_floating_point_v<T>;
+  H5::Attribute a = Attr(obj, where, name, is_float ? H5T_FLOAT : H5T_INTEGER,
+                         is_float ? "a float" : "an integer");
+  T v{};
+  a.read(mem_type, &v);
+  return v;
+}
+
+std::string Reader::String(const H5::H5Object& obj, const std::string& where,
+                           const char* name) const {
+  H5::Attribute a = Attr(obj, where, name, H5T_STRING, "a string");
+  std::string s;
+  a.read(a.getStrType(), s);
+  return s;
+}
+
+double Reader::Double(const H5::H5Object& obj, const std::string& where, const char* name) const {
+  const double v = Scalar<double>(obj, where, name, H5::PredType::NATIVE_DOUBLE);
+  if (!std::isfinite(v)) Fail(fmt::format("{}@{} is not finite", where, name));
+  return v;
+}
+
+std::int64_t Reader::Int(const H5::H5Object& obj, const std::string& where,
+                         const char* name) const {
+  return Scalar<std::int64_t>(obj, where, name, H5::PredType::NATIVE_INT64);
+}
+
+std::int32_t Reader::Int32(const H5::H5Object& obj, const std::string& where,
+                           const char* name) const {
+  return Scalar<std::int32_t>(obj, where, name, H5::PredType::NATIVE_INT32);
+}
+
+std::uint64_t Reader::Uint64(const H5::H5Object& obj, const std::string& where,
+                             const char* name) const {
+  return Scalar<std::uint64_t>(obj, where, name, H5::PredType::NATIVE_UINT64);
+}
+
+H5::Group Reader::Group(const H5::Group& parent, const std::string& where,
+                        const std::string& name) const {
+  if (!parent.nameExists(name)) Fail("missing group " + Join(where, name));
+  return parent.openGroup(name);
+}
+
+H5::DataSet Reader::Dataset(const H5::Group& parent, const std::string& where,
+                            const std::string& name, H5T_class_t cls,
+                            std::vector<hsize_t>* dims) const {
+  const std::string what = "dataset " + Join(where, name);
+  if (!parent.nameExists(name)) Fail("missing " + what);
+  H5::DataSet ds = parent.openDataSet(name);
+  if (ds.getTypeClass() != cls) {
+    Fail(fmt::format("{} must hold {}", what, cls == H5T_FLOAT ? "floats" : "integers"));
+  }
+  const std::size_t size = ds.getDataType().getSize();
+  if (size > kMaxElementBytes) {
+    Fail(fmt::format("{} has {}-byte elements (at most {})", what, size, kMaxElementBytes));
+  }
+  const H5::DataSpace space = ds.getSpace();
+  dims->resize(space.getSimpleExtentNdims());
+  space.getSimpleExtentDims(dims->data());
+  return ds;
+}
+
+void Reader::ReadChecked(const H5::DataSet& ds, const std::string& what,
+                         const H5::PredType& mem_type, void* out) const {
+  const H5D_layout_t layout = ds.getCreatePlist().getLayout();
+  const hssize_t elements = ds.getSpace().getSimpleExtentNpoints();
+  if (elements <= 0) return;
+  if (layout == H5D_COMPACT || layout == H5D_CONTIGUOUS) {
+    const std::size_t element_bytes = ds.getDataType().getSize();
+    const hsize_t stored = ds.getStorageSize();
+    if (stored < static_cast<hsize_t>(elements) * element_bytes) {
+      Fail(fmt::format("{} is damaged: {} bytes stored for {} elements of {} bytes", what, stored,
+                       elements, element_bytes));
+    }
+  }
+  ds.read(out, mem_type);
+}
+
+std::vector<double> Reader::ReadFinite(const H5::DataSet& ds, const std::string& what) const {
+  std::vector<double> v(static_cast<std::size_t>(ds.getSpace().getSimpleExtentNpoints()));
+  ReadChecked(ds, what, H5::PredType::NATIVE_DOUBLE, v.data());
+  for (double x : v) {
+    if (!std::isfinite(x)) Fail(what + " holds a non-finite value");
+  }
+  return v;
+}
+
+void Reader::RequireAllocated(const H5::DataSet& ds, const std::string& what) const {
+  H5D_space_status_t status;
+  if (H5Dget_space_status(ds.getId(), &status) < 0 || status != H5D_SPACE_STATUS_ALLOCATED) {
+    Fail(what + " declares data that the file does not store");
+  }
+}
+
+}  // namespace brdfit::hdf5
