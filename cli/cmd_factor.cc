@@ -124,7 +124,7 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
       } catch (const InputError& e) {
         throw InputError(file, e.what());
       }
-      const double ln_rmse = FactorLogRmse(table, r.brdf, options.max_theta);
+      const double ln_rmse = FactorLnRatioRmse(table, r.brdf, options.max_theta);
       const FitMetrics m = ScoreFactorization(table, r.brdf, metric_samples);
       const std::string stem = report::MaterialName(file) + o.suffix;
       const FactorPaths paths = SaveFactorization(

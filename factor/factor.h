@@ -48,10 +48,4 @@ struct Factorization {
 Factorization Factor(const Table& table, const FactorOptions& options,
                      FactorSystemCache* cache = nullptr);
 
-// Log-RMSE of a factored BRDF against a table: sqrt(mean over usable cells with all channels
-// > 0, channels pooled, of (ln f_factored - ln f_table)^2), unweighted, evaluated at cell
-// centres through the textures. Cells with theta_i or theta_o above max_theta are skipped.
-// TEMPORARY: to be replaced by the shared fit metrics (fit/metrics.h) once they land.
-double FactorLogRmse(const Table& table, const FactoredBrdf& brdf, double max_theta = kPi / 2);
-
 }  // namespace brdfit

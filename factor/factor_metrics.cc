@@ -1,5 +1,7 @@
 #include "factor/factor_metrics.h"
 
+#include <cmath>
+
 namespace brdfit {
 
 FitMetrics ScoreFactorization(const Table& table, const FactoredBrdf& brdf,
@@ -12,6 +14,27 @@ FitMetrics ScoreFactorization(const Table& table, const FactoredBrdf& brdf,
     for (int c = 0; c < 3; ++c) per_sample[3 * s + c] = f[c];
   }
   return ComputeMetricsPerSample(samples, per_sample);
+}
+
+double FactorLnRatioRmse(const Table& table, const FactoredBrdf& brdf, double max_theta) {
+  const double cos_max = std::cos(max_theta);
+  double sum = 0;
+  std::size_t count = 0;
+  for (std::size_t idx = 0; idx < table.grid.NumCells(); ++idx) {
+    if (!table.valid[idx]) continue;
+    const double* v = table.Value(idx);
+    if (!(v[0] > 0 && v[1] > 0 && v[2] > 0)) continue;
+    Vec3 wi, wo;
+    FromHalfDiff(table.grid.CellCentre(idx), 0.0, &wi, &wo);
+    if (wi.z <= 0 || wo.z <= 0 || wi.z < cos_max || wo.z < cos_max) continue;
+    const auto f = brdf.Eval(wi, wo);
+    for (int c = 0; c < 3; ++c) {
+      const double d = std::log(f[c]) - std::log(v[c]);
+      sum += d * d;
+    }
+    count += 3;
+  }
+  return count ? std::sqrt(sum / count) : 0.0;
 }
 
 }  // namespace brdfit

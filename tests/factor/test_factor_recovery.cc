@@ -8,6 +8,7 @@
 #include <random>
 
 #include "factor/factor.h"
+#include "factor/factor_metrics.h"
 #include "models/ggx.h"
 #include "tests/factor/factor_test_util.h"
 #include "tests/models/variant_terms.h"
@@ -92,7 +93,7 @@ TEST(FactorRecovery, McCoolProductIsRecovered) {
 
   const double rmse = LogRmseRandomPhiH(t, r.brdf, 1);
   EXPECT_LE(rmse, 1e-3);
-  EXPECT_NEAR(FactorLogRmse(t, r.brdf), rmse, 2e-4);  // the phi_h = 0 evaluation agrees
+  EXPECT_NEAR(FactorLnRatioRmse(t, r.brdf), rmse, 2e-4);  // the phi_h = 0 evaluation agrees
 
   // Textures equal to the truth up to the gauge (log p + c, log q - 2c) at texel centres
   // wherever cells reach: theta_h from the first bin centre (1.875 deg), theta up to 85 deg.
@@ -115,9 +116,9 @@ TEST(FactorRecovery, RemainingErrorIsTextureInterpolation) {
   FactorOptions o;
   o.lambda = kExactLambda;
   o.resolution = 32;
-  const double e32 = FactorLogRmse(t, Factor(t, o).brdf);
+  const double e32 = FactorLnRatioRmse(t, Factor(t, o).brdf);
   o.resolution = 64;
-  const double e64 = FactorLogRmse(t, Factor(t, o).brdf);
+  const double e64 = FactorLnRatioRmse(t, Factor(t, o).brdf);
   EXPECT_GT(e32 / e64, 3.0);
   EXPECT_LT(e32 / e64, 5.0);
 }
@@ -172,7 +173,7 @@ TEST(FactorRecovery, PureGgxIsExactlyRankOneOnTheMerlGrid) {
   o.lambda = kExactLambda;
   const Factorization r = Factor(t, o);
   EXPECT_LE(r.stats.solve_log_rms, 2e-3);
-  EXPECT_LE(FactorLogRmse(t, r.brdf, 80 * kPi / 180), 5e-3);
+  EXPECT_LE(FactorLnRatioRmse(t, r.brdf, 80 * kPi / 180), 5e-3);
   auto true_p = [&](double theta) {
     const double g = G1SmithGgx(alpha, FromSpherical(theta, 0)) / std::cos(theta);
     return Rgb{g, g, g};
@@ -222,8 +223,8 @@ TEST(FactorRecovery, HolesGiveFiniteSmoothTextures) {
       CompareDisk(r.brdf.q(), FactorMap::kDiskSqrtTheta, testing::TrueQh, kFirstThetaH, kLimit);
   EXPECT_LE(gq.max_dev, 5e-3);
   // ...and predicts the cells that were removed about as well as the full-data factorization.
-  const double e_full = FactorLogRmse(full, Factor(full, o).brdf);
-  EXPECT_LE(FactorLogRmse(full, r.brdf), e_full + 1e-3);
+  const double e_full = FactorLnRatioRmse(full, Factor(full, o).brdf);
+  EXPECT_LE(FactorLnRatioRmse(full, r.brdf), e_full + 1e-3);
 }
 
 TEST(FactorRecovery, HalfDiffHolesAreFilledSmoothly) {

@@ -1,0 +1,186 @@
+// Accuracy as seen: the rendered-image metric (docs/accuracy.md) of fits over the NBRDF
+// proxies of the 100 MERL materials, for every (model, loss, multistart) configuration asked
+// for. The study of docs/accuracy.md is made with it.
+//
+//   bench_accuracy --csv FILE [--models lambert+ggx,...] [--losses log,cbrt,rel,l2]
+//                  [--multistart 1,4] [--budget stride:8] [--nbrdf all|m1,m2] [--jobs 2]
+//
+// One CSV row per fit: material, model, loss, multistart, budget, status, log_rmse, psnr_db,
+// psnr_srgb_db, median and p95 relative luminance error, fit time; then per configuration the
+// mean PSNR, the median and worst material's median luminance error, and how many materials
+// reach >= 30 dB and <= 15 % (the targets of docs/accuracy.md) on stdout.
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <atomic>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "fit/fitter.h"
+#include "io/atomic_file.h"
+#include "io/nbrdf.h"
+#include "pipeline/inputs.h"
+
+namespace {
+
+using namespace brdfit;
+namespace fs = std::filesystem;
+
+std::vector<std::string> Split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string part;
+  while (std::getline(ss, part, ',')) {
+    if (!part.empty()) out.push_back(part);
+  }
+  return out;
+}
+
+struct Config {
+  std::string model, loss;
+  int multistart = 1;
+  std::string Key() const { return model + " " + loss + " ms" + std::to_string(multistart); }
+};
+
+struct Row {
+  std::string material;
+  Config config;
+  FitResult result;
+};
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string csv = "accuracy.csv", budget = "stride:8";
+  std::vector<std::string> models = {"lambert+ggx"}, losses = {"log"}, nbrdf = {"all"};
+  std::vector<int> multistarts = {1};
+  int jobs = 2;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string a = argv[i], v = argv[i + 1];
+    if (a == "--csv")
+      csv = v;
+    else if (a == "--models")
+      models = Split(v);
+    else if (a == "--losses")
+      losses = Split(v);
+    else if (a == "--budget")
+      budget = v;
+    else if (a == "--nbrdf")
+      nbrdf = Split(v);
+    else if (a == "--jobs")
+      jobs = std::max(1, std::atoi(v.c_str()));
+    else if (a == "--multistart") {
+      multistarts.clear();
+      for (const auto& m : Split(v)) multistarts.push_back(std::max(1, std::atoi(m.c_str())));
+    } else {
+      fmt::print(stderr, "unknown option {}\n", a);
+      return 2;
+    }
+  }
+  const fs::path zip = fs::path(BRDFIT_SHARED_DATA) / "merl_nbrdf.zip";
+  if (!fs::exists(zip)) {
+    fmt::print(stderr, "{} not found: nothing to measure\n", zip.string());
+    return 0;
+  }
+  setenv("BRDFIT_NBRDF_ZIP", zip.c_str(), 1);
+  std::vector<std::string> inputs;
+  for (const auto& n : nbrdf) inputs.push_back("nbrdf:" + n);
+  inputs = pipeline::ExpandInputs(inputs);
+  std::vector<Config> configs;
+  for (const auto& m : models) {
+    for (const auto& l : losses) {
+      for (int ms : multistarts) configs.push_back({m, l, ms});
+    }
+  }
+
+  std::vector<Row> rows;
+  std::mutex mu;
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t i = next++; i < inputs.size(); i = next++) {
+      const Table table = pipeline::LoadInput(inputs[i]);
+      const std::string material = inputs[i].substr(6);
+      std::map<std::string, PreparedTable> prepared;  // per loss
+      for (const Config& c : configs) {
+        SampleOptions so;
+        so.budget = Budget::Parse(budget);
+        FitOptions fo;
+        fo.loss = LossKindFromString(c.loss);
+        fo.multistart = c.multistart;
+        auto it = prepared.find(c.loss);
+        if (it == prepared.end()) it = prepared.emplace(c.loss, PrepareTable(table, so, fo)).first;
+        FitResult r = FitPrepared(c.model, it->second, fo);
+        std::lock_guard<std::mutex> lock(mu);
+        fmt::print(stderr, "{:<28} {:<32} {:>8.5f} {:>6.1f} dB {:>6.1f} %\n", material, c.Key(),
+                   r.metrics.log_rmse, r.metrics.rendered.psnr_db,
+                   100 * r.metrics.rendered.median_rel_error);
+        rows.push_back({material, c, std::move(r)});
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int j = 0; j < jobs; ++j) pool.emplace_back(worker);
+  for (auto& t : pool) t.join();
+  std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
+    return std::tie(a.material, a.config.model, a.config.loss, a.config.multistart) <
+           std::tie(b.material, b.config.model, b.config.loss, b.config.multistart);
+  });
+
+  std::string out =
+      "material,model,loss,multistart,budget,status,log_rmse,psnr_db,psnr_srgb_db,"
+      "median_rel_error,p95_rel_error,fit_ms,params\n";
+  for (const Row& r : rows) {
+    const RenderedError& e = r.result.metrics.rendered;
+    std::string params;
+    for (std::size_t k = 0; k < r.result.params.size(); ++k) {
+      params +=
+          fmt::format("{}{}={:.6g}", k ? ";" : "", r.result.param_names[k], r.result.params[k]);
+    }
+    out += fmt::format("{},{},{},{},{},{},{:.6g},{:.4f},{:.4f},{:.6f},{:.6f},{:.1f},{}\n",
+                       r.material, r.config.model, r.config.loss, r.config.multistart, budget,
+                       ToString(r.result.status), r.result.metrics.log_rmse, e.psnr_db,
+                       e.psnr_srgb_db, e.median_rel_error, e.p95_rel_error,
+                       r.result.times.init + r.result.times.solve, params);
+  }
+  WriteTextAtomically(csv, out);
+
+  fmt::print("{:<34} {:>5} {:>9} {:>9} {:>10} {:>10} {:>8} {:>8}\n", "configuration", "fits",
+             "mean dB", "min dB", "med lum", "worst lum", ">=30dB", "<=15%");
+  for (const Config& c : configs) {
+    std::vector<double> psnr, lum;
+    std::string worst;
+    double worst_lum = -1;
+    int ok_db = 0, ok_lum = 0;
+    for (const Row& r : rows) {
+      if (r.config.Key() != c.Key()) continue;
+      const RenderedError& e = r.result.metrics.rendered;
+      psnr.push_back(e.psnr_db);
+      lum.push_back(e.median_rel_error);
+      ok_db += e.psnr_db >= 30;
+      ok_lum += e.median_rel_error <= 0.15;
+      if (e.median_rel_error > worst_lum) {
+        worst_lum = e.median_rel_error;
+        worst = r.material;
+      }
+    }
+    double mean = 0;
+    for (double p : psnr) mean += p / static_cast<double>(std::max<std::size_t>(psnr.size(), 1));
+    fmt::print("{:<34} {:>5} {:>9.2f} {:>9.2f} {:>9.1f}% {:>9.1f}% {:>8} {:>8}  worst: {}\n",
+               c.Key(), psnr.size(), mean,
+               psnr.empty() ? 0.0 : *std::min_element(psnr.begin(), psnr.end()), 100 * Median(lum),
+               100 * worst_lum, ok_db, ok_lum, worst);
+  }
+  fmt::print("wrote {} ({} rows)\n", csv, rows.size());
+  return 0;
+}
