@@ -51,13 +51,17 @@ struct FitCliOptions {
 };
 
 void PrintTable(std::FILE* out, const std::vector<FitReportEntry>& entries) {
-  fmt::print(out, "{:<28} {:<26} {:>9} {:>9} {:>8} {:>5} {:>9} {}\n", "material", "model",
-             "log_rmse", "cbrt_rmse", "rel_l2", "iter", "solve_ms", "status");
+  fmt::print(out, "{:<28} {:<26} {:>9} {:>9} {:>8} {:>7} {:>7} {:>5} {:>9} {}\n", "material",
+             "model", "log_rmse", "cbrt_rmse", "rel_l2", "psnr_dB", "med_lum", "iter", "solve_ms",
+             "status");
   for (const FitReportEntry& e : entries) {
     const FitResult& r = e.result;
-    fmt::print(out, "{:<28} {:<26} {:>9.5f} {:>9.5f} {:>8.4f} {:>5} {:>9.1f} {}\n", e.material,
-               r.model, r.metrics.log_rmse, r.metrics.cbrt_rmse, r.metrics.rel_l2, r.iterations,
-               r.times.init + r.times.solve, ToString(r.status));
+    const RenderedError& re = r.metrics.rendered;
+    const std::string psnr = re.ok ? fmt::format("{:.1f}", re.psnr_db) : "-";
+    const std::string lum = re.ok ? fmt::format("{:.1f}%", 100 * re.median_rel_error) : "-";
+    fmt::print(out, "{:<28} {:<26} {:>9.5f} {:>9.5f} {:>8.4f} {:>7} {:>7} {:>5} {:>9.1f} {}\n",
+               e.material, r.model, r.metrics.log_rmse, r.metrics.cbrt_rmse, r.metrics.rel_l2, psnr,
+               lum, r.iterations, r.times.init + r.times.solve, ToString(r.status));
     if (!r.message.empty()) fmt::print(out, "    {}\n", r.message);
   }
 }

@@ -55,6 +55,32 @@ void DoubleArray(const H5::Group& g, const char* name, const std::vector<double>
   hdf5::WriteDoubles(g, name, v);
 }
 
+// The rendered-image metric (docs/accuracy.md): /metrics/rendered, with per-light arrays; left
+// out when it was not computed (a failed fit).
+void WriteRendered(const H5::Group& mg, const RenderedError& e) {
+  if (e.num_lights == 0) return;
+  H5::Group rg = MakeGroup(mg, "rendered");
+  WriteIntAttr(rg, "ok", e.ok ? 1 : 0);
+  WriteStringAttr(rg, "problem", e.problem);
+  DoubleAttr(rg, "psnr_db", e.psnr_db);
+  DoubleAttr(rg, "psnr_srgb_db", e.psnr_srgb_db);
+  DoubleAttr(rg, "median_rel_error", e.median_rel_error);
+  DoubleAttr(rg, "p95_rel_error", e.p95_rel_error);
+  WriteIntAttr(rg, "resolution", e.resolution);
+  WriteIntAttr(rg, "lit_pixels", static_cast<std::int64_t>(e.lit_pixels));
+  WriteIntAttr(rg, "masked_pixels", static_cast<std::int64_t>(e.masked_pixels));
+  WriteIntAttr(rg, "compared_pixels", static_cast<std::int64_t>(e.compared_pixels));
+  std::vector<double> deg, psnr, median;
+  for (int k = 0; k < e.num_lights; ++k) {
+    deg.push_back(e.lights[k].light_deg);
+    psnr.push_back(e.lights[k].psnr_db);
+    median.push_back(e.lights[k].median_rel_error);
+  }
+  DoubleArray(rg, "light_deg", deg);
+  DoubleArray(rg, "light_psnr_db", psnr);
+  DoubleArray(rg, "light_median_rel_error", median);
+}
+
 void WriteEntry(const H5::Group& g, const FitReportEntry& e, bool timings) {
   const FitResult& r = e.result;
   WriteStringAttr(g, "source", e.source);
@@ -104,6 +130,8 @@ void WriteEntry(const H5::Group& g, const FitReportEntry& e, bool timings) {
   DoubleArray(wg, "measured", {m.worst.measured.begin(), m.worst.measured.end()});
   DoubleArray(wg, "predicted", {m.worst.predicted.begin(), m.worst.predicted.end()});
 
+  WriteRendered(mg, m.rendered);
+
   const SampleCounts& c = r.sample_counts;
   H5::Group sg = MakeGroup(g, "samples");
   WriteIntAttr(sg, "cells", static_cast<std::int64_t>(c.cells));
@@ -139,6 +167,34 @@ class Reader : public hdf5::Reader {
     return static_cast<std::size_t>(v);
   }
   // A 1-D array of at most max finite floats.
+  void ReadRendered(const H5::Group& rg, const std::string& rw, RenderedError* e) const {
+    e->ok = Int(rg, rw, "ok") != 0;
+    e->problem = String(rg, rw, "problem");
+    e->psnr_db = Double(rg, rw, "psnr_db");
+    e->psnr_srgb_db = Double(rg, rw, "psnr_srgb_db");
+    e->median_rel_error = Double(rg, rw, "median_rel_error");
+    e->p95_rel_error = Double(rg, rw, "p95_rel_error");
+    e->resolution = static_cast<int>(Count(rg, rw, "resolution"));
+    e->lit_pixels = Count(rg, rw, "lit_pixels");
+    e->masked_pixels = Count(rg, rw, "masked_pixels");
+    e->compared_pixels = Count(rg, rw, "compared_pixels");
+    const std::vector<double> deg = Doubles(rg, rw, "light_deg", kRenderedMaxLights);
+    const std::vector<double> psnr = Doubles(rg, rw, "light_psnr_db", kRenderedMaxLights);
+    const std::vector<double> med = Doubles(rg, rw, "light_median_rel_error", kRenderedMaxLights);
+    if (psnr.size() != deg.size() || med.size() != deg.size()) {
+      Fail(rw + ": light_deg, light_psnr_db and light_median_rel_error differ in length");
+    }
+    e->num_lights = static_cast<int>(deg.size());
+    for (std::size_t k = 0; k < deg.size(); ++k) {
+      e->lights[k].light_deg = deg[k];
+      e->lights[k].psnr_db = psnr[k];
+      e->lights[k].median_rel_error = med[k];
+    }
+    if (e->psnr_db < 0 || e->median_rel_error < 0 || e->p95_rel_error < 0) {
+      Fail(rw + ": negative error");
+    }
+  }
+
   std::vector<double> Doubles(const H5::Group& g, const std::string& where, const char* name,
                               std::size_t max) const {
     std::vector<hsize_t> dims;
@@ -219,6 +275,10 @@ class Reader : public hdf5::Reader {
     if (meas.size() != 3 || pred.size() != 3) Fail(ww + ": measured/predicted must hold 3 values");
     std::copy(meas.begin(), meas.end(), m.worst.measured.begin());
     std::copy(pred.begin(), pred.end(), m.worst.predicted.begin());
+    // Reports written before the rendered-image metric have no /metrics/rendered.
+    if (H5Lexists(mg.getId(), "rendered", H5P_DEFAULT) > 0) {
+      ReadRendered(Group(mg, mw, "rendered"), mw + "/rendered", &m.rendered);
+    }
 
     const std::string sw = where + "/samples";
     const H5::Group sg = Group(g, where, "samples");
@@ -329,6 +389,13 @@ std::string FitParamsJson(std::vector<FitReportEntry> entries) {
                     {"rel_l2", r.metrics.rel_l2},
                     {"weighting", r.metrics.weighting},
                     {"cutoff_deg", r.metrics.cutoff_deg}};
+    const RenderedError& re = r.metrics.rendered;
+    if (re.ok) {
+      j["metrics"]["rendered"] = {{"psnr_db", re.psnr_db},
+                                  {"psnr_srgb_db", re.psnr_srgb_db},
+                                  {"median_rel_error", re.median_rel_error},
+                                  {"p95_rel_error", re.p95_rel_error}};
+    }
     j["options"] = nlohmann::ordered_json::parse(e.options.empty() ? "{}" : e.options);
     fits.push_back(j);
   }

@@ -14,7 +14,13 @@
 #include <string>
 #include <vector>
 
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "fit/fitter.h"
 #include "fit/rendered_error.h"
+#include "io/fit_report.h"
+#include "tests/scratch_dir.h"
 #include "fit_test_util.h"
 #include "models/registry.h"
 
@@ -356,6 +362,43 @@ TEST(RenderedError, Deterministic) {
   EXPECT_EQ(a.median_rel_error, b.median_rel_error);
   EXPECT_EQ(a.p95_rel_error, b.p95_rel_error);
   EXPECT_EQ(a.exposure, b.exposure);
+}
+
+// Every fit carries the metric (fit/fitter.h), and it survives the HDF5 fit report and the JSON
+// parameters (io/fit_report.h) unchanged. A perfect model scores the cap.
+TEST(RenderedError, EveryFitCarriesItThroughReportAndJson) {
+  const std::vector<double> truth = Params("lambert+ggx", {"ggx.alpha=0.2"});
+  const Table t = SynthModel("lambert+ggx", truth, SmallGrid(), 0.05, 0.0);
+  const FitResult r = FitTable("lambert+ggx", t, SampleOptions{}, FitOptions{});
+  ASSERT_FALSE(r.Failed()) << r.message;
+  const RenderedError& e = r.metrics.rendered;
+  ASSERT_TRUE(e.ok) << e.problem;
+  EXPECT_EQ(e.num_lights, 6);
+  // 5 % noise on the table: the fit is close to the truth, far better than a 2x error.
+  EXPECT_LT(e.median_rel_error, 0.05);
+  EXPECT_GT(e.psnr_db, 25);
+
+  ScratchDir dir;
+  const std::filesystem::path report = dir / "fits.h5";
+  WriteFitReport({{"t.h5", "t", "{}", r}}, report, false);
+  const auto back = ReadFitReport(report);
+  ASSERT_EQ(back.size(), 1u);
+  const RenderedError& b = back[0].result.metrics.rendered;
+  EXPECT_TRUE(b.ok);
+  EXPECT_EQ(b.psnr_db, e.psnr_db);
+  EXPECT_EQ(b.psnr_srgb_db, e.psnr_srgb_db);
+  EXPECT_EQ(b.median_rel_error, e.median_rel_error);
+  EXPECT_EQ(b.p95_rel_error, e.p95_rel_error);
+  EXPECT_EQ(b.lit_pixels, e.lit_pixels);
+  ASSERT_EQ(b.num_lights, e.num_lights);
+  for (int k = 0; k < e.num_lights; ++k) {
+    EXPECT_EQ(b.lights[k].light_deg, e.lights[k].light_deg);
+    EXPECT_EQ(b.lights[k].psnr_db, e.lights[k].psnr_db);
+  }
+  const auto j = nlohmann::json::parse(FitParamsJson(back));
+  EXPECT_EQ(j["fits"][0]["metrics"]["rendered"]["psnr_db"].get<double>(), e.psnr_db);
+  EXPECT_EQ(j["fits"][0]["metrics"]["rendered"]["median_rel_error"].get<double>(),
+            e.median_rel_error);
 }
 
 }  // namespace
