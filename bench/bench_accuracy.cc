@@ -21,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/bench_tables.h"
 #include "fit/fitter.h"
 #include "io/atomic_file.h"
 #include "io/nbrdf.h"
@@ -30,16 +31,6 @@ namespace {
 
 using namespace brdfit;
 namespace fs = std::filesystem;
-
-std::vector<std::string> Split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string part;
-  while (std::getline(ss, part, ',')) {
-    if (!part.empty()) out.push_back(part);
-  }
-  return out;
-}
 
 struct Config {
   std::string model, loss;
@@ -71,18 +62,19 @@ int main(int argc, char** argv) {
     if (a == "--csv")
       csv = v;
     else if (a == "--models")
-      models = Split(v);
+      models = bench::SplitList(v);
     else if (a == "--losses")
-      losses = Split(v);
+      losses = bench::SplitList(v);
     else if (a == "--budget")
       budget = v;
     else if (a == "--nbrdf")
-      nbrdf = Split(v);
+      nbrdf = bench::SplitList(v);
     else if (a == "--jobs")
       jobs = std::max(1, std::atoi(v.c_str()));
     else if (a == "--multistart") {
       multistarts.clear();
-      for (const auto& m : Split(v)) multistarts.push_back(std::max(1, std::atoi(m.c_str())));
+      for (const auto& m : bench::SplitList(v))
+        multistarts.push_back(std::max(1, std::atoi(m.c_str())));
     } else {
       fmt::print(stderr, "unknown option {}\n", a);
       return 2;

@@ -41,16 +41,6 @@ const std::vector<std::string> kDefaultNbrdf = {"gold-metallic-paint", "blue-acr
 const std::vector<std::string> kBudgets = {"full", "stride:8", "stride:16", "stride:32",
                                            "random:8192"};
 
-std::vector<std::string> Split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string part;
-  while (std::getline(ss, part, ',')) {
-    if (!part.empty()) out.push_back(part);
-  }
-  return out;
-}
-
 BenchTable SyntheticTable() {
   return {"synthetic-lambert-ggx-0.08", "synthetic", bench::SyntheticLambertGgxTable()};
 }
@@ -161,14 +151,14 @@ int main(int argc, char** argv) {
     if (a == "--csv" && has_value) {
       csv = argv[++i];
     } else if (a == "--models" && has_value) {
-      models = Split(argv[++i]);
+      models = bench::SplitList(argv[++i]);
     } else if (a == "--budgets" && has_value) {
-      budgets = Split(argv[++i]);
+      budgets = bench::SplitList(argv[++i]);
     } else if (a == "--nbrdf" && has_value) {
       const std::string v = argv[++i];
       nbrdf = v == "all"
                   ? (fs::exists(kZip) ? ListNbrdfMaterials(kZip) : std::vector<std::string>{})
-                  : Split(v);
+                  : bench::SplitList(v);
     } else if (a == "--repeats" && has_value) {
       repeats = std::max(1, std::atoi(argv[++i]));
     } else {

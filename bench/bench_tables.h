@@ -1,6 +1,8 @@
 // Tables shared by the benchmark programs.
 #pragma once
 
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "core/synth.h"
@@ -8,6 +10,17 @@
 #include "models/registry.h"
 
 namespace brdfit::bench {
+
+// "a,b,,c" -> {"a", "b", "c"}: the comma-separated lists of the programs' options.
+inline std::vector<std::string> SplitList(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string part;
+  while (std::getline(ss, part, ',')) {
+    if (!part.empty()) out.push_back(part);
+  }
+  return out;
+}
 
 // Lambert + GGX (alpha 0.08, warm colours) on the full MERL grid with 5 % log-normal noise and
 // 10 % holes, seed 1: the synthetic table of bench_fit and bench_metrics.
