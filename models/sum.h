@@ -32,6 +32,17 @@ constexpr auto ConcatParams() {
 }
 }  // namespace detail
 
+namespace detail {
+template <class L>
+constexpr bool LobeHasWeights() {
+  if constexpr (requires { L::kHasWeights; }) {
+    return L::kHasWeights;
+  } else {
+    return true;
+  }
+}
+}  // namespace detail
+
 template <class... Lobes>
 struct Sum {
   static constexpr std::array<ParamSpec, (kNumParams<Lobes> + ...)> kParams =
@@ -46,7 +57,11 @@ struct Sum {
   }();
 
   // A sum conserves energy when every lobe does and the lobes' weights sum to <= 1 per channel.
-  static constexpr bool kEnergyConserving = (Lobes::kEnergyConserving && ...);
+  // A lobe whose albedo is not scaled by linear weights (kHasWeights false: ggx-f0, whose
+  // albedo reaches ~1 whatever its parameters) leaves nothing for the other lobes, so a sum
+  // with it makes no such claim.
+  static constexpr bool kEnergyConserving =
+      (Lobes::kEnergyConserving && ...) && (detail::LobeHasWeights<Lobes>() && ...);
 
   // Registry-style name, e.g. "lambert+ggx".
   static std::string Name() {
