@@ -184,10 +184,12 @@ inline void GgxF0(const double* p, const Angles& a, double rgb[3]) {
 }
 
 // Löw et al. 2012 smooth surface model as models/abc.h states it: A (1 + B |D_p|^2)^-C F,
-// |D_p|^2 = |sin ti (cos pi, sin pi) + sin to (cos po, sin po)|^2 by the law of cosines.
+// |D_p|^2 = |sin ti (cos pi, sin pi) + sin to (cos po, sin po)|^2 by the law of cosines,
+// written (si - so)^2 + 4 si so cos^2(dphi / 2) so that nothing cancels near dphi = pi.
 inline void Abc(const double* p, const Angles& a, double rgb[3]) {
   const double si = std::sin(a.ti), so = std::sin(a.to);
-  const double dp2 = si * si + so * so + 2 * si * so * std::cos(a.pi - a.po);
+  const double dp2 =
+      (si - so) * (si - so) + 4 * si * so * std::pow(std::cos(0.5 * (a.pi - a.po)), 2);
   const double v = std::pow(1 + p[3] * dp2, -p[4]) * FSchlick(p[5], Half(a).td);
   for (int c = 0; c < 3; ++c) rgb[c] = p[c] * v;
 }
