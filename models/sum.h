@@ -45,8 +45,16 @@ constexpr bool LobeHasWeights() {
 
 template <class... Lobes>
 struct Sum {
-  static constexpr std::array<ParamSpec, (kNumParams<Lobes> + ...)> kParams =
-      detail::ConcatParams<Lobes...>();
+  // A lobe without linear weights (ggx-f0) is a constant term of the sum, so the sum's other
+  // weights are not linear without a constant term (models/param.h ParamRole): all its
+  // parameters are then shape parameters, as in the weightless lobe.
+  static constexpr std::array<ParamSpec, (kNumParams<Lobes> + ...)> kParams = [] {
+    auto params = detail::ConcatParams<Lobes...>();
+    if (!(detail::LobeHasWeights<Lobes>() && ...)) {
+      for (auto& p : params) p.role = ParamRole::kShape;
+    }
+    return params;
+  }();
   static constexpr std::size_t kNumLobes = sizeof...(Lobes);
   // Offset of each lobe's parameters in the concatenated vector.
   static constexpr std::array<std::size_t, sizeof...(Lobes)> kOffsets = [] {

@@ -59,9 +59,10 @@ Case CaseFor(const std::string& spec, double alpha) {
     add("f0_b=0.31");
     add("alpha=" + std::to_string(alpha));
   } else if (spec == "abc") {
-    // The ABC lobe's width in projected space, |D_p| ~ 2 theta_h, set from alpha.
+    // The ABC lobe's width in projected space set from alpha (b = 1/alpha^2: at alpha = 0.7 a
+    // broader lobe, b = 0.5, trades off with the diffuse term beyond 3 % under 5 % noise).
     weights("a");
-    add("b=" + std::to_string(0.25 / (alpha * alpha)));
+    add("b=" + std::to_string(1.0 / (alpha * alpha)));
     add("c=1.5");
     add("f0=0.35");
   } else if (spec == "sgd") {
