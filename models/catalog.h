@@ -13,6 +13,7 @@
 #include <tuple>
 #include <type_traits>
 
+#include "models/abc.h"
 #include "models/beckmann.h"
 #include "models/blinn_phong.h"
 #include "models/burley.h"
@@ -22,6 +23,7 @@
 #include "models/lambert.h"
 #include "models/oren_nayar.h"
 #include "models/phong.h"
+#include "models/sgd.h"
 #include "models/sum.h"
 #include "models/ue4.h"
 #include "models/ward.h"
@@ -47,7 +49,11 @@ using ModelCatalog = std::tuple<
     Sum<Lambert, Ggx>, Sum<Lambert, CookTorrance>, Sum<Lambert, Lafortune>,
     // multi-lobe
     Sum<Lambert, Ggx, Ggx>, Sum<Lambert, Lafortune, Lafortune>,
-    Sum<Lambert, Lafortune, Lafortune, Lafortune>>;
+    Sum<Lambert, Lafortune, Lafortune, Lafortune>,
+    // added after the first release: appended, so that the earlier entries keep their index
+    // (and their fit/problem_instances_*.cc shard)
+    GgxF0, Sum<Lambert, GgxF0>, Sum<Lambert, GgxHc>, Abc, Sum<Lambert, Abc>, Sgd,
+    Sum<Lambert, Sgd>>;
 
 // Calls f(std::type_identity<M>{}) for every model type M in the catalog.
 template <class F>

@@ -32,10 +32,29 @@ constexpr auto ConcatParams() {
 }
 }  // namespace detail
 
+namespace detail {
+template <class L>
+constexpr bool LobeHasWeights() {
+  if constexpr (requires { L::kHasWeights; }) {
+    return L::kHasWeights;
+  } else {
+    return true;
+  }
+}
+}  // namespace detail
+
 template <class... Lobes>
 struct Sum {
-  static constexpr std::array<ParamSpec, (kNumParams<Lobes> + ...)> kParams =
-      detail::ConcatParams<Lobes...>();
+  // A lobe without linear weights (ggx-f0) is a constant term of the sum, so the sum's other
+  // weights are not linear without a constant term (models/param.h ParamRole): all its
+  // parameters are then shape parameters, as in the weightless lobe.
+  static constexpr std::array<ParamSpec, (kNumParams<Lobes> + ...)> kParams = [] {
+    auto params = detail::ConcatParams<Lobes...>();
+    if (!(detail::LobeHasWeights<Lobes>() && ...)) {
+      for (auto& p : params) p.role = ParamRole::kShape;
+    }
+    return params;
+  }();
   static constexpr std::size_t kNumLobes = sizeof...(Lobes);
   // Offset of each lobe's parameters in the concatenated vector.
   static constexpr std::array<std::size_t, sizeof...(Lobes)> kOffsets = [] {
@@ -46,7 +65,11 @@ struct Sum {
   }();
 
   // A sum conserves energy when every lobe does and the lobes' weights sum to <= 1 per channel.
-  static constexpr bool kEnergyConserving = (Lobes::kEnergyConserving && ...);
+  // A lobe whose albedo is not scaled by linear weights (kHasWeights false: ggx-f0, whose
+  // albedo reaches ~1 whatever its parameters) leaves nothing for the other lobes, so a sum
+  // with it makes no such claim.
+  static constexpr bool kEnergyConserving =
+      (Lobes::kEnergyConserving && ...) && (detail::LobeHasWeights<Lobes>() && ...);
 
   // Registry-style name, e.g. "lambert+ggx".
   static std::string Name() {

@@ -1,6 +1,7 @@
 // Parameter recovery on synthetic tables on the full MERL grid (issue "Fitting engine",
-// acceptance): Lambert plus GGX, Beckmann, Ward, Lafortune (1 lobe), Blinn-Phong and
-// Cook-Torrance at alpha in {0.005, 0.02, 0.1, 0.3, 0.7} or the model's equivalent.
+// acceptance): Lambert plus GGX (separable, height-correlated, and with a free RGB F0),
+// Beckmann, Ward, Lafortune (1 lobe), Blinn-Phong, Cook-Torrance, Löw's ABC and Bagher's SGD
+// at alpha in {0.005, 0.02, 0.1, 0.3, 0.7} or the model's equivalent.
 //  * noise-free: every parameter within 1e-3 relative error (the tests hold 1e-4);
 //  * 5 % multiplicative noise and 30 % missing cells: within 3 %.
 // The fits run with the default options except the budget: noise-free tables are fitted on a
@@ -49,9 +50,27 @@ Case CaseFor(const std::string& spec, double alpha) {
     add(name + "_g=0.44");
     add(name + "_b=0.31");
   };
-  if (spec == "ggx" || spec == "beckmann") {
+  if (spec == "ggx" || spec == "ggx-hc" || spec == "beckmann") {
     weights("ks");
     add("alpha=" + std::to_string(alpha));
+  } else if (spec == "ggx-f0") {
+    add("f0_r=0.62");
+    add("f0_g=0.44");
+    add("f0_b=0.31");
+    add("alpha=" + std::to_string(alpha));
+  } else if (spec == "abc") {
+    // The ABC lobe's width in projected space set from alpha (b = 1/alpha^2: at alpha = 0.7 a
+    // broader lobe, b = 0.5, trades off with the diffuse term beyond 3 % under 5 % noise).
+    weights("a");
+    add("b=" + std::to_string(1.0 / (alpha * alpha)));
+    add("c=1.5");
+    add("f0=0.35");
+  } else if (spec == "sgd") {
+    // SGD alpha is a width in tan^2 (Beckmann alpha^2 at p = 0).
+    weights("ks");
+    add("alpha=" + std::to_string(alpha * alpha));
+    add("p=0.7");
+    add("f0=0.35");
   } else if (spec == "ward") {
     weights("rho_s");
     add("alpha=" + std::to_string(alpha));
@@ -95,8 +114,8 @@ std::vector<RecoveryParam> AllCases() {
   const std::vector<int> alphas = {0, 1, 2, 3, 4};
 #endif
   std::vector<RecoveryParam> out;
-  for (const char* spec :
-       {"ggx", "beckmann", "ward", "lafortune", "blinn-phong", "cook-torrance"}) {
+  for (const char* spec : {"ggx", "beckmann", "ward", "lafortune", "blinn-phong", "cook-torrance",
+                           "ggx-hc", "ggx-f0", "abc", "sgd"}) {
     for (int a : alphas) out.push_back({spec, a});
   }
   return out;

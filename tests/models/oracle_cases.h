@@ -87,6 +87,41 @@ struct OracleCase<GgxHc> : OracleOf<GgxHcOracle> {
 };
 
 template <>
+struct OracleCase<GgxF0> : OracleOf<oracle::GgxF0> {
+  static ParamSets Params() {
+    ParamSets params;
+    for (double alpha : {1e-4, 1e-2, 0.1, 0.5, 1.0}) {
+      params.push_back({0.04, 0.04, 0.04, alpha});
+      params.push_back({1e-3, 0.5, 1.0, alpha});  // F0 = 0 exactly: F = 0 at retro
+      params.push_back({0.95, 0.64, 0.54, alpha});
+    }
+    return params;
+  }
+};
+
+template <>
+struct OracleCase<Abc> : OracleOf<oracle::Abc> {
+  static ParamSets Params() {
+    ParamSets shapes;
+    for (double b : {1e-2, 10.0, 1e4, 1e8})
+      for (double c : {0.05, 1.0, 8.0}) shapes.push_back({b, c, 0.3});
+    shapes.push_back({100.0, 1.5, 1e-3});  // F0 = 0 exactly: F = 0 at retro
+    shapes.push_back({100.0, 1.5, 1.0});
+    return WithWeights(shapes);
+  }
+};
+
+template <>
+struct OracleCase<Sgd> : OracleOf<oracle::Sgd> {
+  static ParamSets Params() {
+    ParamSets shapes;
+    for (double alpha : {1e-4, 1e-2, 0.3, 1.0})
+      for (double pw : {0.0, 0.5, 1.2, 2.0}) shapes.push_back({alpha, pw, 0.2});
+    return WithWeights(shapes);
+  }
+};
+
+template <>
 struct OracleCase<Beckmann> : OracleOf<oracle::Beckmann> {
   static ParamSets Params() { return WithWeights({{1e-4}, {0.01}, {0.1}, {0.5}, {1.0}}); }
 };

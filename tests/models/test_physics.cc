@@ -14,7 +14,9 @@
 
 #include "models/microfacet/ndf.h"
 #include "models/registry.h"
+#include "models/sgd.h"
 #include "tests/models/catalog_types.h"
+#include "tests/models/oracles.h"
 #include "tests/models/param_sets.h"
 #include "tests/models/quadrature.h"
 #include "tests/models/variant_terms.h"
@@ -82,6 +84,19 @@ TEST(Physics, NdfNormalization) {
     const double bp = NdfNormalization([&](double c, double s2) { return DBlinnPhong(n, c, s2); });
     EXPECT_NEAR(bp, 1.0, 1e-3) << "Blinn-Phong n " << n;
   }
+}
+
+// Bagher et al. 2012's SGD (models/sgd.h) over its parameter box, and the Taylor polynomial of
+// Gamma(s, 1) it is normalized with against the oracle's quadrature.
+TEST(Physics, SgdNdfNormalization) {
+  for (double s = -1.0; s <= 1.0; s += 0.125) {
+    EXPECT_NEAR(UpperGammaAt1(s) / oracle::UpperGammaAt1(s), 1.0, 1e-12) << "s " << s;
+  }
+  for (double alpha : {1e-4, 1e-3, 0.01, 0.1, 0.5, 1.0})
+    for (double p : {0.0, 0.3, 0.8, 1.0, 1.5, 2.0}) {
+      const double n = NdfNormalization([&](double c, double s2) { return DSgd(alpha, p, c, s2); });
+      EXPECT_NEAR(n, 1.0, 1e-3) << "SGD alpha " << alpha << " p " << p;
+    }
 }
 
 // Heitz 2014's normalization constraint on the masking function ("the projected area of the
