@@ -36,13 +36,7 @@ report::BenchPoint ToPoint(const BenchTable& t, LossKind loss, const Budget& bud
   b.time_ms = prepare_ms + r.times.init + r.times.solve;
   b.fit_cells = r.fit_cells;
   b.iterations = r.iterations;
-  b.metrics.ok = r.metrics.ok;
-  b.metrics.log_rmse = r.metrics.log_rmse;
-  b.metrics.cbrt_rmse = r.metrics.cbrt_rmse;
-  b.metrics.rel_l2 = r.metrics.rel_l2;
-  b.metrics.cells = r.metrics.cells;
-  b.metrics.weighting = r.metrics.weighting;
-  b.metrics.cutoff_deg = r.metrics.cutoff_deg;
+  b.metrics = r.metrics;
   return b;
 }
 
