@@ -7,6 +7,10 @@
 
 #include "preview/gl.h"
 
+#if defined(__SANITIZE_ADDRESS__)
+#include <sanitizer/lsan_interface.h>
+#endif
+
 namespace brdfit::preview {
 namespace {
 
@@ -36,6 +40,18 @@ std::string EglErrorName(EGLint e) {
 }  // namespace
 
 HeadlessGlContext::HeadlessGlContext() {
+#if defined(__SANITIZE_ADDRESS__)
+  // Under ASan only: LeakSanitizer's exit-time check can crash in its own tracer (signal 11
+  // while stopping the threads) once Mesa llvmpipe's worker threads exist, failing a process
+  // that did nothing wrong (make test-asan: the seed004_steps golden test every run,
+  // RenderCli.FourPanelComparison512 now and then). Check for leaks now, before any GL thread
+  // exists; LeakSanitizer then skips its exit-time check. Leaks after this point go unseen.
+  static const bool checked = [] {
+    __lsan_do_leak_check();
+    return true;
+  }();
+  (void)checked;
+#endif
   // The EXT entry point: libepoxy-style wrappers abort on eglGetPlatformDisplay.
   const char* client_ext = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   if (client_ext == nullptr || std::string(client_ext).find("EGL_MESA_platform_surfaceless") ==

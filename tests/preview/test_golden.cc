@@ -25,10 +25,6 @@
 #include "preview/scene.h"
 #include "tests/preview/gl_test_env.h"
 
-#if defined(__SANITIZE_ADDRESS__)
-#include <sanitizer/lsan_interface.h>
-#endif
-
 namespace brdfit::preview {
 namespace {
 
@@ -43,12 +39,6 @@ class Golden : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(Golden, MatchesStoredImage) {
   BRDFIT_REQUIRE_GL();
-#if defined(__SANITIZE_ADDRESS__)
-  // LeakSanitizer's exit-time check crashes in its own tracer (signal 11 while stopping the
-  // threads) after this scene's shaders run on Mesa llvmpipe; the test itself passes. Check for
-  // leaks now, before any GL thread exists; the exit-time check is then skipped.
-  if (GetParam() == "seed004_steps") __lsan_do_leak_check();
-#endif
   const fs::path root = BRDFIT_SOURCE_DIR;
   const fs::path scene_path = root / "data" / "scenes" / (GetParam() + ".json");
   const fs::path golden = root / "data" / "golden" / (GetParam() + ".png");
