@@ -2,7 +2,9 @@
 // factored with a cold cache (build + factor the system, then solve) and with the system reused
 // from the cache (logs, A^T W y, triangular solves, bake), at 32^2 and 64^2 texels, for both
 // parameterizations. The material is an NBRDF network (../shared/data/merl_nbrdf.zip) tabulated
-// once, or a synthetic Lambert + GGX table when the archive is absent. Medians:
+// once, or a synthetic Lambert + GGX table when the archive is absent. Counters: cells, f<=0,
+// PCG iterations, and the rendered-image metric of the result (psnr_dB, med_lum_%; docs/
+// accuracy.md). The same metric over all 100 materials: bench_factor_accuracy. Medians:
 //   build/bench/bench_factor --benchmark_repetitions=9 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
@@ -10,6 +12,7 @@
 #include <string>
 
 #include "factor/factor.h"
+#include "factor/factor_metrics.h"
 #include "io/nbrdf.h"
 #include "core/synth.h"
 #include "models/registry.h"
@@ -56,6 +59,14 @@ void Label(benchmark::State& state, const Factorization& r) {
   state.counters["cells"] = static_cast<double>(r.stats.used_cells);
   state.counters["f<=0"] = static_cast<double>(r.stats.nonpositive_cells);
   state.counters["pcg_it"] = r.stats.pcg_iterations;
+  // The rendered-image metric of the result (docs/accuracy.md, default scene; not timed).
+  const RenderedError e = ScoreFactorizationRendered(TheMaterial().table, r.brdf);
+  if (!e.ok) {
+    state.SkipWithError(("rendered metric: " + e.problem).c_str());
+    return;
+  }
+  state.counters["psnr_dB"] = e.psnr_db;
+  state.counters["med_lum_%"] = 100 * e.median_rel_error;
 }
 
 // Cold: every iteration builds and factors the system, then solves.

@@ -1,6 +1,7 @@
 // `brdfit factor FILES... -o DIR`: rank-1 homomorphic factorization of each table into two
-// float32 OpenEXR textures plus a JSON sidecar (factor/factor.h, docs/factorization.md). The
-// factored system is built once per grid and mask and reused for every further file.
+// float32 OpenEXR textures plus a JSON sidecar (factor/factor.h, docs/factorization.md), scored
+// like a fit (fit metrics and the rendered-image metric, docs/accuracy.md). The factored system
+// is built once per grid and mask and reused for every further file.
 #include <fmt/core.h>
 
 #include <cstdio>
@@ -19,6 +20,7 @@
 #include "factor/factor_metrics.h"
 #include "core/error.h"
 #include "io/input_file.h"
+#include "io/metrics_json.h"
 #include "io/nbrdf.h"
 #include "report/report_inputs.h"
 #include "io/table_io.h"
@@ -41,7 +43,7 @@ struct FactorCliOptions {
   bool quiet = false;
 };
 
-nlohmann::json MetricsJson(const FitMetrics& m, double ln_rmse) {
+nlohmann::json MetricsJson(const FitMetrics& m, const RenderedError& rendered, double ln_rmse) {
   nlohmann::json j = {{"ln_ratio_rmse", ln_rmse},
                       {"ln_ratio_rmse_definition",
                        "sqrt(mean over valid cells above the horizon with all channels > 0 of "
@@ -55,6 +57,8 @@ nlohmann::json MetricsJson(const FitMetrics& m, double ln_rmse) {
                       {"cutoff_deg", m.cutoff_deg},
                       {"definition", MetricsDefinition()}};
   if (!m.ok) j["fit_metrics"]["problem"] = m.problem;
+  // The rendered-image metric, written as brdfit fit writes it (io/metrics_json.h).
+  j["rendered"] = nlohmann::json(RenderedErrorJson(rendered));
   return j;
 }
 
@@ -112,8 +116,9 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
   FactorSystemCache cache;
   int code = kExitOk;
   if (!o.quiet) {
-    fmt::print("{:<28} {:<8} {:>4} {:>8} {:>7} {:>10} {:>9} {:>9} {:>8} {:>9}\n", "table", "param",
-               "res", "cells", "f<=0", "ln-rmse", "E2-log", "cbrt", "system", "time");
+    fmt::print("{:<28} {:<8} {:>4} {:>8} {:>7} {:>10} {:>9} {:>9} {:>7} {:>7} {:>8} {:>9}\n",
+               "table", "param", "res", "cells", "f<=0", "ln-rmse", "E2-log", "cbrt", "psnr_dB",
+               "med_lum", "system", "time");
   }
   for (const std::string& file : pipeline::ExpandInputs(o.files)) {
     try {
@@ -126,17 +131,23 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
       }
       const double ln_rmse = FactorLnRatioRmse(table, r.brdf, options.max_theta);
       const FitMetrics m = ScoreFactorization(table, r.brdf, metric_samples);
+      // What the preview draws from the textures written below (docs/accuracy.md).
+      const RenderedError re = ScoreFactorizationRendered(table, r.brdf);
       const std::string stem = report::MaterialName(file) + o.suffix;
       const FactorPaths paths = SaveFactorization(
           r, o.out_dir, stem,
-          {{"source", SourceJson(file, table)}, {"metrics", MetricsJson(m, ln_rmse)}});
+          {{"source", SourceJson(file, table)}, {"metrics", MetricsJson(m, re, ln_rmse)}});
       if (written) {
         for (const fs::path& p : {paths.p, paths.q, paths.json}) written->push_back(p);
       }
       if (!o.quiet) {
-        fmt::print("{:<28} {:<8} {:>4} {:>8} {:>7} {:>10.4g} {:>9.4g} {:>9.4g} {:>8} {:>8.1f}ms\n",
+        // As brdfit fit prints them: "-" when the metric failed (the sidecar says why).
+        const std::string psnr = re.ok ? fmt::format("{:.1f}", re.psnr_db) : "-";
+        const std::string lum = re.ok ? fmt::format("{:.1f}%", 100 * re.median_rel_error) : "-";
+        fmt::print("{:<28} {:<8} {:>4} {:>8} {:>7} {:>10.4g} {:>9.4g} {:>9.4g} {:>7} {:>7} {:>8} "
+                   "{:>8.1f}ms\n",
                    stem, o.param, options.resolution, r.stats.used_cells, r.stats.nonpositive_cells,
-                   ln_rmse, m.log_rmse, m.cbrt_rmse,
+                   ln_rmse, m.log_rmse, m.cbrt_rmse, psnr, lum,
                    r.stats.system_rebuilt  ? "rebuilt"
                    : r.stats.system_reused ? "reused"
                                            : "built",

@@ -37,4 +37,13 @@ double FactorLnRatioRmse(const Table& table, const FactoredBrdf& brdf, double ma
   return count ? std::sqrt(sum / count) : 0.0;
 }
 
+BrdfFunction FactoredBrdfFunction(const FactoredBrdf& brdf) {
+  return [&brdf](const Vec3& wi, const Vec3& wo) { return brdf.Eval(wi, wo); };
+}
+
+RenderedError ScoreFactorizationRendered(const Table& table, const FactoredBrdf& brdf,
+                                         const RenderedErrorOptions& options) {
+  return ComputeRenderedError(table, FactoredBrdfFunction(brdf), options);
+}
+
 }  // namespace brdfit

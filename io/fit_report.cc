@@ -15,6 +15,7 @@
 #include "core/metrics.h"
 #include "io/atomic_file.h"
 #include "io/hdf5_util.h"
+#include "io/metrics_json.h"
 
 namespace brdfit {
 
@@ -398,12 +399,8 @@ std::string FitParamsJson(std::vector<FitReportEntry> entries) {
                     {"rel_l2", r.metrics.rel_l2},
                     {"weighting", r.metrics.weighting},
                     {"cutoff_deg", r.metrics.cutoff_deg}};
-    const RenderedError& re = r.metrics.rendered;
-    if (re.ok) {
-      j["metrics"]["rendered"] = {{"psnr_db", re.psnr_db},
-                                  {"psnr_srgb_db", re.psnr_srgb_db},
-                                  {"median_rel_error", re.median_rel_error},
-                                  {"p95_rel_error", re.p95_rel_error}};
+    if (RenderedErrorComputed(r.metrics.rendered)) {
+      j["metrics"]["rendered"] = RenderedErrorJson(r.metrics.rendered);
     }
     j["chosen"] = e.chosen;
     if (e.chosen) j["choice"] = e.choice;

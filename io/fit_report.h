@@ -60,8 +60,9 @@ std::vector<FitReportEntry> ReadFitReport(const std::filesystem::path& path);
 // {"format": "brdfit-fit-params", "format_version": 1, "fits": [{"source", "material", "model",
 //  "status", "message", "params": {"name": value, ...}, "metrics": {"log_rmse", "cbrt_rmse",
 //  "rel_l2", "weighting", "cutoff_deg", "rendered": {"psnr_db", "psnr_srgb_db",
-//  "median_rel_error", "p95_rel_error"} (when computed; docs/accuracy.md)}, "chosen": bool,
-//  "choice": "why" (chosen fits only), "options": {...}},
+//  "median_rel_error", "p95_rel_error", "ok", "problem" if not ok} (when computed, i.e. not for
+//  a failed fit; io/metrics_json.h, docs/accuracy.md)}, "chosen": bool, "choice": "why" (chosen
+//  fits only), "options": {...}},
 //  ...]} in report order, no timings: deterministic.
 std::string FitParamsJson(std::vector<FitReportEntry> entries);
 

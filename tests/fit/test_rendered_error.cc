@@ -20,6 +20,7 @@
 #include "fit/fitter.h"
 #include "fit/rendered_error.h"
 #include "io/fit_report.h"
+#include "io/metrics_json.h"
 #include "tests/scratch_dir.h"
 #include "fit_test_util.h"
 #include "models/registry.h"
@@ -399,6 +400,28 @@ TEST(RenderedError, EveryFitCarriesItThroughReportAndJson) {
   EXPECT_EQ(j["fits"][0]["metrics"]["rendered"]["psnr_db"].get<double>(), e.psnr_db);
   EXPECT_EQ(j["fits"][0]["metrics"]["rendered"]["median_rel_error"].get<double>(),
             e.median_rel_error);
+  EXPECT_TRUE(j["fits"][0]["metrics"]["rendered"]["ok"].get<bool>());
+  EXPECT_FALSE(j["fits"][0]["metrics"]["rendered"].contains("problem"));
+}
+
+// The JSON layout shared by fit parameters and factorization sidecars (io/metrics_json.h): a
+// failed metric says so and why; a metric never computed (a failed fit) is left out.
+TEST(RenderedError, JsonSaysWhenTheMetricFailedAndOmitsItWhenNotComputed) {
+  RenderedError failed;
+  failed.num_lights = 6;
+  failed.problem = "the measured images are black";
+  const auto j = nlohmann::json(RenderedErrorJson(failed));
+  EXPECT_FALSE(j["ok"].get<bool>());
+  EXPECT_EQ(j["problem"], failed.problem);
+  EXPECT_EQ(j["psnr_db"].get<double>(), 0.0);
+
+  FitResult r;
+  r.model = "lambert";
+  const auto none = nlohmann::json::parse(FitParamsJson({{"t.h5", "t", "{}", r}}));
+  EXPECT_FALSE(none["fits"][0]["metrics"].contains("rendered"));
+  r.metrics.rendered = failed;
+  const auto some = nlohmann::json::parse(FitParamsJson({{"t.h5", "t", "{}", r}}));
+  EXPECT_EQ(some["fits"][0]["metrics"]["rendered"], j);
 }
 
 }  // namespace

@@ -1,0 +1,172 @@
+// Factorizations as seen: the rendered-image metric (docs/accuracy.md) of `brdfit factor`'s
+// rank-1 factorizations over the NBRDF proxies of the 100 MERL materials, per parameterization
+// and resolution, with the columns of the fit study in docs/accuracy.md (bench_accuracy). The
+// "Rendered error" section of docs/factorization.md is made with it.
+//
+//   bench_factor_accuracy --csv FILE [--params mccool,halfdiff] [--res 64] [--lambda 1e-8]
+//                         [--nbrdf all|m1,m2] [--jobs 2]
+//
+// Each material is scored exactly as `brdfit factor` scores it (factor/factor_metrics.h: the
+// float32 textures through FactoredBrdf::Eval, what the preview draws; the default scene). One
+// CSV row per factorization: material, param, res, ln_ratio_rmse, log_rmse (E2), psnr_db,
+// psnr_srgb_db, median and p95 relative luminance error, factor time; the summary per
+// configuration on stdout (bench/rendered_summary.h).
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <tuple>
+#include <vector>
+
+#include "bench/bench_tables.h"
+#include "bench/rendered_summary.h"
+#include "factor/factor.h"
+#include "factor/factor_metrics.h"
+#include "io/atomic_file.h"
+#include "pipeline/inputs.h"
+
+namespace {
+
+using namespace brdfit;
+namespace fs = std::filesystem;
+
+struct Config {
+  FactorParam param;
+  int resolution;
+  std::string Key() const { return fmt::format("{} {}^2", ToString(param), resolution); }
+};
+
+struct Row {
+  std::string material;
+  std::size_t config = 0;
+  std::string error;  // factorization failed (InputError / runtime_error)
+  double ln_ratio_rmse = 0, factor_ms = 0;
+  FitMetrics fit;
+  RenderedError rendered;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string csv = "factor_accuracy.csv";
+  std::vector<std::string> params = {"mccool", "halfdiff"}, nbrdf = {"all"};
+  std::vector<int> resolutions = {64};
+  double lambda = FactorOptions{}.lambda;
+  int jobs = 2;
+  for (int i = 1; i < argc; i += 2) {
+    const std::string a = argv[i];
+    if (i + 1 >= argc) {
+      fmt::print(stderr, "option {} needs a value\n", a);
+      return 2;
+    }
+    const std::string v = argv[i + 1];
+    if (a == "--csv") {
+      csv = v;
+    } else if (a == "--params") {
+      params = bench::SplitList(v);
+    } else if (a == "--res") {
+      resolutions.clear();
+      for (const auto& r : bench::SplitList(v)) resolutions.push_back(std::atoi(r.c_str()));
+    } else if (a == "--lambda") {
+      lambda = std::atof(v.c_str());
+    } else if (a == "--nbrdf") {
+      nbrdf = bench::SplitList(v);
+    } else if (a == "--jobs") {
+      jobs = std::max(1, std::atoi(v.c_str()));
+    } else {
+      fmt::print(stderr, "unknown option {}\n", a);
+      return 2;
+    }
+  }
+  std::vector<Config> configs;
+  try {
+    for (const auto& p : params) {
+      for (int r : resolutions) configs.push_back({FactorParamFromString(p), r});
+    }
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "{}\n", e.what());
+    return 2;
+  }
+  const fs::path zip = fs::path(BRDFIT_SHARED_DATA) / "merl_nbrdf.zip";
+  if (!fs::exists(zip)) {
+    fmt::print(stderr, "{} not found: nothing to measure\n", zip.string());
+    return 0;
+  }
+  setenv("BRDFIT_NBRDF_ZIP", zip.c_str(), 1);
+  std::vector<std::string> inputs;
+  for (const auto& n : nbrdf) inputs.push_back("nbrdf:" + n);
+  inputs = pipeline::ExpandInputs(inputs);
+
+  const auto t0 = std::chrono::steady_clock::now();
+  FactorSystemCache cache(16);  // thread-safe; one system per configuration and reduced mask
+  std::vector<Row> rows;
+  std::mutex mu;
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t i = next++; i < inputs.size(); i = next++) {
+      const Table table = pipeline::LoadInput(inputs[i]);
+      for (std::size_t c = 0; c < configs.size(); ++c) {
+        Row row;
+        row.material = inputs[i].substr(6);
+        row.config = c;
+        FactorOptions o;
+        o.param = configs[c].param;
+        o.resolution = configs[c].resolution;
+        o.lambda = lambda;
+        try {
+          const Factorization r = Factor(table, o, &cache);
+          row.factor_ms = 1e3 * r.stats.seconds;
+          row.ln_ratio_rmse = FactorLnRatioRmse(table, r.brdf, o.max_theta);
+          row.fit = ScoreFactorization(table, r.brdf);
+          row.rendered = ScoreFactorizationRendered(table, r.brdf);
+        } catch (const std::exception& e) {
+          row.error = e.what();
+        }
+        std::lock_guard<std::mutex> lock(mu);
+        fmt::print(stderr, "{:<28} {:<16} {:>8.5f} {:>6.1f} dB {:>6.1f} %{}\n", row.material,
+                   configs[c].Key(), row.fit.log_rmse, row.rendered.psnr_db,
+                   100 * row.rendered.median_rel_error,
+                   row.error.empty() ? std::string() : "  failed: " + row.error);
+        rows.push_back(std::move(row));
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int j = 0; j < jobs; ++j) pool.emplace_back(worker);
+  for (auto& t : pool) t.join();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
+    return std::tie(a.material, a.config) < std::tie(b.material, b.config);
+  });
+
+  std::string out =
+      "material,param,res,status,ln_ratio_rmse,log_rmse,psnr_db,psnr_srgb_db,median_rel_error,"
+      "p95_rel_error,factor_ms\n";
+  for (const Row& r : rows) {
+    const RenderedError& e = r.rendered;
+    const std::string status = !r.error.empty() ? "failed" : e.ok ? "ok" : "metric_failed";
+    out += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.4f},{:.4f},{:.6f},{:.6f},{:.1f}\n", r.material,
+                       ToString(configs[r.config].param), configs[r.config].resolution, status,
+                       r.ln_ratio_rmse, r.fit.log_rmse, e.psnr_db, e.psnr_srgb_db,
+                       e.median_rel_error, e.p95_rel_error, r.factor_ms);
+  }
+  WriteTextAtomically(csv, out);
+
+  bench::PrintRenderedSummaryHeader(stdout);
+  for (std::size_t c = 0; c < configs.size(); ++c) {
+    bench::RenderedSummarizer summary;
+    for (const Row& r : rows) {
+      if (r.config == c) summary.Add(r.material, r.rendered);
+    }
+    bench::PrintRenderedSummaryRow(stdout, configs[c].Key(), summary.Get());
+  }
+  fmt::print("wrote {} ({} rows) in {:.0f} s with {} jobs\n", csv, rows.size(), seconds, jobs);
+  return 0;
+}
