@@ -417,10 +417,10 @@ TEST(RenderedError, JsonSaysWhenTheMetricFailedAndOmitsItWhenNotComputed) {
 
   FitResult r;
   r.model = "lambert";
-  const auto none = nlohmann::json::parse(FitParamsJson({{"t.h5", "t", "{}", r}}));
+  const auto none = nlohmann::json::parse(FitParamsJson({{"t.h5", "t", "{}", r, false, {}}}));
   EXPECT_FALSE(none["fits"][0]["metrics"].contains("rendered"));
   r.metrics.rendered = failed;
-  const auto some = nlohmann::json::parse(FitParamsJson({{"t.h5", "t", "{}", r}}));
+  const auto some = nlohmann::json::parse(FitParamsJson({{"t.h5", "t", "{}", r, false, {}}}));
   EXPECT_EQ(some["fits"][0]["metrics"]["rendered"], j);
 }
 
