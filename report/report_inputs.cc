@@ -70,6 +70,16 @@ FitMetrics MetricsFromJson(const json& j, bool ok_default) {
   m.cells = j.value("cells", std::size_t{0});
   m.weighting = j.value("weighting", std::string());
   m.cutoff_deg = Get(j, "cutoff_deg");
+  // The rendered-image metric's summary, written when computed (io/fit_report.h FitParamsJson).
+  const auto r = j.find("rendered");
+  if (r != j.end() && r->is_object()) {
+    m.rendered.ok = r->value("ok", true);
+    m.rendered.problem = r->value("problem", std::string());
+    m.rendered.psnr_db = Get(*r, "psnr_db");
+    m.rendered.psnr_srgb_db = Get(*r, "psnr_srgb_db");
+    m.rendered.median_rel_error = Get(*r, "median_rel_error");
+    m.rendered.p95_rel_error = Get(*r, "p95_rel_error");
+  }
   return m;
 }
 
