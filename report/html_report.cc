@@ -157,7 +157,7 @@ h1 { font-size: 24px; margin: 8px 0 4px; } h2 { font-size: 20px; margin: 32px 0 
   border-bottom: 2px solid var(--line); padding-bottom: 4px; } h3 { font-size: 16px; margin: 20px 0 6px; }
 .muted, .note { color: var(--muted); } .note { font-style: italic; }
 table { border-collapse: collapse; margin: 8px 0; font-variant-numeric: tabular-nums; }
-th, td { border-bottom: 1px solid var(--line); padding: 4px 8px; text-align: right; white-space: nowrap; }
+th, td { border-bottom: 1px solid var(--line); padding: 4px 6px; text-align: right; white-space: nowrap; }
 th { background: #f3f5f7; position: sticky; top: 0; } td.l, th.l { text-align: left; }
 tr.best td { background: var(--best); } td.bestv { font-weight: 700; }
 tr.failed td { background: var(--bad); }
@@ -168,7 +168,7 @@ figure img { max-width: 100%; border: 1px solid var(--line); } figcaption { colo
 #report-errors { display: none; background: var(--bad); border: 1px solid #d33; padding: 8px; }
 nav a { margin-right: 12px; } code { background: #f3f5f7; padding: 0 3px; }
 details { margin: 6px 0; } summary { cursor: pointer; color: var(--muted); }
-.scroll { overflow-x: auto; max-width: 100%; } td.stages { white-space: normal; min-width: 12em; text-align: left; }
+.scroll { overflow-x: auto; max-width: 100%; } td.stages { white-space: normal; min-width: 9em; max-width: 14em; text-align: left; font-size: 12px; }
 th.wrap { white-space: normal; min-width: 6em; max-width: 11em; vertical-align: bottom; }
 .views { display: flex; flex-wrap: wrap; gap: 12px 28px; align-items: flex-start; margin: 8px 0; }
 .view { display: grid; grid-template-columns: repeat(3, 160px); gap: 4px 6px; }
@@ -176,8 +176,8 @@ th.wrap { white-space: normal; min-width: 6em; max-width: 11em; vertical-align: 
 .view img { width: 160px; height: 160px; image-rendering: pixelated; border: 0; display: block; }
 .view span { color: var(--muted); font-size: 12px; text-align: center; }
 .legend { display: flex; align-items: center; gap: 8px; flex-wrap: wrap; color: var(--muted); font-size: 12px; }
-.legend .bar { width: 260px; height: 12px; border: 1px solid var(--line); }
-.legend .ticks { display: flex; justify-content: space-between; width: 260px; }
+.legend .bar { width: 300px; height: 12px; border: 1px solid var(--line); }
+.legend .ticks { display: flex; justify-content: space-between; width: 300px; white-space: nowrap; }
 .swatch { display: inline-block; width: 12px; height: 12px; border: 1px solid var(--line); vertical-align: middle; margin: 0 3px 0 8px; }
 )css";
 
@@ -369,7 +369,14 @@ class Page {
     body_ += "<div class=\"scroll\"><table><tr><th class=\"l\">material</th>"
              "<th>PSNR (dB)</th><th class=\"wrap\">median lum. err.</th>"
              "<th class=\"l\">best</th><th>log_rmse</th>";
-    for (const auto& n : names) body_ += "<th class=\"wrap\">" + HtmlEscape(n) + "</th>";
+    // A model name breaks after its '+' (no cell is as wide as "lambert+cook-torrance").
+    for (const auto& n : names) {
+      std::string h = HtmlEscape(n);
+      for (std::size_t at = h.find('+'); at != std::string::npos; at = h.find('+', at + 6)) {
+        h.insert(at + 1, "<wbr>");
+      }
+      body_ += "<th class=\"wrap\">" + h + "</th>";
+    }
     body_ += "</tr>\n";
     for (const Material& m : report_.materials) {
       const BestPick best = PickBest(m.entries);
@@ -615,10 +622,10 @@ class Page {
       return fmt::format("<span class=\"swatch\" style=\"background:{}\"></span>", HexColor(c));
     };
     body_ += "<div class=\"legend\"><span>lum. error (Y<sub>fit</sub> − Y<sub>meas</sub>) / "
-             "Y<sub>meas</sub>:</span><div><div class=\"bar\" style=\"background: linear-gradient("
-             "to right, " + stops + ")\"></div><div class=\"ticks\"><span>−100 % (darker)</span>"
-             "<span>−10 %</span><span>±1 %</span><span>+10 %</span><span>+100 % (brighter)"
-             "</span></div></div><span>log scale, white ≤ 1 %, full colour ≥ 100 %;" +
+             "Y<sub>meas</sub>:</span><span>fit darker</span><div><div class=\"bar\" style=\"background: "
+             "linear-gradient(to right, " + stops + ")\"></div><div class=\"ticks\"><span>−100 %</span>"
+             "<span>−10 %</span><span>±1 %</span><span>+10 %</span><span>≥ +100 %</span></div></div>"
+             "<span>fit brighter</span><span>log scale, white ≤ 1 %, full colour ≥ 100 %;" +
              swatch(kViewBelowFloor) + "below the luminance floor" + swatch(kViewMasked) +
              "measurement masked" + swatch(kViewUnlit) + "unlit</span></div>\n";
   }

@@ -16,7 +16,7 @@ Srgb ErrorColor(double s) {
   const double t = ErrorScaleT(std::abs(s));
   const Srgb& full = s > 0 ? kErrorBrighter : kErrorDarker;
   Srgb c{};
-  for (int i = 0; i < 3; ++i) c[i] = 1 + t * (full[i] - 1);
+  for (int i = 0; i < 3; ++i) c[i] = (1 - t) + t * full[i];  // exact at t = 0 and t = 1
   return c;
 }
 
