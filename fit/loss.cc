@@ -18,8 +18,9 @@ LossData PrepareLoss(const Samples& samples, const FitOptions& options) {
   if (options.loss == LossKind::kRel) d.inv.resize(3 * n);
   const double norm = samples.total_weight > 0 ? 1.0 / (3.0 * samples.total_weight) : 0.0;
   for (std::size_t o = 0; o < n; ++o) {
-    // The relative loss is scale-free: the cosine would cancel, so it is not applied.
-    const double c = (options.cosine && options.loss != LossKind::kRel) ? samples.cos_i[o] : 1.0;
+    // The relative and log-ratio losses compare ratios: the cosine would (nearly) cancel, so
+    // it is not applied.
+    const double c = (options.cosine && !IsRatioLoss(options.loss)) ? samples.cos_i[o] : 1.0;
     d.mult[o] = c;
     d.sqrt_w[o] = std::sqrt(samples.weight[o] * norm);
     for (int ch = 0; ch < 3; ++ch) {

@@ -29,6 +29,12 @@ inline constexpr double kCbrtGuard = 1e-5;
 inline constexpr double kRelEpsilon = 1e-3;
 // Below this argument ln(1 + x) continues as its tangent, so f c <= -1 stays finite.
 inline constexpr double kLogGuard = -0.5;
+// Offset of the log-ratio loss (1/sr): ln((f + eps) / (m + eps)), after Sun, Jensen,
+// Ramamoorthi 2018, "Connecting Measured BRDFs to Analytic BRDFs by Data-Driven
+// Diffuse-Specular Separation" (TOG 37(6)), whose fitting error is a log ratio offset by a
+// small constant. The same eps as the relative loss: the two differ to first order only in
+// how they weigh errors larger than the value (log: symmetric in ratio; rel: in difference).
+inline constexpr double kLogRatioEpsilon = kRelEpsilon;
 
 // cbrt(x) for |x| >= g; for |x| < g, a x + b x^3 with a = 4/3 g^(-2/3), b = -1/3 g^(-8/3):
 // the same value and slope at |x| = g, odd, slope 4/3 g^(-2/3) at 0.
@@ -51,6 +57,16 @@ T GuardedLog1p(const T& x) {
   return std::log1p(kLogGuard) + (x - kLogGuard) / (1.0 + kLogGuard);
 }
 
+// ln(x + eps) for x >= -eps / 2, continued as its tangent below, so a model value that dips
+// below -eps (no registered model does; a robustness guard) stays finite.
+template <class T>
+T GuardedLogOffset(const T& x) {
+  using std::log;
+  constexpr double kEps = kLogRatioEpsilon;
+  if (x >= -0.5 * kEps) return log(x + kEps);
+  return std::log(0.5 * kEps) + (x + 0.5 * kEps) / (0.5 * kEps);
+}
+
 template <class T>
 T LossTransform(LossKind kind, const T& x) {
   switch (kind) {
@@ -58,11 +74,18 @@ T LossTransform(LossKind kind, const T& x) {
       return GuardedLog1p(x);
     case LossKind::kCbrt:
       return GuardedCbrt(x);
+    case LossKind::kLogRatio:
+      return GuardedLogOffset(x);
     case LossKind::kRel:
     case LossKind::kL2:
       break;
   }
   return x;
+}
+
+// The losses that compare f / m rather than f c against m c (no cosine factor).
+inline bool IsRatioLoss(LossKind kind) {
+  return kind == LossKind::kRel || kind == LossKind::kLogRatio;
 }
 
 // Per-observation constants of the loss, prepared once per (samples, options).

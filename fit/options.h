@@ -17,11 +17,13 @@ enum class LossKind {
   kCbrt,  // cbrt(f c) - cbrt(m c), guarded       Fores, Ferwerda, Gu 2012
   kRel,   // (f - m) / (|m| + eps)                relative error
   kL2,    // f c - m c                            cosine-weighted L2 (Ngan et al. 2005)
+  kLogRatio,  // ln(f + eps) - ln(m + eps), guarded    log-ratio (Sun et al. 2018)
 };
 inline constexpr auto kLossKindNames = MakeEnumNames<LossKind>("loss", {{LossKind::kLog, "log"},
                                                                         {LossKind::kCbrt, "cbrt"},
                                                                         {LossKind::kRel, "rel"},
-                                                                        {LossKind::kL2, "l2"}});
+                                                                        {LossKind::kL2, "l2"},
+                                                                        {LossKind::kLogRatio, "logratio"}});
 constexpr const auto& EnumNamesOf(LossKind) {
   return kLossKindNames;
 }

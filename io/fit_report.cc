@@ -90,6 +90,8 @@ void WriteEntry(const H5::Group& g, const FitReportEntry& e, bool timings) {
   WriteStringAttr(g, "status", ToString(r.status));
   WriteStringAttr(g, "message", r.message);
   WriteStringAttr(g, "termination", r.termination);
+  WriteIntAttr(g, "chosen", e.chosen ? 1 : 0);
+  WriteStringAttr(g, "choice", e.choice);
   WriteIntAttr(g, "iterations", r.iterations);
   WriteIntAttr(g, "starts", r.starts);
   DoubleAttr(g, "init_cost", r.init_cost);
@@ -223,6 +225,13 @@ class Reader : public hdf5::Reader {
     r.status = *known;
     r.message = String(g, where, "message");
     r.termination = String(g, where, "termination");
+    // Reports written before the model choice have neither attribute.
+    if (g.attrExists("chosen")) {
+      const std::int64_t chosen = Int(g, where, "chosen");
+      if (chosen != 0 && chosen != 1) Fail(fmt::format("{}@chosen must be 0 or 1", where));
+      e.chosen = chosen == 1;
+    }
+    if (g.attrExists("choice")) e.choice = String(g, where, "choice");
     r.iterations = static_cast<int>(Int(g, where, "iterations"));
     r.starts = static_cast<int>(Int(g, where, "starts"));
     r.init_cost = Double(g, where, "init_cost");
@@ -396,6 +405,8 @@ std::string FitParamsJson(std::vector<FitReportEntry> entries) {
                                   {"median_rel_error", re.median_rel_error},
                                   {"p95_rel_error", re.p95_rel_error}};
     }
+    j["chosen"] = e.chosen;
+    if (e.chosen) j["choice"] = e.choice;
     j["options"] = nlohmann::ordered_json::parse(e.options.empty() ? "{}" : e.options);
     fits.push_back(j);
   }

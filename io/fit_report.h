@@ -40,6 +40,10 @@ struct FitReportEntry {
   std::string material;  // its stem, e.g. "gold-paint"
   std::string options;   // OptionsJson of the fit (fit/options.h)
   FitResult result;
+  // The fit recommended for its source among the report's fits of that source
+  // (core/model_choice.h; set by pipeline/batch_fit.h before writing), and why.
+  bool chosen = false;
+  std::string choice;  // the reason, for the chosen entry; empty otherwise
 };
 
 // Sorts entries by (source, model, options): the order of a report does not depend on the order
@@ -56,7 +60,8 @@ std::vector<FitReportEntry> ReadFitReport(const std::filesystem::path& path);
 // {"format": "brdfit-fit-params", "format_version": 1, "fits": [{"source", "material", "model",
 //  "status", "message", "params": {"name": value, ...}, "metrics": {"log_rmse", "cbrt_rmse",
 //  "rel_l2", "weighting", "cutoff_deg", "rendered": {"psnr_db", "psnr_srgb_db",
-//  "median_rel_error", "p95_rel_error"} (when computed; docs/accuracy.md)}, "options": {...}},
+//  "median_rel_error", "p95_rel_error"} (when computed; docs/accuracy.md)}, "chosen": bool,
+//  "choice": "why" (chosen fits only), "options": {...}},
 //  ...]} in report order, no timings: deterministic.
 std::string FitParamsJson(std::vector<FitReportEntry> entries);
 

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <chrono>
 #include <memory>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <set>
@@ -12,6 +13,7 @@
 #include <tuple>
 
 #include "core/error.h"
+#include "core/model_choice.h"
 #include "fit/fitter.h"
 #include "models/registry.h"
 #include "pipeline/inputs.h"
@@ -117,6 +119,8 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
     }
   }
   result.planned = tasks.size();
+  std::set<std::tuple<std::string, std::string, std::string>> planned_keys;
+  for (const Task& t : tasks) planned_keys.insert({inputs[t.input], t.model, options});
   // Entries replaced by this run leave the kept set.
   std::set<std::pair<std::string, std::string>> redo;
   for (const Task& t : tasks) redo.insert({inputs[t.input], t.model});
@@ -129,6 +133,7 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
   auto write_report = [&](bool final) {
     std::vector<FitReportEntry> all = kept;
     all.insert(all.end(), result.fresh.begin(), result.fresh.end());
+    MarkChosenFits(all);
     WriteFitReport(std::move(all), req.report, req.timings);
     if (!final) last_write = Clock::now();
   };
@@ -175,7 +180,7 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
         }
         r.times.load = st.load_ms;
         r.times.prepare = st.prepare_ms;
-        FitReportEntry e{input, report::MaterialName(input), options, std::move(r)};
+        FitReportEntry e{input, report::MaterialName(input), options, std::move(r), false, {}};
         std::lock_guard<std::mutex> lock(mu);
         result.fresh.push_back(std::move(e));
         if (MsSince(last_write) > 5000) write_report(false);  // checkpoint for resuming
@@ -197,11 +202,36 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
   for (auto& th : pool) th.join();
 
   write_report(true);
-  SortEntries(result.fresh);
   result.all = kept;
   result.all.insert(result.all.end(), result.fresh.begin(), result.fresh.end());
+  MarkChosenFits(result.all);
+  SortEntries(result.all);
+  // The fresh entries carry the same marks as in the report.
+  result.fresh.clear();
+  for (const FitReportEntry& e : result.all) {
+    if (!planned_keys.count({e.source, e.result.model, e.options})) continue;
+    result.fresh.push_back(e);
+  }
   std::sort(result.input_errors.begin(), result.input_errors.end());
   return result;
+}
+
+void MarkChosenFits(std::vector<FitReportEntry>& entries) {
+  std::map<std::string, std::vector<std::size_t>> by_source;
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    entries[i].chosen = false;
+    entries[i].choice.clear();
+    by_source[entries[i].source].push_back(i);
+  }
+  for (const auto& [source, indices] : by_source) {
+    std::vector<const FitResult*> fits;
+    for (std::size_t i : indices) fits.push_back(&entries[i].result);
+    const std::optional<ModelChoice> c = ChooseFit(fits);
+    if (!c) continue;
+    FitReportEntry& e = entries[indices[c->index]];
+    e.chosen = true;
+    e.choice = c->reason;
+  }
 }
 
 }  // namespace brdfit::pipeline

@@ -51,6 +51,11 @@ using BatchProgress = std::function<void(std::size_t planned, const std::string&
 // written.
 BatchFitResult RunBatchFit(const BatchFitRequest& request, const BatchProgress& on_start = nullptr);
 
+// Marks, per source, the fit core/model_choice.h recommends among the entries of that source
+// (`chosen`, with the reason in `choice`); clears every other mark. RunBatchFit does it before
+// every write, over everything the report holds.
+void MarkChosenFits(std::vector<FitReportEntry>& entries);
+
 // Model names as `brdfit fit --model` takes them: "NAME:N" is N lobes of NAME
 // ("lafortune:2" -> "lafortune+lafortune"); then, with diffuse D other than "none", a name N
 // becomes "D+N" when the catalog has it (measured materials have a diffuse part). Names that

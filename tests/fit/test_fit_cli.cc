@@ -141,7 +141,8 @@ TEST_F(FitCli, FailedFitExitsOneAndBadInputTwo) {
 TEST(FitReport, RoundTripKeepsEveryField) {
   const Table t = SynthModel("lambert+ggx", Params("lambert+ggx", {}), SmallGrid(), 0.05, 0.1, 2);
   FitReportEntry e{"dir/t.binary", "t", "{\"loss\":\"log\"}",
-                   FitTable("lambert+ggx", t, SampleOptions{}, FitOptions{})};
+                   FitTable("lambert+ggx", t, SampleOptions{}, FitOptions{}), true,
+                   "best rendered score"};
   e.result.times.load = 12.5;
   const fs::path p =
       fs::temp_directory_path() / ("brdfit_report_" + std::to_string(::getpid()) + ".h5");
@@ -151,6 +152,8 @@ TEST(FitReport, RoundTripKeepsEveryField) {
   const FitResult &a = e.result, &b = back[0].result;
   EXPECT_EQ(back[0].source, e.source);
   EXPECT_EQ(back[0].options, e.options);
+  EXPECT_TRUE(back[0].chosen);
+  EXPECT_EQ(back[0].choice, e.choice);
   EXPECT_EQ(b.model, a.model);
   EXPECT_EQ(b.params, a.params);
   EXPECT_EQ(b.param_names, a.param_names);

@@ -27,6 +27,8 @@ double Transform(LossKind k, double x) {
       return std::log1p(x);
     case LossKind::kCbrt:
       return std::cbrt(x);
+    case LossKind::kLogRatio:
+      return std::log(x + kLogRatioEpsilon);
     default:
       return x;
   }
@@ -42,7 +44,7 @@ Eigen::VectorXd Residuals(const ModelInfo& m, const Samples& s, const FitOptions
     double f[3];
     m.eval(p.data(), s.geometry[k], f);
     for (std::uint32_t ob = s.obs_begin[k]; ob < s.obs_begin[k + 1]; ++ob) {
-      const double c = (o.cosine && o.loss != LossKind::kRel) ? s.cos_i[ob] : 1.0;
+      const double c = (o.cosine && !IsRatioLoss(o.loss)) ? s.cos_i[ob] : 1.0;
       for (int ch = 0; ch < 3; ++ch) {
         const double v = s.value[3 * ob + ch];
         double r = Transform(o.loss, f[ch] * c) - Transform(o.loss, v * c);
@@ -79,7 +81,8 @@ TEST(NormalEquations, CompressedBlocksMatchPlainProblem) {
     for (std::size_t i = 0; i < p.size(); ++i) {
       x[i] = m.params[i].log_scale ? std::log(p[i]) : p[i];
     }
-    for (const LossKind loss : {LossKind::kLog, LossKind::kCbrt, LossKind::kRel, LossKind::kL2}) {
+    for (const LossKind loss :
+         {LossKind::kLog, LossKind::kCbrt, LossKind::kRel, LossKind::kL2, LossKind::kLogRatio}) {
       for (const RobustKind robust : {RobustKind::kNone, RobustKind::kHuber, RobustKind::kCauchy}) {
         FitOptions o;
         o.loss = loss;

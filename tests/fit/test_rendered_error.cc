@@ -380,7 +380,7 @@ TEST(RenderedError, EveryFitCarriesItThroughReportAndJson) {
 
   ScratchDir dir;
   const std::filesystem::path report = dir / "fits.h5";
-  WriteFitReport({{"t.h5", "t", "{}", r}}, report, false);
+  WriteFitReport({{"t.h5", "t", "{}", r, false, {}}}, report, false);
   const auto back = ReadFitReport(report);
   ASSERT_EQ(back.size(), 1u);
   const RenderedError& b = back[0].result.metrics.rendered;

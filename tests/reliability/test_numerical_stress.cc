@@ -197,7 +197,8 @@ TEST(NumericalStress, RetroReflectionCellsOnly) {
 
 TEST(NumericalStress, AllZeroTableWithEveryLoss) {
   const Table t = Filled([](std::size_t, int) { return 0.0; });
-  for (const LossKind loss : {LossKind::kLog, LossKind::kCbrt, LossKind::kRel, LossKind::kL2}) {
+  for (const LossKind loss :
+       {LossKind::kLog, LossKind::kCbrt, LossKind::kRel, LossKind::kL2, LossKind::kLogRatio}) {
     FitOptions fo = StressOptions();
     fo.loss = loss;
     FitAll(t, kModels, std::string("all zero, loss ") + ToString(loss), {}, fo);
@@ -211,7 +212,8 @@ TEST(NumericalStress, AllZeroTableWithEveryLoss) {
 
 TEST(NumericalStress, ConstantTableWithEveryLoss) {
   const Table t = Filled([](std::size_t, int) { return 0.3; });
-  for (const LossKind loss : {LossKind::kLog, LossKind::kCbrt, LossKind::kRel, LossKind::kL2}) {
+  for (const LossKind loss :
+       {LossKind::kLog, LossKind::kCbrt, LossKind::kRel, LossKind::kL2, LossKind::kLogRatio}) {
     FitOptions fo = StressOptions();
     fo.loss = loss;
     for (const auto& r : FitAll(t, kModels, std::string("constant, loss ") + ToString(loss), {},
@@ -230,7 +232,7 @@ TEST(NumericalStress, SingleValidCell) {
   const std::size_t keep = t.grid.Index(5, 4, 7);
   ASSERT_TRUE(t.valid[keep]);
   for (std::size_t i = 0; i < t.grid.NumCells(); ++i) t.valid[i] = i == keep;
-  for (const LossKind loss : {LossKind::kLog, LossKind::kRel}) {
+  for (const LossKind loss : {LossKind::kLog, LossKind::kRel, LossKind::kLogRatio}) {
     FitOptions fo = StressOptions();
     fo.loss = loss;
     FitAll(t, kModels, std::string("single cell, loss ") + ToString(loss), {}, fo);
@@ -251,7 +253,8 @@ TEST(NumericalStress, DynamicRange1e8To1e5) {
   }
   ASSERT_LT(lo, 2e-8);
   ASSERT_GT(hi, 1e4);
-  for (const LossKind loss : {LossKind::kLog, LossKind::kCbrt, LossKind::kRel, LossKind::kL2}) {
+  for (const LossKind loss :
+       {LossKind::kLog, LossKind::kCbrt, LossKind::kRel, LossKind::kL2, LossKind::kLogRatio}) {
     FitOptions fo = StressOptions();
     fo.loss = loss;
     for (const auto& r : FitAll(t, {"ggx", "lambert+ggx", "lambert+beckmann"},
@@ -307,7 +310,8 @@ TEST(NumericalStress, EveryCellInvalid) {
 TEST(NumericalStress, PureNoiseWithEveryLoss) {
   // Log-normal values, sigma 3 (about 1e-4..1e4), independent per cell and channel.
   const Table t = Filled([](std::size_t i, int c) { return std::exp(3.0 * SynthNormal(5, c, i)); });
-  for (const LossKind loss : {LossKind::kLog, LossKind::kCbrt, LossKind::kRel, LossKind::kL2}) {
+  for (const LossKind loss :
+       {LossKind::kLog, LossKind::kCbrt, LossKind::kRel, LossKind::kL2, LossKind::kLogRatio}) {
     FitOptions fo = StressOptions();
     fo.loss = loss;
     fo.robust = RobustKind::kCauchy;

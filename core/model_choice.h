@@ -1,0 +1,44 @@
+// Which of a table's fits to recommend: the rule behind `brdfit fit --model auto` and the
+// "chosen" mark of fit reports (docs/accuracy.md, "Choosing the model").
+//
+// Every fit is judged by its rendered-image error (fit/rendered_error.h) through one score,
+//
+//   S = psnr_db - 20 * median_rel_error        (dB; 1 point of median error = 0.2 dB)
+//
+// which weighs the two things a render shows: the linear PSNR, dominated by the highlight's
+// absolute error, and the median relative luminance error, dominated by the body. (A fit
+// (1 + s) times the measurement has PSNR = const - 20 log10 s and median error s: halving a
+// uniform 10 % error gains 6 dB of PSNR and 1 dB through the median term.)
+//
+// The chosen fit is the one with the fewest parameters among those whose S is within
+// `tolerance_db` of the best S (ties: the higher S, then the name): a model with more
+// parameters must buy a visible improvement to be chosen. Fits that failed or have no
+// rendered error take no part; if none has one, nothing is chosen.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+
+namespace brdfit {
+
+struct ModelChoiceOptions {
+  double tolerance_db = 0.5;
+};
+
+struct ModelChoice {
+  std::size_t index = 0;  // into the fits given
+  double score_db = 0;    // S of the chosen fit
+  std::string reason;     // one sentence: why it won, against the best-scoring fit
+};
+
+// S of one fit, or nullopt when it failed or has no rendered error.
+std::optional<double> RenderedScoreDb(const FitResult& fit);
+
+std::optional<ModelChoice> ChooseFit(const std::vector<const FitResult*>& fits,
+                                     const ModelChoiceOptions& options = {});
+
+}  // namespace brdfit
