@@ -130,6 +130,14 @@ std::string Slug(const std::string& name) {
 
 bool Usable(const Entry& e) { return !e.Failed() && e.metrics.ok; }
 bool HasRendered(const Entry& e) { return Usable(e) && e.metrics.rendered.ok; }
+bool AnyChosen(const Report& r) {
+  for (const Material& m : r.materials) {
+    for (const Entry& e : m.entries) {
+      if (Usable(e) && e.chosen) return true;
+    }
+  }
+  return false;
+}
 bool AnyRendered(const Report& r) {
   for (const Material& m : r.materials) {
     for (const Entry& e : m.entries) {
@@ -333,8 +341,11 @@ class Page {
       body_ += "<p class=\"muted\"><b>Rendered error.</b> PSNR: linear PSNR of a sphere rendered "
                "under 6 directional lights, the fit against the measured table; lum. err.: median "
                "relative luminance error over its pixels (docs/accuracy.md). <b>Best</b> (★) per "
-               "material: " + HtmlEscape(BestRule(AnyRendered(report_) ? BestBy::kRendered
-                                                                         : BestBy::kLogRmse)) +
+               "material: " +
+               (AnyChosen(report_) ? HtmlEscape(BestRule(BestBy::kChosen)) + "; for a material "
+                                         "without a chosen fit, "
+                                   : std::string()) +
+               HtmlEscape(BestRule(AnyRendered(report_) ? BestBy::kRendered : BestBy::kLogRmse)) +
                ".</p>\n";
     }
     for (const auto& n : report_.notes) body_ += "<p class=\"note\">" + HtmlEscape(n) + "</p>\n";
@@ -563,7 +574,11 @@ class Page {
           e.kind == Entry::Kind::kFit ? std::to_string(e.iterations) : std::string("–"),
           front.count(i) ? "◆" : "");
     }
-    body_ += "</table></div>\n<p class=\"muted\">★ " + HtmlEscape(BestRule(pick.by)) +
+    std::string why;
+    if (pick.by == BestBy::kChosen && !m.entries[static_cast<std::size_t>(best)].choice.empty()) {
+      why = " (" + HtmlEscape(m.entries[static_cast<std::size_t>(best)].choice) + ")";
+    }
+    body_ += "</table></div>\n<p class=\"muted\">★ " + HtmlEscape(BestRule(pick.by)) + why +
              "; bold: best of each column; ◆ on the Pareto front of time against log_rmse. "
              "PSNR and lum. err.: the rendered-image metric (– : not computed). Time: from the "
              "loaded table to the result (fits: preparation, initializer and solve; "

@@ -171,6 +171,8 @@ Entry FitEntry(const FitReportEntry& f) {
   e.at_bound = r.at_bound;
   e.iterations = r.iterations;
   e.metrics = r.metrics;
+  e.chosen = f.chosen;
+  e.choice = f.choice;
   if (!e.metrics.ok && e.message.empty()) e.message = r.metrics.problem;
   const FitTimes& t = r.times;
   e.times_ms = {
@@ -218,6 +220,8 @@ bool AddFitParamsJson(const fs::path& p, ReportSources* out) {
     }
     e.metrics =
         MetricsFromJson(f.value("metrics", nlohmann::ordered_json::object()), e.status != "failed");
+    e.chosen = f.value("chosen", false);
+    e.choice = f.value("choice", std::string());
     const std::string source = f.value("source", std::string());
     const std::string material = f.value("material", MaterialName(source));
     AddEntry(out->report, material, source, std::move(e));

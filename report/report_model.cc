@@ -64,17 +64,19 @@ double RenderedScore(const RenderedError& r) { return r.psnr_db - 20 * r.median_
 BestPick PickBest(const std::vector<Entry>& entries) {
   BestPick pick;
   double best = 0;
-  for (std::size_t i = 0; i < entries.size(); ++i) {
-    const Entry& e = entries[i];
-    if (!EntryUsable(e) || !e.metrics.rendered.ok) continue;
-    const double score = RenderedScore(e.metrics.rendered);
-    if (!std::isfinite(score)) continue;
-    if (pick.index < 0 || score > best) {
-      pick = {static_cast<int>(i), BestBy::kRendered};
-      best = score;
+  for (const bool only_chosen : {true, false}) {
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      const Entry& e = entries[i];
+      if (!EntryUsable(e) || (only_chosen && !e.chosen)) continue;
+      const double score = e.metrics.rendered.ok ? RenderedScore(e.metrics.rendered) : NAN;
+      if (!std::isfinite(score) && !(only_chosen && pick.index < 0)) continue;
+      if (pick.index < 0 || score > best) {
+        pick = {static_cast<int>(i), only_chosen ? BestBy::kChosen : BestBy::kRendered};
+        best = score;
+      }
     }
+    if (pick.index >= 0) return pick;
   }
-  if (pick.index >= 0) return pick;
   for (std::size_t i = 0; i < entries.size(); ++i) {
     const Entry& e = entries[i];
     if (!EntryUsable(e) || !std::isfinite(e.metrics.log_rmse)) continue;
@@ -88,6 +90,9 @@ BestPick PickBest(const std::vector<Entry>& entries) {
 
 std::string BestRule(BestBy by) {
   switch (by) {
+    case BestBy::kChosen:
+      return "best = the fit brdfit fit chose (highest PSNR − 20 × median luminance error, the "
+             "fewest parameters within 0.5 dB of it; core/model_choice.h)";
     case BestBy::kRendered:
       return "best = highest PSNR − 20 × median luminance error (rendered-image metric, "
              "docs/accuracy.md) among the results that have it";

@@ -28,6 +28,10 @@ struct Entry {
   std::vector<bool> at_bound;
   int iterations = 0;
   FitMetrics metrics;  // core/metrics.h; ok false: not computed or not finite (see message)
+  // The fit `brdfit fit` recommended for its table (core/model_choice.h; fit reports and JSON
+  // parameters), and why.
+  bool chosen = false;
+  std::string choice;
   // Named stage times in milliseconds, in display order ("init", "solve", ...).
   std::vector<std::pair<std::string, double>> times_ms;
   // The time a user pays to get this approximation from a loaded table (fits: prepare + init +
@@ -122,16 +126,17 @@ std::vector<std::size_t> ParetoFront(const std::vector<CostError>& points);
 // Front of (time_ms, log_rmse) over the entries that did not fail and have metrics.
 std::vector<std::size_t> ParetoFront(const std::vector<Entry>& entries);
 
-// How a material's best approximation is chosen. kRendered: the highest RenderedScore among the
-// usable entries whose rendered-image error is ok; kLogRmse: only when no entry has one (e.g. a
-// report written before the metric), the lowest log_rmse.
-enum class BestBy { kNone, kRendered, kLogRmse };
+// How a material's best approximation is chosen. kChosen: the usable entry the fit report marks
+// as chosen (core/model_choice.h; of several, the highest RenderedScore); else kRendered: the
+// highest RenderedScore among the usable entries whose rendered-image error is ok; kLogRmse:
+// only when no entry has one (e.g. a report written before the metric), the lowest log_rmse.
+enum class BestBy { kNone, kChosen, kRendered, kLogRmse };
 struct BestPick {
   int index = -1;  // into the entries; -1: no usable entry
   BestBy by = BestBy::kNone;
 };
-// psnr_db - 20 median_rel_error (dB; a 5 % median luminance error costs 1 dB): the ranking of
-// docs/accuracy.md's loss and model study, which `--model auto` also uses.
+// psnr_db - 20 median_rel_error (dB; a 5 % median luminance error costs 1 dB): the score S of
+// core/model_choice.h and of docs/accuracy.md's loss and model study.
 double RenderedScore(const RenderedError& r);
 BestPick PickBest(const std::vector<Entry>& entries);
 // One sentence saying how the best was chosen, for pages and listings.

@@ -75,6 +75,15 @@ TEST(RenderedBest, HighestPsnrMinusTwentyTimesMedianAmongRenderedFits) {
   EXPECT_EQ(p.by, BestBy::kLogRmse);
   EXPECT_NE(BestRule(p.by).find("no result has a rendered-image error"), std::string::npos);
   EXPECT_EQ(PickBest({}).by, BestBy::kNone);
+  // A fit the fit report marks as chosen (core/model_choice.h) is preferred to any score.
+  e[0].metrics.rendered = Rendered(33.4, 0.79);
+  e[1].metrics.rendered = Rendered(30.6, 0.56);
+  e[0].chosen = true;
+  p = PickBest(e);
+  EXPECT_EQ(p.index, 0);
+  EXPECT_EQ(p.by, BestBy::kChosen);
+  e[0].status = "failed";  // but never a failed one
+  EXPECT_EQ(PickBest(e).index, 1);
 }
 
 // ---- HTML ---------------------------------------------------------------------------------
