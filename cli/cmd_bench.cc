@@ -91,8 +91,9 @@ int RunBench(BenchCliOptions o, std::vector<fs::path>* written = nullptr) {
   FitOptions fo;
   fo.threads = o.threads;
   if (!o.quiet) {
-    fmt::print("{:<24} {:<16} {:<5} {:<11} {:<14} {:>10} {:>10} {:>10} {:>9}\n", "table", "model",
-               "loss", "budget", "status", "time ms", "log_rmse", "cbrt_rmse", "cells");
+    fmt::print("{:<24} {:<16} {:<5} {:<11} {:<14} {:>10} {:>10} {:>10} {:>9} {:>8} {:>8}\n",
+               "table", "model", "loss", "budget", "status", "time ms", "log_rmse", "cbrt_rmse",
+               "cells", "psnr_dB", "med_lum");
   }
   pipeline::BenchConfig config;
   config.models = o.models;
@@ -107,9 +108,12 @@ int RunBench(BenchCliOptions o, std::vector<fs::path>* written = nullptr) {
     if (b.status == ToString(FitStatus::kFailed)) code = kExitFitFailed;
     bar.Clear();
     if (!o.quiet) {
-      fmt::print("{:<24} {:<16} {:<5} {:<11} {:<14} {:>10.1f} {:>10.4g} {:>10.4g} {:>9}\n",
+      const RenderedError& re = b.metrics.rendered;
+      fmt::print("{:<24} {:<16} {:<5} {:<11} {:<14} {:>10.1f} {:>10.4g} {:>10.4g} {:>9} {:>8} {:>8}\n",
                  b.material, b.model, b.loss, b.budget, b.status, b.time_ms, b.metrics.log_rmse,
-                 b.metrics.cbrt_rmse, b.fit_cells);
+                 b.metrics.cbrt_rmse, b.fit_cells,
+                 re.ok ? fmt::format("{:.2f}", re.psnr_db) : "-",
+                 re.ok ? fmt::format("{:.1f}%", 100 * re.median_rel_error) : "-");
     }
   };
   for (const std::string& file : o.files) {

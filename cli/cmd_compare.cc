@@ -21,6 +21,7 @@ struct CompareCliOptions {
   std::string metric = "log_rmse";
   report::CompareOptions options;
   bool ignore_missing = false;
+  bool ignore_rendered = false;
   bool all = false;
   bool json = false;
 };
@@ -34,9 +35,13 @@ report::Report Load(const std::string& path) {
 int RunCompare(CompareCliOptions o) {
   o.options.metric = FromString<report::MetricName>(o.metric);
   o.options.missing_is_regression = !o.ignore_missing;
+  o.options.judge_rendered = !o.ignore_rendered;
   if (!(o.options.threshold >= 0) || !(o.options.abs_floor >= 0) ||
-      !(o.options.time_threshold >= 0)) {
-    throw InputError("--threshold, --abs-floor and --time-threshold must be >= 0");
+      !(o.options.time_threshold >= 0) || !(o.options.psnr_drop_db >= 0) ||
+      !(o.options.lum_rise_points >= 0)) {
+    throw InputError(
+        "--threshold, --abs-floor, --time-threshold, --psnr-threshold and --lum-threshold must "
+        "be >= 0");
   }
   const report::Report a = Load(o.old_path), b = Load(o.new_path);
   auto entries = [](const report::Report& r) {
@@ -77,12 +82,23 @@ Registrar reg{
       sub.add_option("--time-threshold", o->options.time_threshold,
                      "also fail when time grows by more than this fraction (0: ignore time)")
           ->capture_default_str();
+      sub.add_option("--psnr-threshold", o->options.psnr_drop_db,
+                     "rendered PSNR drop (dB) counted as a regression")
+          ->capture_default_str();
+      sub.add_option("--lum-threshold", o->options.lum_rise_points,
+                     "rise of the median relative luminance error (percentage points) counted as "
+                     "a regression")
+          ->capture_default_str();
+      sub.add_flag("--ignore-rendered", o->ignore_rendered,
+                   "do not judge the rendered-image metric (PSNR, luminance error)");
       sub.add_flag("--ignore-missing", o->ignore_missing,
                    "results present in OLD but absent from NEW are not regressions");
       sub.add_flag("--all", o->all, "list unchanged results too");
       sub.add_flag("--json", o->json, "machine-readable output");
       sub.footer(
           "Results are matched by material (table stem) and by model, loss and budget.\n"
+          "Where both have the rendered-image metric (docs/accuracy.md), a PSNR drop beyond\n"
+          "--psnr-threshold or a luminance error rise beyond --lum-threshold is a regression too.\n"
           "Exit codes: 0 no regression, 1 at least one regression (named in the output), "
           "2 bad input.\n"
           "Examples:\n"

@@ -13,6 +13,7 @@
 #include "pipeline/inputs.h"
 #include "cli/progress.h"
 #include "pipeline/factor_export.h"
+#include "pipeline/rendered_views.h"
 #include "fit/metrics.h"
 #include "io/atomic_file.h"
 #include "core/error.h"
@@ -34,20 +35,15 @@ struct ReportCliOptions {
   std::vector<double> theta_d = report::DefaultSliceThetaD();
   double phi_d = 90;
   bool no_slices = false;
+  std::vector<double> render_lights = pipeline::DefaultViewLights();
+  bool no_renders = false;
   std::string chart_js;
   bool quiet = false;
 };
 
 // Slices of one material: its table against every fit (model + parameters) and factorization.
-void AddSlices(const report::ReportSources& src, const ReportCliOptions& o, report::Material* m) {
-  const auto t = src.tables.find(m->name);
-  if (t == src.tables.end()) {
-    m->notes.push_back(
-        "No θh slices: the table of this material was not given and the results "
-        "do not name a readable one.");
-    return;
-  }
-  const Table table = pipeline::LoadInput(t->second);
+void AddSlices(const report::ReportSources& src, const ReportCliOptions& o, const Table& table,
+               report::Material* m) {
   std::vector<report::NamedPredictor> predictors;
   for (const Entry& e : m->entries) {
     if (e.kind != Entry::Kind::kFit || e.Failed() || e.params.empty()) continue;
@@ -78,6 +74,7 @@ void CheckOptions(const ReportCliOptions& o) {
   if (!(o.phi_d >= 0 && o.phi_d < 180)) {
     throw InputError(fmt::format("--phi-d {} outside [0, 180)", o.phi_d));
   }
+  if (!o.no_renders) pipeline::CheckViewLights(o.render_lights);
   if (fs::is_directory(o.out)) throw InputError(o.out, "is a folder; give the HTML file name");
 }
 
@@ -95,14 +92,39 @@ int RunReport(const ReportCliOptions& o) {
         "nothing to report: no fit report, factorization, bench CSV, render or table "
         "among the inputs");
   }
-  if (!o.no_slices) {
-    Progress bar(r.materials.size(), "slices", !o.quiet);
+  if (!o.no_slices || !o.no_renders) {
+    Progress bar(r.materials.size(), "slices and renders", !o.quiet);
     for (report::Material& m : r.materials) {
       bar.Step(m.name);
+      const auto t = src.tables.find(m.name);
+      if (t == src.tables.end()) {
+        const char* why = "the table of this material was not given and the results do not name "
+                          "a readable one";
+        if (!o.no_slices) m.notes.push_back(fmt::format("No θh slices: {}.", why));
+        if (!o.no_renders) m.views.missing = fmt::format("No renders: {}.", why);
+        continue;
+      }
+      Table table;
       try {
-        AddSlices(src, o, &m);
+        table = pipeline::LoadInput(t->second);
       } catch (const InputError& e) {
-        m.notes.push_back(fmt::format("No θh slices: {}", e.what()));
+        if (!o.no_slices) m.notes.push_back(fmt::format("No θh slices: {}", e.what()));
+        if (!o.no_renders) m.views.missing = fmt::format("No renders: {}", e.what());
+        continue;
+      }
+      if (!o.no_slices) {
+        try {
+          AddSlices(src, o, table, &m);
+        } catch (const InputError& e) {
+          m.notes.push_back(fmt::format("No θh slices: {}", e.what()));
+        }
+      }
+      if (!o.no_renders) {
+        try {
+          m.views = pipeline::RenderMaterialViews(table, m, src.factors, o.render_lights);
+        } catch (const InputError& e) {
+          m.views.missing = fmt::format("No renders: {}", e.what());
+        }
       }
     }
   }
@@ -133,14 +155,23 @@ Registrar reg{
           ->delimiter(',')
           ->capture_default_str();
       sub.add_option("--phi-d", o->phi_d, "phi_d of the slices in degrees")->capture_default_str();
-      sub.add_flag("--no-slices", o->no_slices, "skip the theta_h slices (no table is read)");
+      sub.add_flag("--no-slices", o->no_slices, "skip the theta_h slices");
+      sub.add_option("--render-lights", o->render_lights,
+                     "lights of the renders beside each material, degrees from the view (among "
+                     "the rendered-image metric's 0,30,45,60,70,80)")
+          ->delimiter(',')
+          ->capture_default_str();
+      sub.add_flag("--no-renders", o->no_renders,
+                   "skip the renders (with --no-slices: no table is read)");
       sub.add_option("--chart-js", o->chart_js,
                      "Chart.js to inline (default $BRDFIT_CHART_JS or "
                      "/usr/share/javascript/chart.js/chart.min.js)");
       sub.add_flag("-q,--quiet", o->quiet, "no summary line, no progress bar");
       sub.footer(
           "The page needs no network: Chart.js (Debian's libjs-chart.js) and the renders are "
-          "inlined.\nSlices need each material's table: the one a result names, or give it.\n"
+          "inlined.\nSlices and renders need each material's table: the one a result names, or give "
+          "it.\nBest result per material: highest PSNR - 20 x median luminance error of the "
+          "rendered-image\nmetric; lowest log_rmse when no result has it (docs/accuracy.md).\n"
           "Exit codes: 0 written, 2 bad input (a file missing, unreadable or of no known kind).\n"
           "Examples:\n"
           "  brdfit report fits.h5 -o report.html\n"

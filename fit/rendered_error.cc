@@ -20,6 +20,14 @@ double SrgbOetf(double x) {
   return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
 }
 
+}  // namespace
+
+double RenderedToneMap(double linear, double exposure) {
+  return SrgbOetf(std::clamp(exposure * linear, 0.0, 1.0));
+}
+
+namespace {
+
 // 10 log10(peak^2 / mse), capped at kRenderedPsnrCapDb (identical images: mse = 0).
 double Psnr(double peak, double mse) {
   if (!(mse > 0)) return kRenderedPsnrCapDb;
@@ -52,6 +60,13 @@ void BuildFrame(const Vec3& n, Vec3* t, Vec3* b) {
   *b = {c, s + n.y * n.y * a, -n.y};
 }
 
+// Pixel centre in [-1, 1]^2, row 0 at the top (+y), as an image; true if it is on the sphere.
+bool PixelCentre(int x, int y, int res, double* px, double* py) {
+  *px = 2.0 * (x + 0.5) / res - 1.0;
+  *py = 1.0 - 2.0 * (y + 0.5) / res;
+  return *px * *px + *py * *py < 1;
+}
+
 // The pixels seen at n.v > min_cos; *on_sphere: every pixel centre on the sphere.
 std::vector<SpherePixel> SpherePixels(int res, double min_cos, std::size_t* on_sphere) {
   std::vector<SpherePixel> out;
@@ -59,10 +74,9 @@ std::vector<SpherePixel> SpherePixels(int res, double min_cos, std::size_t* on_s
   const Vec3 v{0, 0, 1};
   for (int y = 0; y < res; ++y) {
     for (int x = 0; x < res; ++x) {
-      // Pixel centre in [-1, 1]^2, row 0 at the top (+y), as an image.
-      const double px = 2.0 * (x + 0.5) / res - 1.0, py = 1.0 - 2.0 * (y + 0.5) / res;
+      double px = 0, py = 0;
+      if (!PixelCentre(x, y, res, &px, &py)) continue;
       const double r2 = px * px + py * py;
-      if (r2 >= 1) continue;
       ++*on_sphere;
       SpherePixel p;
       p.x = x;
@@ -135,6 +149,7 @@ RenderedReference PrepareRenderedReference(const Table& measured,
       const auto m = RenderedLookup(measured, wi, p.wo);
       if (!m || !Finite3(*m)) {
         ++le.masked_pixels;
+        ref.masked.push_back({static_cast<int>(k), p.x, p.y});
         continue;
       }
       ref.pixels.push_back({wi, p.wo, cos_l, {(*m)[0] * cos_l, (*m)[1] * cos_l, (*m)[2] * cos_l},
@@ -148,30 +163,43 @@ RenderedReference PrepareRenderedReference(const Table& measured,
   return ref;
 }
 
-RenderedError ScoreRendered(const RenderedReference& ref, const BrdfFunction& approx) {
-  RenderedError r = ref.counts;
-  // Radiances of the lit pixels, light after light: 3 measured then 3 approximated per pixel.
+namespace {
+
+// Radiances of the lit pixels, light after light: 3 measured then 3 approximated per pixel.
+// Empty with *problem set when the approximation is not finite at a lit pixel.
+std::vector<double> Radiances(const RenderedReference& ref, const BrdfFunction& approx,
+                              std::string* problem) {
   std::vector<double> radiance;
   radiance.reserve(6 * ref.pixels.size());
-  for (int k = 0; k < r.num_lights; ++k) {
+  for (int k = 0; k < ref.counts.num_lights; ++k) {
     for (std::size_t i = ref.begin[k]; i < ref.begin[k + 1]; ++i) {
       const RenderedReference::Pixel& p = ref.pixels[i];
       const std::array<double, 3> f = approx(p.wi, p.wo);
       if (!Finite3(f)) {
-        return Fail(r, "the approximation is not finite at pixel (" + std::to_string(p.x) + ", " +
-                           std::to_string(p.y) + ") under the light at " +
-                           std::to_string(r.lights[k].light_deg) + " deg");
+        *problem = "the approximation is not finite at pixel (" + std::to_string(p.x) + ", " +
+                   std::to_string(p.y) + ") under the light at " +
+                   std::to_string(ref.counts.lights[k].light_deg) + " deg";
+        return {};
       }
       for (int c = 0; c < 3; ++c) radiance.push_back(p.measured[c]);
       for (int c = 0; c < 3; ++c) radiance.push_back(f[c] * p.cos_l);
     }
   }
+  return radiance;
+}
+
+// The metric from the radiances of Radiances(). *pixel_errors (optional): per lit pixel, in the
+// reference's order, the relative luminance error |Y_a - Y_m| / Y_m of the metric, NaN where
+// the pixel is at or below the floor (not compared).
+RenderedError ScoreRadiances(const RenderedReference& ref, const std::vector<double>& radiance,
+                             std::vector<double>* pixel_errors) {
+  RenderedError r = ref.counts;
   const std::vector<std::size_t>& begin = ref.begin;
+  if (pixel_errors) pixel_errors->assign(ref.pixels.size(), std::numeric_limits<double>::quiet_NaN());
   if (r.lit_pixels == 0) {
     return Fail(r, r.masked_pixels ? "every lit pixel's measured lookup is masked"
                                    : "no lit pixel (resolution too small)");
   }
-
   const double* L = radiance.data();
   double sq_sum = 0;
   std::vector<double> all_errors, all_lum;
@@ -199,7 +227,9 @@ RenderedError ScoreRendered(const RenderedReference& ref, const BrdfFunction& ap
       const double* m = L + 6 * i;
       const double ym = Luminance(m);
       if (!(ym > ref.luminance_floor * peak_y)) continue;
+      // |x| / y == |x / y| exactly for y > 0: the signed error's magnitude is the metric's.
       errors.push_back(std::abs(Luminance(m + 3) - ym) / ym);
+      if (pixel_errors) (*pixel_errors)[i] = (Luminance(m + 3) - ym) / ym;
     }
     le.compared_pixels = errors.size();
     r.compared_pixels += errors.size();
@@ -224,8 +254,7 @@ RenderedError ScoreRendered(const RenderedReference& ref, const BrdfFunction& ap
   for (std::size_t i = 0; i < r.lit_pixels; ++i) {
     const double* m = L + 6 * i;
     for (int c = 0; c < 3; ++c) {
-      const double d = SrgbOetf(std::clamp(r.exposure * m[3 + c], 0.0, 1.0)) -
-                       SrgbOetf(std::clamp(r.exposure * m[c], 0.0, 1.0));
+      const double d = RenderedToneMap(m[3 + c], r.exposure) - RenderedToneMap(m[c], r.exposure);
       sq_t += d * d;
     }
   }
@@ -243,6 +272,60 @@ RenderedError ScoreRendered(const RenderedReference& ref, const BrdfFunction& ap
   if (!finite) return Fail(r, "an error overflows (the approximation is too large)");
   r.ok = true;
   return r;
+}
+
+}  // namespace
+
+RenderedError ScoreRendered(const RenderedReference& ref, const BrdfFunction& approx) {
+  std::string problem;
+  const std::vector<double> radiance = Radiances(ref, approx, &problem);
+  if (!problem.empty()) return Fail(ref.counts, problem);
+  return ScoreRadiances(ref, radiance, nullptr);
+}
+
+RenderedImages RenderImages(const RenderedReference& ref, const BrdfFunction& approx) {
+  RenderedImages out;
+  std::string problem;
+  const std::vector<double> radiance = Radiances(ref, approx, &problem);
+  if (!problem.empty()) {
+    out.metric = Fail(ref.counts, problem);
+    return out;
+  }
+  std::vector<double> signed_errors;
+  out.metric = ScoreRadiances(ref, radiance, &signed_errors);
+  const int res = ref.counts.resolution;
+  const auto n2 = static_cast<std::size_t>(res) * static_cast<std::size_t>(res);
+  using State = RenderedImage::State;
+  for (int k = 0; k < ref.counts.num_lights; ++k) {
+    RenderedImage img;
+    img.light_deg = ref.counts.lights[static_cast<std::size_t>(k)].light_deg;
+    img.resolution = res;
+    img.state.assign(n2, State::kOff);
+    img.measured.assign(3 * n2, 0.0);
+    img.approx.assign(3 * n2, 0.0);
+    img.rel_error.assign(n2, std::numeric_limits<double>::quiet_NaN());
+    for (int y = 0; y < res; ++y) {
+      for (int x = 0; x < res; ++x) {
+        double px = 0, py = 0;
+        if (PixelCentre(x, y, res, &px, &py)) img.state[static_cast<std::size_t>(y) * res + x] = State::kUnlit;
+      }
+    }
+    for (const RenderedReference::Masked& m : ref.masked) {
+      if (m.light == k) img.state[static_cast<std::size_t>(m.y) * res + m.x] = State::kMasked;
+    }
+    for (std::size_t i = ref.begin[k]; i < ref.begin[k + 1]; ++i) {
+      const RenderedReference::Pixel& p = ref.pixels[i];
+      const std::size_t at = static_cast<std::size_t>(p.y) * res + p.x;
+      for (int c = 0; c < 3; ++c) {
+        img.measured[3 * at + c] = radiance[6 * i + c];
+        img.approx[3 * at + c] = radiance[6 * i + 3 + c];
+      }
+      img.rel_error[at] = signed_errors[i];
+      img.state[at] = std::isnan(signed_errors[i]) ? State::kBelowFloor : State::kCompared;
+    }
+    out.lights.push_back(std::move(img));
+  }
+  return out;
 }
 
 RenderedError ComputeRenderedError(const Table& measured, const BrdfFunction& approx,

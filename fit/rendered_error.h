@@ -53,8 +53,12 @@ struct RenderedReference {
     std::array<double, 3> measured; // L_m = f_m(wi, wo) n.l
     int x = 0, y = 0;
   };
+  struct Masked {
+    int light = 0, x = 0, y = 0;
+  };
   RenderedError counts;                // resolution, lights, sphere/lit/masked pixel counts
   std::vector<Pixel> pixels;           // light after light
+  std::vector<Masked> masked;          // lit pixels whose measured lookup is invalid
   std::vector<std::size_t> begin;      // light k: pixels [begin[k], begin[k + 1])
   double luminance_floor = 0, exposure_percentile = 0;
   bool Empty() const { return pixels.empty() && counts.num_lights == 0; }
@@ -65,6 +69,34 @@ RenderedReference PrepareRenderedReference(const Table& measured,
                                            const RenderedErrorOptions& options = {});
 // The metric of an approximation against a prepared reference; failures as below.
 RenderedError ScoreRendered(const RenderedReference& reference, const BrdfFunction& approx);
+
+// The images behind the metric (docs/accuracy.md, "Images"), one per light: N x N, row 0 at the
+// top, from the same radiances ScoreRendered scores, so that they cannot disagree with it.
+struct RenderedImage {
+  enum class State : unsigned char {
+    kOff,         // pixel centre off the sphere
+    kUnlit,       // on the sphere, n.l or n.v at or below min_cos
+    kMasked,      // lit, measured lookup invalid: excluded from the metric
+    kBelowFloor,  // lit, Y_m at or below the luminance floor: no relative error
+    kCompared,    // lit and above the floor
+  };
+  double light_deg = 0;
+  int resolution = 0;
+  std::vector<State> state;      // N * N
+  std::vector<double> measured;  // 3 N^2 linear RGB radiance L_m; 0 unless lit
+  std::vector<double> approx;    // 3 N^2 L_a; 0 unless lit
+  // (Y_a - Y_m) / Y_m where kCompared (its magnitude is the metric's error), NaN elsewhere.
+  std::vector<double> rel_error;
+};
+struct RenderedImages {
+  RenderedError metric;               // ScoreRendered(reference, approx), identical
+  std::vector<RenderedImage> lights;  // one per light; empty if the approximation is not finite
+};
+RenderedImages RenderImages(const RenderedReference& reference, const BrdfFunction& approx);
+
+// The tone mapping of the sRGB PSNR, for display: OETF(clamp(exposure L, 0, 1)) with the sRGB
+// OETF of IEC 61966-2-1 (RenderedError::exposure is 1 / Y_99 of the measured images).
+double RenderedToneMap(double linear, double exposure);
 
 // PrepareRenderedReference + ScoreRendered. Throws std::invalid_argument on options outside the
 // ranges above. Failures of the inputs (no

@@ -11,19 +11,28 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "io/atomic_file.h"
 #include "core/error.h"
 
 namespace brdfit {
-// libpng's simplified API (png_image, libpng >= 1.6): no setjmp in C++ frames.
-void WritePng(const std::filesystem::path& path, const Image& display) {
+namespace {
+// Display values clamped to [0, 1] and quantized by round(255 v); non-finite -> 0.
+std::vector<png_byte> Quantize(const Image& display) {
   std::vector<png_byte> bytes(display.rgba.size());
   for (std::size_t i = 0; i < bytes.size(); ++i) {
     const float v = std::isfinite(display.rgba[i]) ? std::clamp(display.rgba[i], 0.0f, 1.0f) : 0.0f;
     bytes[i] = static_cast<png_byte>(std::lround(v * 255.0f));
   }
+  return bytes;
+}
+}  // namespace
+
+// libpng's simplified API (png_image, libpng >= 1.6): no setjmp in C++ frames.
+void WritePng(const std::filesystem::path& path, const Image& display) {
+  const std::vector<png_byte> bytes = Quantize(display);
   WriteFileAtomically(path, [&](const std::filesystem::path& tmp) {
     png_image image{};
     image.version = PNG_IMAGE_VERSION;
@@ -36,6 +45,30 @@ void WritePng(const std::filesystem::path& path, const Image& display) {
       throw OutputError(path, "PNG write failed: " + msg);
     }
   });
+}
+
+std::string EncodePng(const Image& display) {
+  const std::vector<png_byte> bytes = Quantize(display);
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  image.width = static_cast<png_uint_32>(display.width);
+  image.height = static_cast<png_uint_32>(display.height);
+  image.format = PNG_FORMAT_RGBA;
+  png_alloc_size_t size = 0;
+  // First call: the size; second: the bytes (libpng >= 1.6.29).
+  if (!png_image_write_to_memory(&image, nullptr, &size, 0, bytes.data(), 0, nullptr)) {
+    const std::string msg = image.message;
+    png_image_free(&image);
+    throw std::runtime_error("PNG encoding failed: " + msg);
+  }
+  std::string out(size, '\0');
+  if (!png_image_write_to_memory(&image, out.data(), &size, 0, bytes.data(), 0, nullptr)) {
+    const std::string msg = image.message;
+    png_image_free(&image);
+    throw std::runtime_error("PNG encoding failed: " + msg);
+  }
+  out.resize(size);
+  return out;
 }
 
 Image ReadPng(const std::filesystem::path& path) {

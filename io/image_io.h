@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 #include "core/image.h"
 
@@ -11,6 +12,9 @@ namespace brdfit {
 // Writes display-referred values (already tone mapped and encoded), clamped to [0, 1] and
 // quantized by round(255 v), as an 8-bit RGBA PNG with the sRGB chunk.
 void WritePng(const std::filesystem::path& path, const Image& display);
+// The same PNG as WritePng, in memory (the file's bytes), e.g. for a data: URI. Throws
+// std::runtime_error if libpng fails.
+std::string EncodePng(const Image& display);
 // Reads an 8-bit RGB/RGBA PNG into values k/255 (alpha 1 if absent).
 Image ReadPng(const std::filesystem::path& path);
 

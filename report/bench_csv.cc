@@ -19,7 +19,9 @@ const std::vector<std::string>& BenchCsvColumns() {
       "material", "table",      "model",     "loss",         "budget",    "status",
       "time_ms",  "prepare_ms", "init_ms",   "solve_ms",     "log_rmse",  "cbrt_rmse",
       "rel_l2",   "metric_ok",  "metric_cells", "weighting", "cutoff_deg", "fit_cells",
-      "iterations", "message"};
+      "iterations", "message",
+      // Appended with the rendered-image metric (docs/accuracy.md); empty when not computed.
+      "psnr_db", "psnr_srgb_db", "median_rel_error", "p95_rel_error"};
   return columns;
 }
 
@@ -36,6 +38,9 @@ std::string Quote(const std::string& s) {
 // back as NaN).
 std::string Num(double v) { return std::isfinite(v) ? fmt::format("{}", v) : "nan"; }
 
+// A number of the rendered-image metric; empty when it was not computed (ok = false).
+std::string Rendered(const RenderedError& r, double v) { return r.ok ? Num(v) : std::string(); }
+
 }  // namespace
 
 std::string BenchCsvText(const std::vector<BenchPoint>& points) {
@@ -51,7 +56,11 @@ std::string BenchCsvText(const std::vector<BenchPoint>& points) {
         Num(b.solve_ms),          Num(b.metrics.log_rmse),  Num(b.metrics.cbrt_rmse),
         Num(b.metrics.rel_l2),    b.metrics.ok ? "1" : "0", std::to_string(b.metrics.cells),
         Quote(b.metrics.weighting), Num(b.metrics.cutoff_deg), std::to_string(b.fit_cells),
-        std::to_string(b.iterations), Quote(b.message)};
+        std::to_string(b.iterations), Quote(b.message),
+        Rendered(b.metrics.rendered, b.metrics.rendered.psnr_db),
+        Rendered(b.metrics.rendered, b.metrics.rendered.psnr_srgb_db),
+        Rendered(b.metrics.rendered, b.metrics.rendered.median_rel_error),
+        Rendered(b.metrics.rendered, b.metrics.rendered.p95_rel_error)};
     for (std::size_t i = 0; i < f.size(); ++i) out += (i ? "," : "") + f[i];
     out += "\n";
   }
@@ -192,6 +201,15 @@ std::vector<BenchPoint> ReadBenchCsv(const std::filesystem::path& path) {
     b.metrics.cutoff_deg = num("cutoff_deg");
     b.fit_cells = static_cast<std::size_t>(count("fit_cells"));
     b.iterations = static_cast<int>(count("iterations"));
+    // Files written before the rendered-image metric have none of its columns.
+    RenderedError& re = b.metrics.rendered;
+    re.psnr_db = num("psnr_db");
+    re.psnr_srgb_db = num("psnr_srgb_db");
+    re.median_rel_error = num("median_rel_error");
+    re.p95_rel_error = num("p95_rel_error");
+    re.ok = std::isfinite(re.psnr_db) && std::isfinite(re.psnr_srgb_db) &&
+            std::isfinite(re.median_rel_error) && std::isfinite(re.p95_rel_error);
+    if (!re.ok) re.psnr_db = re.psnr_srgb_db = re.median_rel_error = re.p95_rel_error = 0;
     points.push_back(std::move(b));
   }
   return points;

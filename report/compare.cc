@@ -18,6 +18,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 bool Usable(const Entry& e) {
   return !e.Failed() && e.metrics.ok;
 }
+bool HasRendered(const Entry* e) { return e && Usable(*e) && e->metrics.rendered.ok; }
 }  // namespace
 
 double MetricValue(const FitMetrics& m, MetricName name) {
@@ -53,6 +54,22 @@ EntryDelta Judge(const std::string& material, const Entry* a, const Entry* b,
   d.loss = any.loss;
   d.budget = any.budget;
   d.old_value = d.new_value = d.rel_change = kNaN;
+  d.old_psnr_db = d.new_psnr_db = d.old_lum = d.new_lum = kNaN;
+  d.psnr_change_db = d.lum_change_points = kNaN;
+  if (HasRendered(a)) {
+    d.old_psnr_db = a->metrics.rendered.psnr_db;
+    d.old_lum = a->metrics.rendered.median_rel_error;
+  }
+  if (HasRendered(b)) {
+    d.new_psnr_db = b->metrics.rendered.psnr_db;
+    d.new_lum = b->metrics.rendered.median_rel_error;
+  }
+  if (HasRendered(a) && HasRendered(b)) {
+    d.psnr_change_db = d.new_psnr_db - d.old_psnr_db;
+    d.lum_change_points = 100 * (d.new_lum - d.old_lum);
+    d.rendered_regression = o.judge_rendered && (-d.psnr_change_db > o.psnr_drop_db ||
+                                                 d.lum_change_points > o.lum_rise_points);
+  }
   if (a) {
     d.status_old = a->status;
     d.old_metrics = a->metrics;
@@ -94,7 +111,8 @@ EntryDelta Judge(const std::string& material, const Entry* a, const Entry* b,
       d.new_time_ms > d.old_time_ms * (1 + o.time_threshold)) {
     d.change = Change::kSlower;
   }
-  d.regression = d.change == Change::kWorse || d.change == Change::kSlower;
+  if (d.change != Change::kWorse && d.rendered_regression) d.change = Change::kWorseRendered;
+  d.regression = d.change == Change::kWorse || d.change == Change::kSlower || d.rendered_regression;
   return d;
 }
 
@@ -110,7 +128,8 @@ const Entry* FindEntry(const Material* m, const std::string& key) {
 
 Comparison Compare(const Report& old_report, const Report& new_report,
                    const CompareOptions& options) {
-  if (!(options.threshold >= 0) || !(options.abs_floor >= 0) || !(options.time_threshold >= 0)) {
+  if (!(options.threshold >= 0) || !(options.abs_floor >= 0) || !(options.time_threshold >= 0) ||
+      !(options.psnr_drop_db >= 0) || !(options.lum_rise_points >= 0)) {
     throw InputError("compare: thresholds must be >= 0");
   }
   Comparison c;
@@ -148,8 +167,16 @@ nlohmann::ordered_json Num(double v) {
   return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
 }
 nlohmann::ordered_json MetricsJson(const FitMetrics& m) {
-  return {{"ok", m.ok}, {"log_rmse", Num(m.log_rmse)}, {"cbrt_rmse", Num(m.cbrt_rmse)},
-          {"rel_l2", Num(m.rel_l2)}};
+  nlohmann::ordered_json j = {{"ok", m.ok}, {"log_rmse", Num(m.log_rmse)},
+                              {"cbrt_rmse", Num(m.cbrt_rmse)}, {"rel_l2", Num(m.rel_l2)}};
+  const RenderedError& r = m.rendered;
+  if (r.ok) {
+    j["rendered"] = {{"psnr_db", Num(r.psnr_db)},
+                     {"psnr_srgb_db", Num(r.psnr_srgb_db)},
+                     {"median_rel_error", Num(r.median_rel_error)},
+                     {"p95_rel_error", Num(r.p95_rel_error)}};
+  }
+  return j;
 }
 }  // namespace
 
@@ -160,10 +187,14 @@ nlohmann::ordered_json ComparisonToJson(const Comparison& c) {
   j["abs_floor"] = c.options.abs_floor;
   j["time_threshold"] = c.options.time_threshold;
   j["missing_is_regression"] = c.options.missing_is_regression;
+  j["judge_rendered"] = c.options.judge_rendered;
+  j["psnr_drop_db"] = c.options.psnr_drop_db;
+  j["lum_rise_points"] = c.options.lum_rise_points;
   j["regressed"] = c.Regressed();
   j["regressions"] = c.Regressions();
   nlohmann::ordered_json counts;
-  for (Change ch : {Change::kSame, Change::kBetter, Change::kWorse, Change::kSlower,
+  for (Change ch : {Change::kSame, Change::kBetter, Change::kWorse, Change::kWorseRendered,
+                    Change::kSlower,
                     Change::kNowFails, Change::kFixed, Change::kStillFails, Change::kMissing,
                     Change::kAdded}) {
     counts[ToString(ch)] = c.Count(ch);
@@ -188,7 +219,14 @@ nlohmann::ordered_json ComparisonToJson(const Comparison& c) {
                       {"old_metrics", MetricsJson(d.old_metrics)},
                       {"new_metrics", MetricsJson(d.new_metrics)},
                       {"old_time_ms", d.old_time_ms},
-                      {"new_time_ms", d.new_time_ms}});
+                      {"new_time_ms", d.new_time_ms},
+                      {"old_psnr_db", Num(d.old_psnr_db)},
+                      {"new_psnr_db", Num(d.new_psnr_db)},
+                      {"psnr_change_db", Num(d.psnr_change_db)},
+                      {"old_median_rel_error", Num(d.old_lum)},
+                      {"new_median_rel_error", Num(d.new_lum)},
+                      {"lum_change_points", Num(d.lum_change_points)},
+                      {"rendered_regression", d.rendered_regression}});
   }
   j["deltas"] = deltas;
   return j;
@@ -226,19 +264,33 @@ std::string FormatComparison(const Comparison& c, bool all) {
                              num(d.old_value), num(d.new_value), pct(d.rel_change), d.old_time_ms,
                              d.new_time_ms);
     }
+    if (std::isfinite(d.psnr_change_db)) {
+      detail += fmt::format("; PSNR {:.2f} -> {:.2f} dB ({:+.2f}), lum. err. {:.1f} -> {:.1f} % "
+                            "({:+.1f} pt)",
+                            d.old_psnr_db, d.new_psnr_db, d.psnr_change_db, 100 * d.old_lum,
+                            100 * d.new_lum, d.lum_change_points);
+    } else if (std::isfinite(d.old_psnr_db) != std::isfinite(d.new_psnr_db) &&
+               d.change != Change::kMissing && d.change != Change::kAdded) {
+      detail += std::isfinite(d.old_psnr_db) ? "; rendered error only in the old report"
+                                             : "; rendered error only in the new report";
+    }
     out += fmt::format("  {:<12} {:<44} {}{}\n", ToString(d.change), what, detail,
                        d.regression ? "   <- REGRESSION" : "");
   }
   out += fmt::format(
-      "\n{} entries compared on {} (regression: > {:.3g} % worse and > {:.3g} absolute{}): "
-      "{} better, {} same, {} worse, {} slower, {} now fail, {} fixed, {} still fail, "
-      "{} missing, {} added\n",
+      "\n{} entries compared on {} (regression: > {:.3g} % worse and > {:.3g} absolute{}{}): "
+      "{} better, {} same, {} worse, {} worse rendered, {} slower, {} now fail, {} fixed, "
+      "{} still fail, {} missing, {} added\n",
       c.deltas.size(), metric, 100 * c.options.threshold, c.options.abs_floor,
+      c.options.judge_rendered
+          ? fmt::format("; or rendered PSNR down > {:.3g} dB or median lum. err. up > {:.3g} pt",
+                        c.options.psnr_drop_db, c.options.lum_rise_points)
+          : "",
       c.options.time_threshold > 0
           ? fmt::format("; time > {:.3g} % slower", 100 * c.options.time_threshold)
           : "",
       c.Count(Change::kBetter), c.Count(Change::kSame), c.Count(Change::kWorse),
-      c.Count(Change::kSlower), c.Count(Change::kNowFails), c.Count(Change::kFixed),
+      c.Count(Change::kWorseRendered), c.Count(Change::kSlower), c.Count(Change::kNowFails), c.Count(Change::kFixed),
       c.Count(Change::kStillFails), c.Count(Change::kMissing), c.Count(Change::kAdded));
   for (const auto& m : c.missing_materials) out += fmt::format("material {} is missing\n", m);
   for (const auto& m : c.added_materials) out += fmt::format("material {} is new\n", m);

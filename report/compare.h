@@ -33,12 +33,21 @@ struct CompareOptions {
   double time_threshold = 0;
   double time_floor_ms = 5;
   bool missing_is_regression = true;  // an entry of the old report absent from the new one
+  // The rendered-image metric (docs/accuracy.md), judged whenever both entries have it: a PSNR
+  // drop of more than psnr_drop_db, or a median relative luminance error growing by more than
+  // lum_rise_points percentage points (0.02 as a fraction), is a regression too. 0.5 dB is a
+  // few times the run-to-run spread of the metric's scene choices (resolution, lights: ±0.1 dB
+  // at 128², docs/accuracy.md); 2 points a tenth of a typical good fit's 10-20 %.
+  bool judge_rendered = true;
+  double psnr_drop_db = 0.5;
+  double lum_rise_points = 2.0;
 };
 
 enum class Change {
   kSame,        // within the threshold
   kBetter,      // metric dropped by more than the threshold
   kWorse,       // metric grew beyond the threshold: a regression
+  kWorseRendered,  // metric within its threshold or better, rendered error worse: a regression
   kSlower,      // time grew beyond time_threshold: a regression
   kNowFails,    // usable before, failed (or unscored) now: a regression
   kFixed,       // failed before, usable now
@@ -50,6 +59,7 @@ inline constexpr auto kChangeNames =
     MakeEnumNames<Change>("change", {{Change::kSame, "same"},
                                      {Change::kBetter, "better"},
                                      {Change::kWorse, "worse"},
+                                     {Change::kWorseRendered, "worse-rendered"},
                                      {Change::kSlower, "slower"},
                                      {Change::kNowFails, "now-fails"},
                                      {Change::kFixed, "fixed"},
@@ -69,6 +79,12 @@ struct EntryDelta {
   double rel_change = 0;                // (new - old) / old; NaN when undefined
   FitMetrics old_metrics, new_metrics;
   double old_time_ms = 0, new_time_ms = 0;
+  // Rendered-image metric of each side (NaN where the entry has none or is unusable), and the
+  // changes when both have it (NaN otherwise): dB, and percentage points of the median
+  // relative luminance error.
+  double old_psnr_db = 0, new_psnr_db = 0, old_lum = 0, new_lum = 0;
+  double psnr_change_db = 0, lum_change_points = 0;
+  bool rendered_regression = false;  // beyond psnr_drop_db or lum_rise_points
 };
 
 struct Comparison {

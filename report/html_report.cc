@@ -15,6 +15,7 @@
 #include "io/atomic_file.h"
 #include "core/error.h"
 #include "report/report_charts.h"
+#include "report/rendered_colors.h"
 
 namespace brdfit::report {
 
@@ -128,6 +129,30 @@ std::string Slug(const std::string& name) {
 }
 
 bool Usable(const Entry& e) { return !e.Failed() && e.metrics.ok; }
+bool HasRendered(const Entry& e) { return Usable(e) && e.metrics.rendered.ok; }
+bool AnyChosen(const Report& r) {
+  for (const Material& m : r.materials) {
+    for (const Entry& e : m.entries) {
+      if (Usable(e) && e.chosen) return true;
+    }
+  }
+  return false;
+}
+bool AnyRendered(const Report& r) {
+  for (const Material& m : r.materials) {
+    for (const Entry& e : m.entries) {
+      if (HasRendered(e)) return true;
+    }
+  }
+  return false;
+}
+// "33.41" dB and "79.0 %", or "–" without a rendered error.
+std::string Psnr(const Entry& e) {
+  return HasRendered(e) ? fmt::format("{:.2f}", e.metrics.rendered.psnr_db) : "–";
+}
+std::string LumPct(const Entry& e) {
+  return HasRendered(e) ? fmt::format("{:.1f} %", 100 * e.metrics.rendered.median_rel_error) : "–";
+}
 
 // ---- page assembly ------------------------------------------------------------------------
 
@@ -140,7 +165,7 @@ h1 { font-size: 24px; margin: 8px 0 4px; } h2 { font-size: 20px; margin: 32px 0 
   border-bottom: 2px solid var(--line); padding-bottom: 4px; } h3 { font-size: 16px; margin: 20px 0 6px; }
 .muted, .note { color: var(--muted); } .note { font-style: italic; }
 table { border-collapse: collapse; margin: 8px 0; font-variant-numeric: tabular-nums; }
-th, td { border-bottom: 1px solid var(--line); padding: 4px 8px; text-align: right; white-space: nowrap; }
+th, td { border-bottom: 1px solid var(--line); padding: 4px 6px; text-align: right; white-space: nowrap; }
 th { background: #f3f5f7; position: sticky; top: 0; } td.l, th.l { text-align: left; }
 tr.best td { background: var(--best); } td.bestv { font-weight: 700; }
 tr.failed td { background: var(--bad); }
@@ -151,7 +176,17 @@ figure img { max-width: 100%; border: 1px solid var(--line); } figcaption { colo
 #report-errors { display: none; background: var(--bad); border: 1px solid #d33; padding: 8px; }
 nav a { margin-right: 12px; } code { background: #f3f5f7; padding: 0 3px; }
 details { margin: 6px 0; } summary { cursor: pointer; color: var(--muted); }
-.scroll { overflow-x: auto; } td.stages { white-space: normal; min-width: 12em; text-align: left; }
+.scroll { overflow-x: auto; max-width: 100%; } td.stages { white-space: normal; min-width: 9em; max-width: 14em; text-align: left; font-size: 12px; }
+th.wrap { white-space: normal; min-width: 6em; max-width: 11em; vertical-align: bottom; }
+.views { display: flex; flex-wrap: wrap; gap: 12px 28px; align-items: flex-start; margin: 8px 0; }
+.view { display: grid; grid-template-columns: repeat(3, 160px); gap: 4px 6px; }
+.view .cap { grid-column: 1 / 4; color: var(--muted); }
+.view img { width: 160px; height: 160px; image-rendering: pixelated; border: 0; display: block; }
+.view span { color: var(--muted); font-size: 12px; text-align: center; }
+.legend { display: flex; align-items: center; gap: 8px; flex-wrap: wrap; color: var(--muted); font-size: 12px; }
+.legend .bar { width: 300px; height: 12px; border: 1px solid var(--line); }
+.legend .ticks { display: flex; justify-content: space-between; width: 300px; white-space: nowrap; }
+.swatch { display: inline-block; width: 12px; height: 12px; border: 1px solid var(--line); vertical-align: middle; margin: 0 3px 0 8px; }
 )css";
 
 // First script of the page: collects errors before anything else runs.
@@ -302,6 +337,17 @@ class Page {
       body_ += "<p class=\"muted\"><b>Metrics.</b> " + HtmlEscape(report_.metric_definition) +
                "</p>\n";
     }
+    if (!report_.materials.empty()) {
+      body_ += "<p class=\"muted\"><b>Rendered error.</b> PSNR: linear PSNR of a sphere rendered "
+               "under 6 directional lights, the fit against the measured table; lum. err.: median "
+               "relative luminance error over its pixels (docs/accuracy.md). <b>Best</b> (★) per "
+               "material: " +
+               (AnyChosen(report_) ? HtmlEscape(BestRule(BestBy::kChosen)) + "; for a material "
+                                         "without a chosen fit, "
+                                   : std::string()) +
+               HtmlEscape(BestRule(AnyRendered(report_) ? BestBy::kRendered : BestBy::kLogRmse)) +
+               ".</p>\n";
+    }
     for (const auto& n : report_.notes) body_ += "<p class=\"note\">" + HtmlEscape(n) + "</p>\n";
     if (report_.materials.size() > 1) {
       body_ += "<nav>Materials: ";
@@ -313,7 +359,8 @@ class Page {
     body_ += "</header>\n";
   }
 
-  // Materials x approximations: the best log_rmse of each (over losses and budgets).
+  // Materials x approximations: each material's best result (PickBest), and the best result of
+  // each model or factorization over its losses and budgets (the same rule within the name).
   void Summary() {
     std::vector<std::string> names;
     for (const Material& m : report_.materials) {
@@ -322,35 +369,65 @@ class Page {
       }
     }
     if (names.empty()) return;
-    body_ += "<section id=\"summary\"><h2>Summary: best log_rmse per material</h2>\n";
-    body_ += "<p class=\"muted\">Lowest log_rmse of each model or factorization over its losses "
-             "and budgets; the best of each material is highlighted. – : not run or failed.</p>\n";
-    body_ += "<table><tr><th class=\"l\">material</th>";
-    for (const auto& n : names) body_ += "<th>" + HtmlEscape(n) + "</th>";
-    body_ += "<th class=\"l\">best</th></tr>\n";
+    const bool rendered = AnyRendered(report_);
+    body_ += "<section id=\"summary\"><h2>Summary: best result per material</h2>\n";
+    body_ += "<p class=\"muted\">Per material its best result (" +
+             HtmlEscape(BestRule(rendered ? BestBy::kRendered : BestBy::kLogRmse)) +
+             "), then the best of each model or factorization over its losses and budgets, by the "
+             "same rule: PSNR (dB) · median luminance error" +
+             std::string(rendered ? "" : " (none here: log_rmse instead)") +
+             "; the material's best in bold. – : not run or failed.</p>\n";
+    body_ += "<div class=\"scroll\"><table><tr><th class=\"l\">material</th>"
+             "<th>PSNR (dB)</th><th class=\"wrap\">median lum. err.</th>"
+             "<th class=\"l\">best</th><th>log_rmse</th>";
+    // A model name breaks after its '+' (no cell is as wide as "lambert+cook-torrance").
+    for (const auto& n : names) {
+      std::string h = HtmlEscape(n);
+      for (std::size_t at = h.find('+'); at != std::string::npos; at = h.find('+', at + 6)) {
+        h.insert(at + 1, "<wbr>");
+      }
+      body_ += "<th class=\"wrap\">" + h + "</th>";
+    }
+    body_ += "</tr>\n";
     for (const Material& m : report_.materials) {
-      std::vector<double> best(names.size(), NAN);
-      for (const Entry& e : m.entries) {
-        if (!Usable(e)) continue;
-        const auto k = std::find(names.begin(), names.end(), e.name) - names.begin();
-        if (!(best[k] <= e.metrics.log_rmse)) best[k] = e.metrics.log_rmse;
-      }
-      int arg = -1;
-      for (std::size_t k = 0; k < best.size(); ++k) {
-        if (std::isfinite(best[k]) && (arg < 0 || best[k] < best[arg])) arg = static_cast<int>(k);
-      }
+      const BestPick best = PickBest(m.entries);
+      const Entry* b = best.index >= 0 ? &m.entries[static_cast<std::size_t>(best.index)] : nullptr;
       body_ += fmt::format("<tr><td class=\"l\"><a href=\"#m-{}\">{}</a></td>", Slug(m.name),
                            HtmlEscape(m.name));
-      for (std::size_t k = 0; k < best.size(); ++k) {
-        body_ += fmt::format("<td{}>{}</td>", static_cast<int>(k) == arg ? " class=\"bestv\"" : "",
-                             Num(best[k]));
+      body_ += fmt::format("<td>{}</td><td>{}</td><td class=\"l\">{}</td><td>{}</td>",
+                           b ? Psnr(*b) : "–", b ? LumPct(*b) : "–",
+                           b ? HtmlEscape(b->name) : std::string("–"),
+                           b ? Num(b->metrics.log_rmse) : std::string("–"));
+      for (const auto& n : names) {
+        std::vector<Entry> of;
+        std::vector<const Entry*> from;
+        for (const Entry& e : m.entries) {
+          if (e.name == n) {
+            of.push_back(e);
+            from.push_back(&e);
+          }
+        }
+        const BestPick p = PickBest(of);
+        std::string text = "–";
+        bool bold = false;
+        if (p.index >= 0) {
+          const Entry& e = of[static_cast<std::size_t>(p.index)];
+          text = HasRendered(e) ? Psnr(e) + " · " + LumPct(e)
+                                : "log " + Num(e.metrics.log_rmse);
+          bold = from[static_cast<std::size_t>(p.index)] == b;
+        }
+        body_ += fmt::format("<td{}>{}</td>", bold ? " class=\"bestv\"" : "", text);
       }
-      body_ += "<td class=\"l\">" + (arg >= 0 ? HtmlEscape(names[arg]) : std::string("–")) +
-               "</td></tr>\n";
+      body_ += "</tr>\n";
     }
-    body_ += "</table>\n<div class=\"charts\">\n";
-    Chart(SummaryChart("Best log_rmse per material and model", report_, palette_),
-          "bar chart of the best log_rmse per material and model");
+    body_ += "</table></div>\n<div class=\"charts\">\n";
+    if (rendered) {
+      Chart(PsnrSummaryChart("Best rendered PSNR per material and model", report_, palette_),
+            "bar chart of the best rendered PSNR per material and model");
+    } else {
+      Chart(SummaryChart("Best log_rmse per material and model", report_, palette_),
+            "bar chart of the best log_rmse per material and model");
+    }
     body_ += "</div>\n</section>\n";
   }
 
@@ -369,21 +446,24 @@ class Page {
       Chart(ParetoChart("Run time against error: " + mat, BenchPoints(report_.bench, mat), palette_),
             "scatter plot of run time against log_rmse for " + mat);
     }
-    body_ += "</div>\n<details><summary>All bench points</summary>\n<table><tr>"
+    body_ += "</div>\n<details><summary>All bench points</summary>\n<div class=\"scroll\"><table><tr>"
              "<th class=\"l\">material</th><th class=\"l\">model</th><th class=\"l\">loss</th>"
              "<th class=\"l\">budget</th><th class=\"l\">status</th><th>time (ms)</th>"
-             "<th>log_rmse</th><th>cbrt_rmse</th><th>rel_l2</th></tr>\n";
+             "<th>PSNR (dB)</th><th>lum. err.</th><th>log_rmse</th><th>cbrt_rmse</th><th>rel_l2</th>"
+             "</tr>\n";
     for (const auto& b : report_.bench) {
+      const RenderedError& re = b.metrics.rendered;
       body_ += fmt::format(
           "<tr{}><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td>"
           "<td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td>"
-          "<td>{}</td></tr>\n",
+          "<td>{}</td><td>{}</td><td>{}</td></tr>\n",
           b.status == "failed" ? " class=\"failed\"" : "", HtmlEscape(b.material),
           HtmlEscape(b.model), HtmlEscape(b.loss), HtmlEscape(b.budget), HtmlEscape(b.status),
-          Num(b.time_ms, "{:.1f}"), Num(b.metrics.log_rmse), Num(b.metrics.cbrt_rmse),
+          Num(b.time_ms, "{:.1f}"), re.ok ? fmt::format("{:.2f}", re.psnr_db) : "–",
+          re.ok ? fmt::format("{:.1f} %", 100 * re.median_rel_error) : "–", Num(b.metrics.log_rmse), Num(b.metrics.cbrt_rmse),
           Num(b.metrics.rel_l2));
     }
-    body_ += "</table></details>\n</section>\n";
+    body_ += "</table></div></details>\n</section>\n";
   }
 
   void MaterialSection(const Material& m) {
@@ -394,6 +474,7 @@ class Page {
     for (const auto& n : m.notes) body_ += "<p class=\"note\">" + HtmlEscape(n) + "</p>\n";
     if (!m.entries.empty()) {
       MetricsTable(m);
+      Views(m);
       ParamsTable(m);
     }
     body_ += "<div class=\"charts\">\n";
@@ -422,21 +503,28 @@ class Page {
   }
 
   void MetricsTable(const Material& m) {
-    // Rows by log_rmse, failed and unscored last.
+    const BestPick pick = PickBest(m.entries);
+    const int best = pick.index;
+    // Rows best first: by the rule that picked the best (rendered score, or log_rmse when no
+    // entry has a rendered error; entries without one after those with), failed and unscored last.
     std::vector<std::size_t> order(m.entries.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
       const Entry &ea = m.entries[a], &eb = m.entries[b];
       if (Usable(ea) != Usable(eb)) return Usable(ea);
-      return Usable(ea) && ea.metrics.log_rmse < eb.metrics.log_rmse;
+      if (!Usable(ea)) return false;
+      if (HasRendered(ea) != HasRendered(eb)) return HasRendered(ea);
+      if (HasRendered(ea)) {
+        return RenderedScore(ea.metrics.rendered) > RenderedScore(eb.metrics.rendered);
+      }
+      return ea.metrics.log_rmse < eb.metrics.log_rmse;
     });
-    const int best = BestEntry(m.entries);
     const auto front_v = ParetoFront(m.entries);
     const std::set<std::size_t> front(front_v.begin(), front_v.end());
-    auto best_of = [&](auto get) {
+    auto best_of = [&](auto get, bool rendered = false) {
       double b = NAN;
       for (const Entry& e : m.entries) {
-        if (Usable(e) && !(b <= get(e))) b = get(e);
+        if (Usable(e) && (!rendered || HasRendered(e)) && !(b <= get(e))) b = get(e);
       }
       return b;
     };
@@ -444,13 +532,17 @@ class Page {
     const double best_cbrt = best_of([](const Entry& e) { return e.metrics.cbrt_rmse; });
     const double best_rel = best_of([](const Entry& e) { return e.metrics.rel_l2; });
     const double best_time = best_of([](const Entry& e) { return e.time_ms; });
+    const double best_psnr = -best_of([](const Entry& e) { return -e.metrics.rendered.psnr_db; }, true);
+    const double best_lum =
+        best_of([](const Entry& e) { return e.metrics.rendered.median_rel_error; }, true);
     auto cell = [&](double v, double b, const char* spec = "{:.4g}") {
       return fmt::format("<td{}>{}</td>", std::isfinite(v) && v == b ? " class=\"bestv\"" : "",
                          Num(v, spec));
     };
-    body_ += "<div class=\"scroll\"><table><tr><th class=\"l\">approximation</th><th class=\"l\">loss</th>"
-             "<th class=\"l\">budget</th><th class=\"l\">status</th><th>log_rmse</th>"
-             "<th>cbrt_rmse</th><th>rel_l2</th><th>cells</th><th>time (ms)</th>"
+    body_ += "<div class=\"scroll\"><table><tr><th class=\"l\">approximation</th>"
+             "<th>PSNR (dB)</th><th class=\"wrap\">median lum. err.</th>"
+             "<th class=\"l\">loss</th><th class=\"l\">budget</th><th class=\"l\">status</th>"
+             "<th>log_rmse</th><th>cbrt_rmse</th><th>rel_l2</th><th>cells</th><th>time (ms)</th>"
              "<th class=\"l\">stages (ms)</th><th>iter.</th><th>Pareto</th></tr>\n";
     for (const std::size_t i : order) {
       const Entry& e = m.entries[i];
@@ -459,26 +551,38 @@ class Page {
         stages += (stages.empty() ? "" : " · ") + fmt::format("{} {}", name, Num(ms, "{:.1f}"));
       }
       const bool ok = Usable(e);
+      const bool rendered = HasRendered(e);
       const char* cls = static_cast<int>(i) == best ? " class=\"best\""
                         : e.Failed()                ? " class=\"failed\""
                                                     : "";
       std::string status = HtmlEscape(e.status);
       if (!e.message.empty()) status += " <span class=\"muted\">(" + HtmlEscape(e.message) + ")</span>";
+      const double psnr = rendered ? e.metrics.rendered.psnr_db : NAN;
+      const double lum = rendered ? 100 * e.metrics.rendered.median_rel_error : NAN;
       body_ += fmt::format(
-          "<tr{}><td class=\"l\">{}{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td>"
+          "<tr{}><td class=\"l\">{}{}</td>{}{}<td class=\"l\">{}</td><td class=\"l\">{}</td>"
           "<td class=\"l\">{}</td>{}{}{}<td>{}</td>{}<td class=\"stages\">{}</td><td>{}</td>"
           "<td>{}</td></tr>\n",
-          cls, static_cast<int>(i) == best ? "★ " : "", HtmlEscape(e.name), HtmlEscape(e.loss),
-          HtmlEscape(e.budget), status, cell(ok ? e.metrics.log_rmse : NAN, best_log),
+          cls, static_cast<int>(i) == best ? "★ " : "", HtmlEscape(e.name),
+          cell(psnr, best_psnr, "{:.2f}"),
+          fmt::format("<td{}>{}</td>", rendered && lum == 100 * best_lum ? " class=\"bestv\"" : "",
+                      rendered ? fmt::format("{:.1f} %", lum) : "–"),
+          HtmlEscape(e.loss), HtmlEscape(e.budget), status,
+          cell(ok ? e.metrics.log_rmse : NAN, best_log),
           cell(ok ? e.metrics.cbrt_rmse : NAN, best_cbrt), cell(ok ? e.metrics.rel_l2 : NAN, best_rel),
           e.metrics.cells, cell(e.time_ms, ok ? best_time : NAN, "{:.1f}"), stages,
           e.kind == Entry::Kind::kFit ? std::to_string(e.iterations) : std::string("–"),
           front.count(i) ? "◆" : "");
     }
-    body_ += "</table></div>\n<p class=\"muted\">★ lowest log_rmse; bold: best of each column; ◆ on "
-             "the Pareto front of time against log_rmse. Time: from the loaded table to the "
-             "result (fits: preparation, initializer and solve; factorizations: the whole "
-             "solve).";
+    std::string why;
+    if (pick.by == BestBy::kChosen && !m.entries[static_cast<std::size_t>(best)].choice.empty()) {
+      why = " (" + HtmlEscape(m.entries[static_cast<std::size_t>(best)].choice) + ")";
+    }
+    body_ += "</table></div>\n<p class=\"muted\">★ " + HtmlEscape(BestRule(pick.by)) + why +
+             "; bold: best of each column; ◆ on the Pareto front of time against log_rmse. "
+             "PSNR and lum. err.: the rendered-image metric (– : not computed). Time: from the "
+             "loaded table to the result (fits: preparation, initializer and solve; "
+             "factorizations: the whole solve).";
     const Entry* any = nullptr;
     for (const Entry& e : m.entries) {
       if (e.metrics.ok) any = any ? any : &e;
@@ -488,6 +592,57 @@ class Page {
                            Num(any->metrics.cutoff_deg));
     }
     body_ += "</p>\n";
+  }
+
+  // The best result rendered in the metric's scene beside the measured sphere, with the error map.
+  void Views(const Material& m) {
+    const MaterialViews& v = m.views;
+    if (v.lights.empty()) {
+      if (!v.missing.empty()) body_ += "<p class=\"note\">" + HtmlEscape(v.missing) + "</p>\n";
+      return;
+    }
+    body_ += "<p class=\"muted\"><b>Renders</b> of <b>" + HtmlEscape(v.entry_key) +
+             fmt::format("</b> (★) in the metric's scene: a sphere seen from above, {}² pixels, one "
+                         "directional light; exposure 1/Y₉₉ of the measured images, clamped, sRGB "
+                         "(as the tone-mapped PSNR).</p>\n<div class=\"views\">\n",
+                         v.resolution);
+    auto img = [](const std::string& png, const std::string& alt) {
+      return fmt::format("<img alt=\"{}\" src=\"data:image/png;base64,{}\">", HtmlEscape(alt),
+                         Base64(png));
+    };
+    for (const RenderedView& l : v.lights) {
+      const std::string at = fmt::format("{:g}°", l.light_deg);
+      body_ += "<div class=\"view\"><div class=\"cap\">" +
+               fmt::format("light at {} from the view: PSNR {:.2f} dB, median lum. err. {:.1f} %",
+                           at, l.psnr_db, 100 * l.median_rel_error) +
+               "</div>" + img(l.measured_png, "measured, light " + at) +
+               img(l.approx_png, "best fit, light " + at) +
+               img(l.error_png, "relative luminance error, light " + at) +
+               "<span>measured</span><span>fit</span><span>lum. error</span></div>\n";
+    }
+    body_ += "</div>\n";
+    ErrorLegend();
+  }
+
+  // The error map's colour scale (report/rendered_colors.h): a CSS gradient through colours of
+  // ErrorColor at the decades, where the scale is linear in log |s| between them.
+  void ErrorLegend() {
+    const double decades[] = {-1.0, -0.1, -0.01, 0.01, 0.1, 1.0};
+    const double pos[] = {0, 25, 50, 50, 75, 100};
+    std::string stops;
+    for (int i = 0; i < 6; ++i) {
+      stops += fmt::format("{}{} {}%", i ? ", " : "", HexColor(ErrorColor(decades[i])), pos[i]);
+    }
+    auto swatch = [](const Srgb& c) {
+      return fmt::format("<span class=\"swatch\" style=\"background:{}\"></span>", HexColor(c));
+    };
+    body_ += "<div class=\"legend\"><span>lum. error (Y<sub>fit</sub> − Y<sub>meas</sub>) / "
+             "Y<sub>meas</sub>:</span><span>fit darker</span><div><div class=\"bar\" style=\"background: "
+             "linear-gradient(to right, " + stops + ")\"></div><div class=\"ticks\"><span>−100 %</span>"
+             "<span>−10 %</span><span>±1 %</span><span>+10 %</span><span>≥ +100 %</span></div></div>"
+             "<span>fit brighter</span><span>log scale, white ≤ 1 %, full colour ≥ 100 %;" +
+             swatch(kViewBelowFloor) + "below the luminance floor" + swatch(kViewMasked) +
+             "measurement masked" + swatch(kViewUnlit) + "unlit</span></div>\n";
   }
 
   void ParamsTable(const Material& m) {

@@ -241,4 +241,34 @@ json SummaryChart(const std::string& title, const Report& report, const Palette&
           {"options", options}};
 }
 
+json PsnrSummaryChart(const std::string& title, const Report& report, const Palette& palette) {
+  std::vector<std::string> models;
+  for (const Material& m : report.materials) {
+    for (const Entry& e : m.entries) {
+      if (std::find(models.begin(), models.end(), e.name) == models.end()) models.push_back(e.name);
+    }
+  }
+  json labels = json::array();
+  for (const Material& m : report.materials) labels.push_back(m.name);
+  json datasets = json::array();
+  for (const std::string& model : models) {
+    json data = json::array();
+    for (const Material& m : report.materials) {
+      std::vector<Entry> of;
+      for (const Entry& e : m.entries) {
+        if (e.name == model) of.push_back(e);
+      }
+      const BestPick p = PickBest(of);
+      const bool has = p.index >= 0 && p.by == BestBy::kRendered;
+      data.push_back(Value(has ? of[static_cast<std::size_t>(p.index)].metrics.rendered.psnr_db : NAN));
+    }
+    datasets.push_back(
+        {{"label", model}, {"data", data}, {"backgroundColor", palette.Color(model)}});
+  }
+  json options = BaseOptions(title);
+  options["scales"] = {{"y", Axis("linear", "rendered PSNR of the best fit (dB; higher is better)")}};
+  return {{"type", "bar"}, {"data", {{"labels", labels}, {"datasets", datasets}}},
+          {"options", options}};
+}
+
 }  // namespace brdfit::report

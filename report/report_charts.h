@@ -47,4 +47,9 @@ nlohmann::json MetricsChart(const std::string& title, const Material& m);
 // Best log_rmse per material (x) and model (one dataset each), over the whole report.
 nlohmann::json SummaryChart(const std::string& title, const Report& report, const Palette& palette);
 
+// The rendered PSNR (dB, linear y) of each material's best entry per model, by report::PickBest
+// among that model's entries; missing where no entry of the model has a rendered error.
+nlohmann::json PsnrSummaryChart(const std::string& title, const Report& report,
+                                const Palette& palette);
+
 }  // namespace brdfit::report

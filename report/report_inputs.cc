@@ -70,6 +70,16 @@ FitMetrics MetricsFromJson(const json& j, bool ok_default) {
   m.cells = j.value("cells", std::size_t{0});
   m.weighting = j.value("weighting", std::string());
   m.cutoff_deg = Get(j, "cutoff_deg");
+  // The rendered-image metric's summary, written when computed (io/fit_report.h FitParamsJson).
+  const auto r = j.find("rendered");
+  if (r != j.end() && r->is_object()) {
+    m.rendered.ok = r->value("ok", true);
+    m.rendered.problem = r->value("problem", std::string());
+    m.rendered.psnr_db = Get(*r, "psnr_db");
+    m.rendered.psnr_srgb_db = Get(*r, "psnr_srgb_db");
+    m.rendered.median_rel_error = Get(*r, "median_rel_error");
+    m.rendered.p95_rel_error = Get(*r, "p95_rel_error");
+  }
   return m;
 }
 
@@ -161,6 +171,8 @@ Entry FitEntry(const FitReportEntry& f) {
   e.at_bound = r.at_bound;
   e.iterations = r.iterations;
   e.metrics = r.metrics;
+  e.chosen = f.chosen;
+  e.choice = f.choice;
   if (!e.metrics.ok && e.message.empty()) e.message = r.metrics.problem;
   const FitTimes& t = r.times;
   e.times_ms = {
@@ -208,6 +220,8 @@ bool AddFitParamsJson(const fs::path& p, ReportSources* out) {
     }
     e.metrics =
         MetricsFromJson(f.value("metrics", nlohmann::ordered_json::object()), e.status != "failed");
+    e.chosen = f.value("chosen", false);
+    e.choice = f.value("choice", std::string());
     const std::string source = f.value("source", std::string());
     const std::string material = f.value("material", MaterialName(source));
     AddEntry(out->report, material, source, std::move(e));

@@ -59,16 +59,52 @@ std::vector<std::size_t> ParetoFront(const std::vector<Entry>& entries) {
   return ParetoFront(points);
 }
 
-int BestEntry(const std::vector<Entry>& entries) {
-  int best = -1;
+double RenderedScore(const RenderedError& r) { return r.psnr_db - 20 * r.median_rel_error; }
+
+BestPick PickBest(const std::vector<Entry>& entries) {
+  BestPick pick;
+  double best = 0;
+  for (const bool only_chosen : {true, false}) {
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      const Entry& e = entries[i];
+      if (!EntryUsable(e) || (only_chosen && !e.chosen)) continue;
+      const double score = e.metrics.rendered.ok ? RenderedScore(e.metrics.rendered) : NAN;
+      if (!std::isfinite(score) && !(only_chosen && pick.index < 0)) continue;
+      if (pick.index < 0 || score > best) {
+        pick = {static_cast<int>(i), only_chosen ? BestBy::kChosen : BestBy::kRendered};
+        best = score;
+      }
+    }
+    if (pick.index >= 0) return pick;
+  }
   for (std::size_t i = 0; i < entries.size(); ++i) {
     const Entry& e = entries[i];
     if (!EntryUsable(e) || !std::isfinite(e.metrics.log_rmse)) continue;
-    if (best < 0 || e.metrics.log_rmse < entries[best].metrics.log_rmse) {
-      best = static_cast<int>(i);
+    if (pick.index < 0 || e.metrics.log_rmse < best) {
+      pick = {static_cast<int>(i), BestBy::kLogRmse};
+      best = e.metrics.log_rmse;
     }
   }
-  return best;
+  return pick;
 }
+
+std::string BestRule(BestBy by) {
+  switch (by) {
+    case BestBy::kChosen:
+      return "best = the fit brdfit fit chose (highest PSNR − 20 × median luminance error, the "
+             "fewest parameters within 0.5 dB of it; core/model_choice.h)";
+    case BestBy::kRendered:
+      return "best = highest PSNR − 20 × median luminance error (rendered-image metric, "
+             "docs/accuracy.md) among the results that have it";
+    case BestBy::kLogRmse:
+      return "best = lowest log_rmse: no result has a rendered-image error (a report written "
+             "before the metric)";
+    case BestBy::kNone:
+      break;
+  }
+  return "no usable result";
+}
+
+int BestEntry(const std::vector<Entry>& entries) { return PickBest(entries).index; }
 
 }  // namespace brdfit::report

@@ -28,6 +28,10 @@ struct Entry {
   std::vector<bool> at_bound;
   int iterations = 0;
   FitMetrics metrics;  // core/metrics.h; ok false: not computed or not finite (see message)
+  // The fit `brdfit fit` recommended for its table (core/model_choice.h; fit reports and JSON
+  // parameters), and why.
+  bool chosen = false;
+  std::string choice;
   // Named stage times in milliseconds, in display order ("init", "solve", ...).
   std::vector<std::pair<std::string, double>> times_ms;
   // The time a user pays to get this approximation from a loaded table (fits: prepare + init +
@@ -53,11 +57,29 @@ struct Slice {
   std::vector<SliceSeries> series;
 };
 
+// One light of the rendered-image metric's scene (fit/rendered_error.h, docs/accuracy.md) as
+// images of a material's best approximation: the measured sphere, the approximation's, and the
+// relative luminance error map, each an 8-bit PNG file's bytes (report/rendered_colors.h for
+// the colours; made by pipeline/rendered_views.h).
+struct RenderedView {
+  double light_deg = 0;
+  std::string measured_png, approx_png, error_png;
+  double psnr_db = 0, median_rel_error = 0;  // of this light's image (RenderedLightError)
+};
+struct MaterialViews {
+  std::string entry_key;  // Entry::Key() of the approximation drawn
+  int resolution = 0;     // the images are N x N
+  double exposure = 0;    // 1 / Y99 of the measured images, as the tone-mapped PSNR
+  std::vector<RenderedView> lights;
+  std::string missing;  // why there are no images (empty when there are)
+};
+
 struct Material {
   std::string name;    // table stem, e.g. "red-plastic"
   std::string source;  // table path as recorded by the producer
   std::vector<Entry> entries;
   std::vector<Slice> slices;
+  MaterialViews views;
   std::vector<std::string> notes;  // e.g. why the slices are missing
 };
 
@@ -104,7 +126,22 @@ std::vector<std::size_t> ParetoFront(const std::vector<CostError>& points);
 // Front of (time_ms, log_rmse) over the entries that did not fail and have metrics.
 std::vector<std::size_t> ParetoFront(const std::vector<Entry>& entries);
 
-// Index of the usable entry with the lowest log_rmse, or -1 if there is none.
+// How a material's best approximation is chosen. kChosen: the usable entry the fit report marks
+// as chosen (core/model_choice.h; of several, the highest RenderedScore); else kRendered: the
+// highest RenderedScore among the usable entries whose rendered-image error is ok; kLogRmse:
+// only when no entry has one (e.g. a report written before the metric), the lowest log_rmse.
+enum class BestBy { kNone, kChosen, kRendered, kLogRmse };
+struct BestPick {
+  int index = -1;  // into the entries; -1: no usable entry
+  BestBy by = BestBy::kNone;
+};
+// psnr_db - 20 median_rel_error (dB; a 5 % median luminance error costs 1 dB): the score S of
+// core/model_choice.h and of docs/accuracy.md's loss and model study.
+double RenderedScore(const RenderedError& r);
+BestPick PickBest(const std::vector<Entry>& entries);
+// One sentence saying how the best was chosen, for pages and listings.
+std::string BestRule(BestBy by);
+// PickBest(entries).index.
 int BestEntry(const std::vector<Entry>& entries);
 
 }  // namespace brdfit::report

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "io/model_params.h"
+#include "pipeline/rendered_views.h"
 #include "report/report_slices.h"
 #include "core/synth.h"
 #include "models/registry.h"
@@ -82,6 +83,12 @@ report::Report MakeFixtureReport(const fs::path& dir) {
             for (double& v : rgb) v *= 1.1;
             return rgb;
           }}});
+    // Renders of the best fit beside the first material; the second says why it has none.
+    if (k == 0) {
+      mat.views = pipeline::RenderMaterialViews(table, mat, {}, pipeline::DefaultViewLights());
+    } else {
+      mat.views.missing = "No renders: the fixture draws them for the first material only.";
+    }
     r.materials.push_back(std::move(mat));
     for (const char* budget : {"full", "stride:4", "stride:16"}) {
       for (const char* model : {"lambert+ggx", "lambert+beckmann"}) {

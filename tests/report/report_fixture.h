@@ -1,6 +1,6 @@
 // A small report with every section the HTML writer draws: two materials with fits (true and
 // perturbed parameters of the generating model), a failed fit and a factorization-like entry,
-// θh slices on a synthetic table, bench points with several budgets, and one PNG render.
+// θh slices on a synthetic table, renders of the first material's best fit, bench points with several budgets, and one PNG render.
 #pragma once
 
 #include <cstddef>

@@ -1,0 +1,305 @@
+// The rendered-image metric in the report layer: how the best result is chosen, the HTML
+// tables, renders and legend, `compare` on rendered errors, the bench CSV's rendered columns,
+// and the renders of pipeline/rendered_views.h against exact properties of the scene (a fit
+// equal to its table: white error map, identical spheres; twice the table: full colour).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/synth.h"
+#include "io/image_io.h"
+#include "io/model_params.h"
+#include "models/registry.h"
+#include "pipeline/rendered_views.h"
+#include "report/bench_csv.h"
+#include "report/compare.h"
+#include "report/html_report.h"
+#include "report/rendered_colors.h"
+#include "report/report_model.h"
+#include "tests/report/report_fixture.h"
+#include "tests/scratch_dir.h"
+
+namespace brdfit::report {
+namespace {
+
+namespace fs = std::filesystem;
+
+RenderedError Rendered(double psnr, double median) {
+  RenderedError r;
+  r.ok = true;
+  r.psnr_db = psnr;
+  r.psnr_srgb_db = psnr - 5;
+  r.median_rel_error = median;
+  r.p95_rel_error = 2 * median;
+  return r;
+}
+
+Entry Fit(const std::string& name, double log_rmse) {
+  Entry e;
+  e.name = name;
+  e.loss = "log";
+  e.budget = "full";
+  e.status = "converged";
+  e.metrics = testing::Scored(log_rmse, 2 * log_rmse, 3 * log_rmse, 100);
+  e.time_ms = 10;
+  return e;
+}
+
+std::size_t Count(const std::string& s, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = s.find(what); at != std::string::npos; at = s.find(what, at + 1)) ++n;
+  return n;
+}
+
+// ---- best ---------------------------------------------------------------------------------
+
+TEST(RenderedBest, HighestPsnrMinusTwentyTimesMedianAmongRenderedFits) {
+  std::vector<Entry> e = {Fit("a", 0.01), Fit("b", 0.02), Fit("c", 0.001), Fit("d", 0.03)};
+  e[0].metrics.rendered = Rendered(33.4, 0.79);  // 17.6
+  e[1].metrics.rendered = Rendered(30.6, 0.56);  // 19.4: best
+  // c has the lowest log_rmse but no rendered error: not a candidate while others have one.
+  e[3].metrics.rendered = Rendered(40, 0.05);  // 39 but failed: never
+  e[3].status = "failed";
+  BestPick p = PickBest(e);
+  EXPECT_EQ(p.index, 1);
+  EXPECT_EQ(p.by, BestBy::kRendered);
+  EXPECT_DOUBLE_EQ(RenderedScore(e[1].metrics.rendered), 30.6 - 20 * 0.56);
+  // No rendered error anywhere (an old report): log_rmse, and the rule says so.
+  for (Entry& x : e) x.metrics.rendered = {};
+  p = PickBest(e);
+  EXPECT_EQ(p.index, 2);
+  EXPECT_EQ(p.by, BestBy::kLogRmse);
+  EXPECT_NE(BestRule(p.by).find("no result has a rendered-image error"), std::string::npos);
+  EXPECT_EQ(PickBest({}).by, BestBy::kNone);
+  // A fit the fit report marks as chosen (core/model_choice.h) is preferred to any score.
+  e[0].metrics.rendered = Rendered(33.4, 0.79);
+  e[1].metrics.rendered = Rendered(30.6, 0.56);
+  e[0].chosen = true;
+  p = PickBest(e);
+  EXPECT_EQ(p.index, 0);
+  EXPECT_EQ(p.by, BestBy::kChosen);
+  e[0].status = "failed";  // but never a failed one
+  EXPECT_EQ(PickBest(e).index, 1);
+}
+
+// ---- HTML ---------------------------------------------------------------------------------
+
+Report TwoFits() {
+  Report r;
+  Material& m = r.GetOrAddMaterial("gold");
+  m.entries = {Fit("lambert+ggx", 0.0104), Fit("lambert+ward", 0.0166)};
+  m.entries[0].metrics.rendered = Rendered(33.43, 0.787);
+  m.entries[1].metrics.rendered = Rendered(30.55, 0.563);
+  return r;
+}
+
+TEST(RenderedHtml, PsnrAndLuminanceErrorLeadTheTablesAndPickTheStar) {
+  const std::string html = RenderHtml(TwoFits(), "");
+  // The metric table: approximation, then PSNR and luminance error.
+  EXPECT_NE(html.find("<th class=\"l\">approximation</th><th>PSNR (dB)</th><th class=\"wrap\">"
+                      "median lum. err.</th>"),
+            std::string::npos);
+  // The summary: material, then PSNR and luminance error of its best.
+  EXPECT_NE(html.find("<th class=\"l\">material</th><th>PSNR (dB)</th>"), std::string::npos);
+  // The star goes to ward (30.55 - 11.26 > 33.43 - 15.74) although ggx has the lower log_rmse.
+  EXPECT_NE(html.find("<tr class=\"best\"><td class=\"l\">★ lambert+ward</td><td>30.55</td>"),
+            std::string::npos)
+      << html.substr(html.find("<section id=\"m-gold\""), 3000);
+  EXPECT_NE(html.find("highest PSNR − 20 × median luminance error"), std::string::npos);
+  EXPECT_NE(html.find("30.55 · 56.3 %"), std::string::npos);
+  EXPECT_EQ(html.find("no result has a rendered-image error"), std::string::npos);
+
+  Report old = TwoFits();
+  for (Entry& e : old.materials[0].entries) e.metrics.rendered = {};
+  const std::string old_html = RenderHtml(old, "");
+  EXPECT_NE(old_html.find("★ lambert+ggx"), std::string::npos);
+  EXPECT_NE(old_html.find("no result has a rendered-image error"), std::string::npos);
+}
+
+TEST(RenderedHtml, ViewsAreEmbeddedWithALegendOrTheReasonIsGiven) {
+  Report r = TwoFits();
+  Image img(4, 4);
+  const std::string png = EncodePng(img);
+  MaterialViews& v = r.materials[0].views;
+  v.entry_key = "lambert+ward | log | full";
+  v.resolution = 4;
+  v.exposure = 2;
+  v.lights = {{45, png, png, png, 30.1, 0.5}, {80, png, png, png, 31.2, 0.25}};
+  const std::string html = RenderHtml(r, "");
+  EXPECT_EQ(Count(html, "src=\"data:image/png;base64," + Base64(png) + "\""), 6u);
+  EXPECT_NE(html.find("light at 80° from the view: PSNR 31.20 dB, median lum. err. 25.0 %"),
+            std::string::npos);
+  // The legend's gradient is drawn from the scale's own colours.
+  EXPECT_NE(html.find(HexColor(ErrorColor(-1)) + " 0%"), std::string::npos);
+  EXPECT_NE(html.find(HexColor(ErrorColor(1)) + " 100%"), std::string::npos);
+  EXPECT_NE(html.find(HexColor(kViewMasked)), std::string::npos);
+
+  Report none = TwoFits();
+  none.materials[0].views.missing = "No renders: the table of this material was not given.";
+  const std::string html2 = RenderHtml(none, "");
+  EXPECT_NE(html2.find("No renders: the table of this material was not given."), std::string::npos);
+  EXPECT_EQ(html2.find("class=\"legend\""), std::string::npos);
+}
+
+TEST(RenderedColors, ScaleIsWhiteToOnePercentAndFullAtOneHundred) {
+  EXPECT_EQ(ErrorColor(0.005), (Srgb{1, 1, 1}));
+  EXPECT_EQ(ErrorColor(-0.01), (Srgb{1, 1, 1}));
+  EXPECT_EQ(ErrorColor(1.0), kErrorBrighter);
+  EXPECT_EQ(ErrorColor(7.0), kErrorBrighter);
+  EXPECT_EQ(ErrorColor(-1.0), kErrorDarker);
+  EXPECT_DOUBLE_EQ(ErrorScaleT(0.1), 0.5);  // a decade is half the scale
+  const Srgb half = ErrorColor(0.1);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(half[c], 0.5 * (1 + kErrorBrighter[c]), 1e-12);
+  EXPECT_EQ(HexColor({1, 0, 0.5}), "#ff0080");
+}
+
+// ---- renders of a material ------------------------------------------------------------------
+
+Image Decode(const std::string& png, const fs::path& dir) {
+  const fs::path p = dir / "x.png";
+  std::ofstream(p, std::ios::binary) << png;
+  return ReadPng(p);
+}
+
+// A Lambertian table: trilinear lookups of a constant are exact, so a fit with the table's own
+// albedo renders identically and one with twice the albedo is +100 % at every pixel.
+TEST(RenderedViews, ExactFitIsWhiteAndTwiceTheTableIsFullRed) {
+  const ScratchDir scratch("views");
+  const ModelInfo& m = *FindModel("lambert");
+  const std::vector<double> truth = m.DefaultParams();
+  const Table table = SynthesizeTable(Grid{30, 30, 60, ThetaHMapping::kSqrt},
+                                      [&](const Geometry& g, double rgb[3]) { m.eval(truth.data(), g, rgb); },
+                                      {});
+  Material mat;
+  mat.name = "synthetic";
+  mat.entries = {Fit("lambert", 0.01)};
+  mat.entries[0].params = truth;
+  // A fit reproducing the table is white wherever the error is compared; 2x is +100 %.
+  const MaterialViews same = pipeline::RenderMaterialViews(table, mat, {}, {45, 80});
+  ASSERT_TRUE(same.missing.empty()) << same.missing;
+  ASSERT_EQ(same.lights.size(), 2u);
+  EXPECT_EQ(same.resolution, 64);
+  EXPECT_EQ(same.entry_key, mat.entries[0].Key());
+  std::vector<double> twice = truth;
+  for (double& kd : twice) kd *= 2;  // f = kd / pi: linear
+  mat.entries[0].params = twice;
+  const MaterialViews bright = pipeline::RenderMaterialViews(table, mat, {}, {45, 80});
+  ASSERT_TRUE(bright.missing.empty()) << bright.missing;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const Image meas = Decode(same.lights[k].measured_png, scratch.path());
+    const Image fit = Decode(same.lights[k].approx_png, scratch.path());
+    const Image err = Decode(same.lights[k].error_png, scratch.path());
+    const Image err2 = Decode(bright.lights[k].error_png, scratch.path());
+    ASSERT_EQ(meas.width, 64);
+    EXPECT_GT(same.lights[k].psnr_db, 150);  // round-off only
+    EXPECT_LT(same.lights[k].median_rel_error, 1e-12);
+    EXPECT_EQ(bright.lights[k].median_rel_error, 1.0);
+    int white = 0, red = 0, lit = 0;
+    for (int y = 0; y < 64; ++y) {
+      for (int x = 0; x < 64; ++x) {
+        const float* a = meas.At(x, y);
+        const float* b = fit.At(x, y);
+        for (int c = 0; c < 3; ++c) ASSERT_NEAR(a[c], b[c], 1.01f / 255) << x << "," << y;
+        const float* e = err.At(x, y);
+        const float* e2 = err2.At(x, y);
+        const bool shaded = e[0] > 0.9f && e[1] > 0.9f && e[2] > 0.9f;  // white: compared, <= 1 %
+        if (!shaded) continue;
+        ++lit;
+        ++white;
+        const bool full = std::abs(e2[0] - kErrorBrighter[0]) < 1.0f / 255 &&
+                          std::abs(e2[1] - kErrorBrighter[1]) < 1.0f / 255 &&
+                          std::abs(e2[2] - kErrorBrighter[2]) < 1.0f / 255;
+        red += full;
+      }
+    }
+    EXPECT_GT(lit, 1000);
+    EXPECT_EQ(red, white);  // every compared pixel: +100 %, full colour
+  }
+  // An unknown light is refused; a failed fit gives the reason.
+  EXPECT_THROW(pipeline::RenderMaterialViews(table, mat, {}, {50}), InputError);
+  mat.entries[0].status = "failed";
+  EXPECT_NE(pipeline::RenderMaterialViews(table, mat, {}, {45}).missing.find("no usable"),
+            std::string::npos);
+}
+
+// ---- compare --------------------------------------------------------------------------------
+
+TEST(RenderedCompare, PsnrDropOrLuminanceRiseBeyondThresholdIsARegression) {
+  Report a = TwoFits(), b = TwoFits();
+  auto& eb = b.materials[0].entries;
+  eb[0].metrics.rendered = Rendered(33.43 - 0.6, 0.787);         // -0.6 dB
+  eb[1].metrics.rendered = Rendered(30.55 - 0.4, 0.563 + 0.01);  // -0.4 dB, +1 point
+  Comparison c = Compare(a, b);
+  ASSERT_EQ(c.deltas.size(), 2u);
+  EXPECT_EQ(c.deltas[0].change, Change::kWorseRendered);
+  EXPECT_TRUE(c.deltas[0].regression);
+  EXPECT_NEAR(c.deltas[0].psnr_change_db, -0.6, 1e-9);
+  EXPECT_EQ(c.deltas[1].change, Change::kSame);
+  EXPECT_FALSE(c.deltas[1].regression);
+  EXPECT_NEAR(c.deltas[1].lum_change_points, 1.0, 1e-9);
+  EXPECT_EQ(c.Regressions(), 1);
+  // +3 points of luminance error is a regression too; --ignore-rendered turns both off.
+  eb[1].metrics.rendered = Rendered(30.55, 0.563 + 0.03);
+  c = Compare(a, b);
+  EXPECT_TRUE(c.deltas[1].rendered_regression);
+  EXPECT_EQ(c.Regressions(), 2);
+  CompareOptions o;
+  o.judge_rendered = false;
+  EXPECT_FALSE(Compare(a, b, o).Regressed());
+  const auto j = ComparisonToJson(c);
+  EXPECT_EQ(j["counts"]["worse-rendered"], 2);
+  EXPECT_NEAR(j["deltas"][1]["lum_change_points"].get<double>(), 3.0, 1e-9);
+  EXPECT_NEAR(j["deltas"][0]["new_metrics"]["rendered"]["psnr_db"].get<double>(), 32.83, 1e-9);
+  const std::string text = FormatComparison(c);
+  EXPECT_NE(text.find("PSNR 33.43 -> 32.83 dB (-0.60)"), std::string::npos) << text;
+  EXPECT_NE(text.find("(+3.0 pt)"), std::string::npos) << text;
+  // Without the metric on one side (an old report) nothing is judged on it.
+  Report old = TwoFits();
+  for (Entry& e : old.materials[0].entries) e.metrics.rendered = {};
+  EXPECT_FALSE(Compare(old, b).Regressed());
+  EXPECT_NE(FormatComparison(Compare(old, b), true).find("rendered error only in the new report"),
+            std::string::npos);
+}
+
+// ---- bench CSV ------------------------------------------------------------------------------
+
+TEST(RenderedBenchCsv, ColumnsAppendedAndReadBack) {
+  const ScratchDir scratch("csvr");
+  const auto& cols = BenchCsvColumns();
+  ASSERT_GE(cols.size(), 24u);
+  // The columns before the metric keep their places; the four are the last.
+  EXPECT_EQ(cols[19], "message");
+  EXPECT_EQ(std::vector<std::string>(cols.end() - 4, cols.end()),
+            (std::vector<std::string>{"psnr_db", "psnr_srgb_db", "median_rel_error",
+                                      "p95_rel_error"}));
+  BenchPoint b;
+  b.material = "gold";
+  b.model = "lambert+ggx";
+  b.budget = "full";
+  b.status = "converged";
+  b.metrics = testing::Scored(0.01, 0.02, 0.1, 10);
+  b.metrics.rendered = Rendered(33.41, 0.788);
+  BenchPoint none = b;
+  none.metrics.rendered = {};
+  WriteBenchCsv(scratch.path() / "b.csv", {b, none});
+  const auto back = ReadBenchCsv(scratch.path() / "b.csv");
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_TRUE(back[0].metrics.rendered.ok);
+  EXPECT_EQ(back[0].metrics.rendered.psnr_db, 33.41);
+  EXPECT_EQ(back[0].metrics.rendered.psnr_srgb_db, b.metrics.rendered.psnr_srgb_db);
+  EXPECT_EQ(back[0].metrics.rendered.median_rel_error, 0.788);
+  EXPECT_EQ(back[0].metrics.rendered.p95_rel_error, b.metrics.rendered.p95_rel_error);
+  EXPECT_FALSE(back[1].metrics.rendered.ok);
+  // A file written before the columns existed reads without them.
+  std::ofstream(scratch.path() / "old.csv") << "material,model,budget,time_ms,log_rmse\na,b,full,1,0.1\n";
+  const auto old = ReadBenchCsv(scratch.path() / "old.csv");
+  ASSERT_EQ(old.size(), 1u);
+  EXPECT_FALSE(old[0].metrics.rendered.ok);
+}
+
+}  // namespace
+}  // namespace brdfit::report
