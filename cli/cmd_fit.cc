@@ -28,9 +28,9 @@ namespace fs = std::filesystem;
 
 struct FitCliOptions {
   std::vector<std::string> files;
-  std::vector<std::string> models = {"ggx"};
+  std::vector<std::string> models = {"auto"};
   std::string diffuse = "lambert";
-  std::string loss = "log";
+  std::string loss;  // empty: not given (kDefaultLoss; --model auto: each candidate's own)
   bool no_cosine = false;
   std::string robust = "none";
   double robust_scale = FitOptions{}.robust_scale;
@@ -50,19 +50,33 @@ struct FitCliOptions {
   bool no_progress = false;
 };
 
+// The loss an entry was fitted under, from its options JSON ("?" if it says none).
+std::string LossOf(const FitReportEntry& e) {
+  const std::string key = "\"loss\":\"";
+  const auto at = e.options.find(key);
+  if (at == std::string::npos) return "?";
+  const auto end = e.options.find('"', at + key.size());
+  return end == std::string::npos ? "?" : e.options.substr(at + key.size(), end - at - key.size());
+}
+
 void PrintTable(std::FILE* out, const std::vector<FitReportEntry>& entries) {
-  fmt::print(out, "{:<28} {:<26} {:>9} {:>9} {:>8} {:>7} {:>7} {:>5} {:>9} {}\n", "material",
-             "model", "log_rmse", "cbrt_rmse", "rel_l2", "psnr_dB", "med_lum", "iter", "solve_ms",
-             "status");
+  fmt::print(out, "  {:<28} {:<26} {:<8} {:>7} {:>7} {:>9} {:>5} {:>9} {}\n", "material", "model",
+             "loss", "psnr_dB", "med_lum", "log_rmse", "iter", "solve_ms", "status");
+  bool any_chosen = false;
   for (const FitReportEntry& e : entries) {
     const FitResult& r = e.result;
     const RenderedError& re = r.metrics.rendered;
     const std::string psnr = re.ok ? fmt::format("{:.1f}", re.psnr_db) : "-";
     const std::string lum = re.ok ? fmt::format("{:.1f}%", 100 * re.median_rel_error) : "-";
-    fmt::print(out, "{:<28} {:<26} {:>9.5f} {:>9.5f} {:>8.4f} {:>7} {:>7} {:>5} {:>9.1f} {}\n",
-               e.material, r.model, r.metrics.log_rmse, r.metrics.cbrt_rmse, r.metrics.rel_l2, psnr,
-               lum, r.iterations, r.times.init + r.times.solve, ToString(r.status));
+    any_chosen = any_chosen || e.chosen;
+    fmt::print(out, "{} {:<28} {:<26} {:<8} {:>7} {:>7} {:>9.5f} {:>5} {:>9.1f} {}\n",
+               e.chosen ? "*" : " ", e.material, r.model, LossOf(e), psnr, lum, r.metrics.log_rmse,
+               r.iterations, r.times.init + r.times.solve, ToString(r.status));
     if (!r.message.empty()) fmt::print(out, "    {}\n", r.message);
+    if (e.chosen) fmt::print(out, "    chosen: {}\n", e.choice);
+  }
+  if (any_chosen) {
+    fmt::print(out, "* the fit chosen for its table by rendered error (docs/accuracy.md)\n");
   }
 }
 
@@ -120,7 +134,7 @@ int RunFit(const FitCliOptions& o) {
   so.budget = Budget::Parse(o.budget);
   so.seed = o.seed;
   FitOptions& fo = req.fit;
-  fo.loss = LossKindFromString(o.loss);
+  fo.loss = o.loss.empty() ? kDefaultLoss : LossKindFromString(o.loss);
   fo.cosine = !o.no_cosine;
   fo.robust = RobustKindFromString(o.robust);
   fo.robust_scale = o.robust_scale;
@@ -130,7 +144,7 @@ int RunFit(const FitCliOptions& o) {
   fo.threads = o.threads;
   fo.seed = o.seed;
   if (!(so.cutoff_deg > 0 && so.cutoff_deg <= 90)) throw InputError("--cutoff must be in (0, 90]");
-  req.models = pipeline::ResolveModelNames(o.models, o.diffuse);
+  req.models = pipeline::ResolveModelRuns(o.models, o.diffuse, !o.loss.empty());
   req.report = o.out;
   req.force = o.force;
   req.timings = !o.no_timings;
@@ -156,7 +170,12 @@ int RunFit(const FitCliOptions& o) {
   if (!o.quiet) {
     std::FILE* table_out = json_to_stdout ? stderr : stdout;
     if (!run.fresh.empty()) PrintTable(table_out, run.fresh);
-    if (num_inputs > 1 && !run.fresh.empty()) PrintSummary(table_out, run.fresh, req.models);
+    std::vector<std::string> model_names;
+    for (const auto& m : req.models) {
+      if (std::find(model_names.begin(), model_names.end(), m.model) == model_names.end())
+        model_names.push_back(m.model);
+    }
+    if (num_inputs > 1 && !run.fresh.empty()) PrintSummary(table_out, run.fresh, model_names);
     fmt::print(table_out, "{} fits, {} skipped{}; report {}{}\n", run.fresh.size(), run.skipped,
                run.skipped ? " (already in the report with the same options; --force redoes "
                              "them)"
@@ -197,15 +216,17 @@ Registrar reg{
           ->required();
       sub.add_option("-m,--model", o->models,
                      "models, comma-separated (brdfit models lists them); NAME:N for N lobes, "
-                     "e.g. lafortune:2, ggx:2")
+                     "e.g. lafortune:2, ggx:2; auto: fit the candidates of docs/accuracy.md and "
+                     "mark the one chosen by rendered error")
           ->delimiter(',')
           ->capture_default_str();
       sub.add_option("--diffuse", o->diffuse,
                      "diffuse lobe added to bare specular names: ggx -> lambert+ggx (none: fit "
                      "names as given)")
           ->capture_default_str();
-      sub.add_option("--loss", o->loss, "log (Low 2012 E2) | cbrt | rel | l2")
-          ->capture_default_str();
+      sub.add_option("--loss", o->loss,
+                     "rel (default) | logratio | log (Low 2012 E2) | cbrt | l2; with --model "
+                     "auto, unset: each candidate's own loss");
       sub.add_flag("--no-cosine", o->no_cosine, "leave cos(theta_i) out of the loss");
       sub.add_option("--robust", o->robust, "none | huber | cauchy")->capture_default_str();
       sub.add_option("--robust-scale", o->robust_scale, "robust loss scale, in loss units")

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 
 #include "fit/model_ops.h"
 #include "core/error.h"
@@ -69,7 +70,14 @@ PreparedTable PrepareTable(Table&& table, const SampleOptions& sample_options,
 
 FitResult FitPrepared(std::string_view model, const PreparedTable& table,
                       const FitOptions& options) {
-  FitResult r = internal::FitWithOps(Find(model), table.fit, table.loss, table.metric(), options);
+  // A table prepared under another loss (brdfit fit --model auto fits candidates under their
+  // own losses): the per-observation constants are rebuilt, O(observations).
+  std::optional<LossData> own_loss;
+  if (table.loss.kind != options.loss || table.loss.cosine != options.cosine) {
+    own_loss = PrepareLoss(table.fit, options);
+  }
+  FitResult r = internal::FitWithOps(Find(model), table.fit, own_loss ? *own_loss : table.loss,
+                                     table.metric(), options);
   const ModelInfo* info = FindModel(model);
   if (!r.Failed() && info && !table.rendered.Empty()) {
     // The rendered-image metric of the fitted parameters (docs/accuracy.md).

@@ -11,6 +11,7 @@ namespace brdfit {
 LossData PrepareLoss(const Samples& samples, const FitOptions& options) {
   LossData d;
   d.kind = options.loss;
+  d.cosine = options.cosine;
   const std::size_t n = samples.NumObservations();
   d.mult.resize(n);
   d.sqrt_w.resize(n);

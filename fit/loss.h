@@ -91,6 +91,7 @@ inline bool IsRatioLoss(LossKind kind) {
 // Per-observation constants of the loss, prepared once per (samples, options).
 struct LossData {
   LossKind kind = LossKind::kLog;
+  bool cosine = true;          // FitOptions::cosine it was prepared with
   std::vector<double> mult;    // per observation: c (cos theta_i, or 1)
   std::vector<double> sqrt_w;  // per observation: sqrt(omega)
   std::vector<double> target;  // 3 per observation: T(m c)

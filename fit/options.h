@@ -46,6 +46,11 @@ inline RobustKind RobustKindFromString(const std::string& s) {
   return FromString<RobustKind>(s);
 }
 
+// The loss of `brdfit fit` when none is given: the relative loss gives the lowest rendered
+// error over the 100 MERL proxies of every loss tried (docs/accuracy.md). The library's
+// FitOptions keeps the log loss (E2), the metric the fits were validated on.
+inline constexpr LossKind kDefaultLoss = LossKind::kRel;
+
 struct FitOptions {
   LossKind loss = LossKind::kLog;
   bool cosine = true;  // multiply f and m by cos theta_i inside the loss

@@ -32,6 +32,8 @@ double MsSince(Clock::time_point t0) {
 struct Task {
   std::size_t input;
   std::string model;
+  FitOptions fit;       // the request's, with the run's own loss if it has one
+  std::string options;  // OptionsJson of the fit
 };
 
 // An input loaded and prepared once, shared by the fits of its models; freed after the last.
@@ -91,11 +93,43 @@ std::vector<std::string> ResolveModelNames(const std::vector<std::string>& reque
   return out;
 }
 
+std::vector<ModelRun> ResolveModelRuns(const std::vector<std::string>& requested,
+                                       const std::string& diffuse, bool loss_given) {
+  std::vector<ModelRun> out;
+  auto add = [&](const ModelRun& run) {
+    for (const ModelRun& m : out) {
+      if (m.model == run.model && m.loss == run.loss) return;
+    }
+    out.push_back(run);
+  };
+  for (const std::string& n : requested) {
+    if (n != "auto") {
+      if (n.empty()) continue;
+      add({ResolveModelNames({n}, diffuse).front(), std::nullopt});
+      continue;
+    }
+    for (const ModelRun& c : kAutoCandidates) {
+      // With --loss given, every candidate is fitted under it.
+      add({c.model, loss_given ? std::nullopt : c.loss});
+    }
+  }
+  if (out.empty()) throw InputError("--model: no model given");
+  return out;
+}
+
 BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_start) {
   if (req.inputs.empty()) throw InputError("no input files");
   if (req.models.empty()) throw InputError("no model to fit");
   if (req.jobs < 1 || req.jobs > 256) throw InputError("jobs must be in [1, 256]");
-  const std::string options = OptionsJson(req.samples, req.fit);
+  // The options of each model run: the request's, with the run's loss where it has one.
+  std::vector<FitOptions> run_fit;
+  std::vector<std::string> run_options;
+  for (const ModelRun& m : req.models) {
+    FitOptions fo = req.fit;
+    if (m.loss) fo.loss = *m.loss;
+    run_fit.push_back(fo);
+    run_options.push_back(OptionsJson(req.samples, fo));
+  }
   const std::vector<std::string>& inputs = req.inputs;
 
   // Resume: keep what the report holds; skip fits already done with the same options.
@@ -109,23 +143,22 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
   std::vector<std::unique_ptr<InputState>> states;
   for (std::size_t f = 0; f < inputs.size(); ++f) {
     states.push_back(std::make_unique<InputState>());
-    for (const std::string& m : req.models) {
-      if (done.count({inputs[f], m, options})) {
+    for (std::size_t k = 0; k < req.models.size(); ++k) {
+      const std::string& m = req.models[k].model;
+      if (done.count({inputs[f], m, run_options[k]})) {
         ++result.skipped;
         continue;
       }
-      tasks.push_back({f, m});
+      tasks.push_back({f, m, run_fit[k], run_options[k]});
       ++states[f]->remaining;
     }
   }
   result.planned = tasks.size();
   std::set<std::tuple<std::string, std::string, std::string>> planned_keys;
-  for (const Task& t : tasks) planned_keys.insert({inputs[t.input], t.model, options});
+  for (const Task& t : tasks) planned_keys.insert({inputs[t.input], t.model, t.options});
   // Entries replaced by this run leave the kept set.
-  std::set<std::pair<std::string, std::string>> redo;
-  for (const Task& t : tasks) redo.insert({inputs[t.input], t.model});
   std::erase_if(kept, [&](const FitReportEntry& e) {
-    return redo.count({e.source, e.result.model}) && e.options == options;
+    return planned_keys.count({e.source, e.result.model, e.options}) > 0;
   });
 
   std::mutex mu;  // guards result, progress and checkpoints
@@ -171,7 +204,7 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
       if (st.error.empty()) {
         FitResult r;
         try {
-          r = FitPrepared(t.model, *st.prepared, req.fit);
+          r = FitPrepared(t.model, *st.prepared, t.fit);
         } catch (const std::exception& e) {  // never expected; a failed entry, not a crash
           r = FitResult{};
           r.model = t.model;
@@ -180,7 +213,7 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
         }
         r.times.load = st.load_ms;
         r.times.prepare = st.prepare_ms;
-        FitReportEntry e{input, report::MaterialName(input), options, std::move(r), false, {}};
+        FitReportEntry e{input, report::MaterialName(input), t.options, std::move(r), false, {}};
         std::lock_guard<std::mutex> lock(mu);
         result.fresh.push_back(std::move(e));
         if (MsSince(last_write) > 5000) write_report(false);  // checkpoint for resuming

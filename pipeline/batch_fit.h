@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,9 +24,27 @@
 
 namespace brdfit::pipeline {
 
+// One model to fit to every input, under the request's loss or its own.
+struct ModelRun {
+  std::string model;              // registry name (ResolveModelNames)
+  std::optional<LossKind> loss;   // nullopt: BatchFitRequest::fit.loss
+  bool operator==(const ModelRun&) const = default;
+};
+
+// The candidates of `brdfit fit --model auto`, each under the loss that served it best in the
+// study of docs/accuracy.md ("Choosing the model"): over the 100 MERL proxies, choosing per
+// material among these four by core/model_choice.h gives the highest mean rendered score of
+// every set of four (model, loss) pairs tried, greedily, from six models and two losses.
+inline const std::vector<ModelRun> kAutoCandidates = {
+    {"lambert+ggx+ggx", LossKind::kRel},
+    {"lambert+abc", LossKind::kLogRatio},
+    {"lambert+ggx-f0", LossKind::kLogRatio},
+    {"lambert+abc", LossKind::kRel},
+};
+
 struct BatchFitRequest {
   std::vector<std::string> inputs;  // expanded inputs (pipeline/inputs.h ExpandInputs)
-  std::vector<std::string> models;  // registry names (ResolveModelNames)
+  std::vector<ModelRun> models;     // ResolveModelRuns
   SampleOptions samples;
   FitOptions fit;
   std::filesystem::path report;  // resumed from when it exists, and written
@@ -63,5 +82,11 @@ void MarkChosenFits(std::vector<FitReportEntry>& entries);
 // given; duplicates are dropped. Throws InputError for an unknown name or diffuse model.
 std::vector<std::string> ResolveModelNames(const std::vector<std::string>& requested,
                                            const std::string& diffuse);
+
+// The runs of `brdfit fit --model`: each name through ResolveModelNames under the request's
+// loss, and "auto" as kAutoCandidates (each under its own loss, or all under the request's
+// when the user gave one: loss_given). Duplicate runs are dropped.
+std::vector<ModelRun> ResolveModelRuns(const std::vector<std::string>& requested,
+                                       const std::string& diffuse, bool loss_given);
 
 }  // namespace brdfit::pipeline
