@@ -6,10 +6,14 @@
 
 namespace brdfit {
 
+double RenderedScoreDb(const RenderedError& rendered) {
+  return rendered.psnr_db - 20.0 * rendered.median_rel_error;
+}
+
 std::optional<double> RenderedScoreDb(const FitResult& fit) {
   const RenderedError& re = fit.metrics.rendered;
   if (fit.Failed() || !re.ok) return std::nullopt;
-  const double s = re.psnr_db - 20.0 * re.median_rel_error;
+  const double s = RenderedScoreDb(re);
   if (!std::isfinite(s)) return std::nullopt;
   return s;
 }

@@ -35,6 +35,8 @@ struct ModelChoice {
   std::string reason;     // one sentence: why it won, against the best-scoring fit
 };
 
+// S of a rendered error (not finite if the numbers are not).
+double RenderedScoreDb(const RenderedError& rendered);
 // S of one fit, or nullopt when it failed or has no rendered error.
 std::optional<double> RenderedScoreDb(const FitResult& fit);
 

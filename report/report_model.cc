@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/model_choice.h"
+
 namespace brdfit::report {
 
 std::string Entry::Key() const { return name + " | " + loss + " | " + budget; }
@@ -59,7 +61,7 @@ std::vector<std::size_t> ParetoFront(const std::vector<Entry>& entries) {
   return ParetoFront(points);
 }
 
-double RenderedScore(const RenderedError& r) { return r.psnr_db - 20 * r.median_rel_error; }
+double RenderedScore(const RenderedError& r) { return RenderedScoreDb(r); }
 
 BestPick PickBest(const std::vector<Entry>& entries) {
   BestPick pick;
