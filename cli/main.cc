@@ -7,6 +7,7 @@
 
 #include "cli/command.h"
 #include "cli/demo.h"
+#include "cli/interrupt.h"
 #include "core/error.h"
 
 namespace brdfit::cli {
@@ -22,6 +23,7 @@ std::vector<DemoStep>& DemoSteps() {
 
 int main(int argc, char** argv) {
   using namespace brdfit::cli;
+  InstallInterruptHandler();  // before any thread: they all inherit the blocked signals
   CLI::App app{
       "brdfit: fit analytic models to tabulated isotropic BRDFs, factor them, preview "
       "and report.\nRun 'brdfit <command> --help' for a command's options and examples."};
