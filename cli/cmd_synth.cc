@@ -155,6 +155,9 @@ int RunSynth(const SynthCliOptions& o) {
     throw InputError("--param applies to --model, not to --nbrdf");
   }
   const fs::path out = o.out;
+  std::vector<fs::path> inputs;
+  if (!o.nbrdf.empty()) inputs.push_back(pipeline::NbrdfArchive(o.nbrdf_zip));
+  CheckOutputs(inputs, {{out, "-o"}});
   const std::optional<TableFormat> format =
       o.format.empty() ? TableFormatFromExtension(out) : FromString<TableFormat>(o.format);
   if (!format) {
@@ -171,9 +174,6 @@ int RunSynth(const SynthCliOptions& o) {
     throw InputError(fmt::format("--missing {}: expected a fraction in [0, 1]", o.missing));
   }
   const SynthOptions so{o.noise, o.missing, o.seed};
-  std::vector<fs::path> inputs;
-  if (!o.nbrdf.empty()) inputs.push_back(pipeline::NbrdfArchive(o.nbrdf_zip));
-  CheckOutputs(inputs, {{out, "-o"}});
 
   SynthResult r;
   if (!o.model.empty()) {
