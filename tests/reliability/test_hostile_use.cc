@@ -264,6 +264,21 @@ TEST_F(OutputPolicy, FifosDevicesAndFoldersAreNotOutputs) {  // item 3
   EXPECT_THAT(out.log, HasSubstr("\"fits\"")) << out.log;
 }
 
+// ---- item 13: standard output ----------------------------------------------------------
+
+TEST(StandardOutput, AFailedWriteToStandardOutputIsAnError) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  ScratchDir dir;
+  const std::string err = (dir / "err").string();
+  for (const std::string args : {"models", "models --json"}) {
+    const int status =
+        std::system((std::string(BRDFIT_EXE) + " " + args + " >/dev/full 2>" + err).c_str());
+    EXPECT_EQ(WEXITSTATUS(status), 2) << args;
+    EXPECT_THAT(ReadAll(err), HasSubstr("brdfit: error: ")) << args;
+    EXPECT_THAT(ReadAll(err), HasSubstr("No space left on device")) << args;
+  }
+}
+
 // ---- item 7: signals -----------------------------------------------------------------------
 
 std::vector<std::string> FitArgs(const std::vector<std::string>& tables, const fs::path& out,
