@@ -17,6 +17,7 @@
 #include "core/result.h"
 #include "fit/fitter.h"
 #include "io/atomic_file.h"
+#include "io/output_policy.h"
 #include "io/input_file.h"
 #include "io/nbrdf.h"
 #include "pipeline/bench_sweep.h"
@@ -83,6 +84,8 @@ fs::path PlotPath(const BenchCliOptions& o) {
 int RunBench(BenchCliOptions o, std::vector<fs::path>* written = nullptr) {
   o.files = pipeline::ExpandInputs(o.files);
   const Plan plan = CheckOptions(o);
+  CheckOutputs(pipeline::InputFiles(o.files),
+               {{o.out, "-o"}, {PlotPath(o), o.plot.empty() ? "the plot (-o as .html)" : "--plot"}});
   const std::string chart_js = report::ReadChartJs();  // fail before any fit
   const std::size_t fits_per_table = plan.budgets.size() * plan.losses.size() * o.models.size();
   Progress bar(o.files.size() * fits_per_table, "bench", !o.quiet);

@@ -6,6 +6,7 @@
 
 #include "cli/command.h"
 #include "cli/demo.h"
+#include "io/output_policy.h"
 
 namespace brdfit::cli {
 namespace {
@@ -19,6 +20,7 @@ int RunDemo(const DemoOptions& opts) {
   DemoContext ctx;
   ctx.out_dir = opts.out_dir;
   ctx.quick = opts.quick;
+  CheckOutputFolder(ctx.out_dir, "-o");
   std::filesystem::create_directories(ctx.out_dir);
   auto steps = DemoSteps();
   std::stable_sort(steps.begin(), steps.end(),

@@ -19,6 +19,9 @@
 #include "pipeline/factor_export.h"
 #include "factor/factor_metrics.h"
 #include "core/error.h"
+#include "core/file_stem.h"
+#include "io/factor_io.h"
+#include "io/output_policy.h"
 #include "io/input_file.h"
 #include "io/metrics_json.h"
 #include "io/nbrdf.h"
@@ -80,6 +83,12 @@ nlohmann::json SourceJson(const fs::path& file, const Table& t) {
             {"missing_fraction", p.missing_fraction}}}};
 }
 
+// The stem of a table's outputs: its material name, which may come from inside an archive,
+// made one safe path component (core/file_stem.h).
+std::string OutputStem(const std::string& file, const std::string& suffix) {
+  return SafeFileStem(report::MaterialName(file) + suffix);
+}
+
 // Validates everything that can be checked before any work: options, inputs, output names.
 FactorOptions CheckOptions(const FactorCliOptions& o) {
   FactorOptions f;
@@ -98,13 +107,19 @@ FactorOptions CheckOptions(const FactorCliOptions& o) {
     throw InputError(fmt::format("--lambda {} must be a positive number", o.lambda));
   }
   std::map<std::string, std::string> stems;
-  for (const std::string& file : pipeline::ExpandInputs(o.files)) {
+  const std::vector<std::string> inputs = pipeline::ExpandInputs(o.files);
+  std::vector<PlannedOutput> outputs;
+  for (const std::string& file : inputs) {
     if (!IsNbrdfInput(file)) CheckInputFile(file);
-    const std::string stem = report::MaterialName(file) + o.suffix;
+    const std::string stem = OutputStem(file, o.suffix);
     if (auto [it, fresh] = stems.emplace(stem, file); !fresh) {
       throw InputError(file, fmt::format("writes the same outputs ({}.*) as {}", stem, it->second));
     }
+    const FactorPaths paths = FactorFilePaths(o.out_dir, stem);
+    for (const fs::path& p : {paths.p, paths.q, paths.json}) outputs.push_back({p, "-o " + o.out_dir});
   }
+  CheckOutputFolder(o.out_dir, "-o");
+  CheckOutputs(pipeline::InputFiles(inputs), outputs);
   return f;
 }
 
@@ -133,7 +148,7 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
       const FitMetrics m = ScoreFactorization(table, r.brdf, metric_samples);
       // What the preview draws from the textures written below (docs/accuracy.md).
       const RenderedError re = ScoreFactorizationRendered(table, r.brdf);
-      const std::string stem = report::MaterialName(file) + o.suffix;
+      const std::string stem = OutputStem(file, o.suffix);
       const FactorPaths paths = SaveFactorization(
           r, o.out_dir, stem,
           {{"source", SourceJson(file, table)}, {"metrics", MetricsJson(m, re, ln_rmse)}});

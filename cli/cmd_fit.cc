@@ -4,20 +4,29 @@
 // this file parses the options and prints. Also demo step 20.
 #include <fmt/core.h>
 
+#include <signal.h>
+
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli/command.h"
 #include "cli/demo.h"
+#include "cli/interrupt.h"
 #include "cli/progress.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/file_lock.h"
 #include "io/fit_report.h"
+#include "io/output_policy.h"
 #include "pipeline/batch_fit.h"
 #include "pipeline/inputs.h"
 
@@ -119,6 +128,35 @@ void PrintSummary(std::FILE* out, const std::vector<FitReportEntry>& entries,
   }
 }
 
+// What the interrupt hook needs of a running fit (shared: the hook may outlive RunFit's frame).
+struct RunState {
+  std::mutex bar_mu;  // guards bar
+  std::unique_ptr<Progress> bar;
+  std::atomic<std::size_t> on_disk{0};  // entries of the report on disk
+  std::atomic<unsigned> writes{0};      // report writes so far
+};
+
+struct HookReset {
+  ~HookReset() { SetInterruptHook(nullptr); }
+};
+
+// SIGINT/SIGTERM/SIGHUP during a fit (cli/interrupt.h): the temporaries are gone already.
+void OnInterrupt(RunState& st, const std::string& report, int sig, int drained) {
+  using namespace std::chrono_literals;
+  // A checkpoint that was being written has been renamed into place; wait for its count.
+  const unsigned writes = st.writes;
+  for (int i = 0; drained > 0 && st.writes == writes && i < 100; ++i) {
+    std::this_thread::sleep_for(10ms);
+  }
+  {
+    std::lock_guard<std::mutex> lock(st.bar_mu);
+    if (st.bar) st.bar->Done();  // closes the progress line
+  }
+  const char* name = sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "SIGHUP";
+  fmt::print(stderr, "brdfit: interrupted: {} fits kept, rerun to resume (report {}; {})\n",
+             st.on_disk.load(), report, name);
+}
+
 int RunFit(const FitCliOptions& o) {
   pipeline::BatchFitRequest req;
   req.inputs = pipeline::ExpandInputs(o.files);
@@ -151,13 +189,31 @@ int RunFit(const FitCliOptions& o) {
   req.jobs = o.jobs;
   const std::size_t num_inputs = req.inputs.size();
 
-  // The progress bar counts the fits still to make: the report may already hold some.
-  std::unique_ptr<Progress> bar;
-  const auto run = pipeline::RunBatchFit(req, [&](std::size_t planned, const std::string& label) {
-    if (!bar) bar = std::make_unique<Progress>(planned, "fitting", !o.no_progress && !o.quiet);
-    bar->Step(label);
+  // Before any work: the outputs pass the output policy, and the report is ours for the run.
+  CheckOutputs(pipeline::InputFiles(req.inputs), {{o.out, "-o"}, {o.json, "--json"}});
+  const OutputLock report_lock(o.out);
+  const auto state = std::make_shared<RunState>();
+  req.on_report_written = [state](std::size_t entries) {
+    state->on_disk = entries;
+    ++state->writes;
+  };
+  SetInterruptHook([state, report = o.out](int sig, int drained) {
+    OnInterrupt(*state, report, sig, drained);
   });
-  if (bar) bar->Done();
+  const HookReset reset_hook;
+
+  // The progress bar counts the fits still to make: the report may already hold some.
+  const auto run = pipeline::RunBatchFit(req, [&](std::size_t planned, const std::string& label) {
+    std::lock_guard<std::mutex> lock(state->bar_mu);
+    if (!state->bar) {
+      state->bar = std::make_unique<Progress>(planned, "fitting", !o.no_progress && !o.quiet);
+    }
+    state->bar->Step(label);
+  });
+  {
+    std::lock_guard<std::mutex> lock(state->bar_mu);
+    if (state->bar) state->bar->Done();
+  }
 
   // `--json -`: the parameters are the standard output; the table goes to stderr.
   const bool json_to_stdout = o.json == "-";
@@ -256,7 +312,9 @@ Registrar reg{
       sub.add_flag("-q,--quiet", o->quiet, "no table, no progress bar");
       sub.add_flag("--no-progress", o->no_progress, "no progress bar");
       sub.footer(
-          "Exit codes: 0 ok, 1 some fit failed, 2 bad input.\n"
+          "Exit codes: 0 ok, 1 some fit failed, 2 bad input or output (an output that is an "
+          "input, a FIFO or a folder; a report another fit is writing); 128 + signal when "
+          "interrupted (the report keeps the finished fits).\n"
           "Examples:\n"
           "  brdfit fit mats/*.binary --model ggx,beckmann,ward -o fits.h5 --jobs 2\n"
           "  brdfit fit gold.binary --model ggx --budget random:4000 --json gold.json\n"

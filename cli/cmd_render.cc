@@ -18,6 +18,8 @@
 #include "preview/gl_context.h"
 #include "preview/renderer.h"
 #include "preview/scene.h"
+#include "io/output_policy.h"
+#include "pipeline/inputs.h"
 #include "preview/window.h"
 
 // LeakSanitizer (make test-asan): Mesa/LLVM and HDF5 keep process-lifetime allocations that
@@ -31,6 +33,8 @@ extern "C" const char* __lsan_default_suppressions() {
 
 namespace brdfit::cli {
 namespace {
+
+namespace fs = std::filesystem;
 
 struct RenderOptions {
   std::string scene;
@@ -57,6 +61,23 @@ void ParseSize(const std::string& s, int* w, int* h) {
   if (*w < 1 || *h < 1 || *w > 8192 || *h > 8192) {
     throw InputError("--size '" + s + "': width and height must be in [1, 8192]");
   }
+}
+
+// The files a render reads: the scene (or the table) and what its materials and objects name.
+std::vector<fs::path> SceneInputs(const std::string& input, bool table_input,
+                                  const preview::Scene& scene) {
+  std::vector<fs::path> in = table_input ? pipeline::InputFiles({input})
+                                         : std::vector<fs::path>{input};
+  for (const preview::MaterialSpec& m : scene.materials) {
+    for (const fs::path& p : {m.fit_report, m.fit_table, m.table, m.factors}) {
+      if (p.empty()) continue;
+      for (const fs::path& f : pipeline::InputFiles({p.string()})) in.push_back(f);
+    }
+  }
+  for (const auto& obj : scene.objects) {
+    if (!obj.mesh_file.empty()) in.push_back(obj.mesh_file);
+  }
+  return in;
 }
 
 // --window: the interactive preview; with -o the last frame shown is also written.
@@ -95,6 +116,7 @@ int RunRender(RenderOptions o) {
     o.compare = true;
   }
   if (!o.size.empty()) ParseSize(o.size, &scene.width, &scene.height);
+  CheckOutputs(SceneInputs(o.scene, table_input, scene), {{o.out, "-o"}});
   if (o.compare && !scene.has_comparison) {
     throw InputError(o.scene, "--compare needs a 'comparison' section (docs/scenes.md)");
   }

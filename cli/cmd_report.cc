@@ -16,6 +16,7 @@
 #include "pipeline/rendered_views.h"
 #include "fit/metrics.h"
 #include "io/atomic_file.h"
+#include "io/output_policy.h"
 #include "core/error.h"
 #include "report/html_report.h"
 #include "report/report_inputs.h"
@@ -81,6 +82,9 @@ void CheckOptions(const ReportCliOptions& o) {
 int RunReport(const ReportCliOptions& o) {
   CheckOptions(o);
   const fs::path chart_js = o.chart_js.empty() ? report::ChartJsPath() : fs::path(o.chart_js);
+  std::vector<fs::path> read = pipeline::InputFiles(o.inputs);
+  read.push_back(chart_js);
+  CheckOutputs(read, {{o.out, "-o"}});
   const std::string js = report::ReadChartJs(chart_js);  // fail before any work
   std::vector<fs::path> inputs(o.inputs.begin(), o.inputs.end());
   report::ReportSources src = report::ReadReportInputs(inputs);

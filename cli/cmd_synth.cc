@@ -16,6 +16,7 @@
 #include "cli/demo.h"
 #include "pipeline/inputs.h"
 #include "io/atomic_file.h"
+#include "io/output_policy.h"
 #include "core/error.h"
 #include "io/model_params.h"
 #include "io/nbrdf.h"
@@ -154,6 +155,9 @@ int RunSynth(const SynthCliOptions& o) {
     throw InputError("--param applies to --model, not to --nbrdf");
   }
   const fs::path out = o.out;
+  std::vector<fs::path> inputs;
+  if (!o.nbrdf.empty()) inputs.push_back(pipeline::NbrdfArchive(o.nbrdf_zip));
+  CheckOutputs(inputs, {{out, "-o"}});
   const std::optional<TableFormat> format =
       o.format.empty() ? TableFormatFromExtension(out) : FromString<TableFormat>(o.format);
   if (!format) {
@@ -250,6 +254,7 @@ int DemoSynth(DemoContext& ctx) {
   const std::string ext = ctx.quick ? ".h5" : ".binary";
   auto emit = [&](const std::string& name, const SynthResult& r) {
     const fs::path table = ctx.out_dir / (name + ext);
+    CheckOutputs({}, {{table, "demo table"}, {ctx.out_dir / (name + ".info.json"), "demo info"}});
     SaveTable(r.table, table);
     fmt::print("  {}: {} valid cells of {}\n", table.string(), Grouped(r.table.CountValid()),
                Grouped(r.table.grid.NumCells()));

@@ -2,11 +2,15 @@
 #include <fmt/core.h>
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <exception>
 #include <map>
 
 #include "cli/command.h"
 #include "cli/demo.h"
+#include "cli/interrupt.h"
 #include "core/error.h"
 
 namespace brdfit::cli {
@@ -20,8 +24,26 @@ std::vector<DemoStep>& DemoSteps() {
 }
 }  // namespace brdfit::cli
 
+using brdfit::cli::kExitBadInput;
+using brdfit::cli::kExitOk;
+
+namespace {
+
+// A command's output that never reached standard output (a full disk, a closed pipe) is an
+// output error: exit 2, not the command's 0 (issue 14 item 13).
+int CheckStdout(int code) {
+  errno = 0;
+  if (std::fflush(stdout) == 0 && !std::ferror(stdout)) return code;
+  fmt::print(stderr, "brdfit: error: cannot write to standard output: {}\n",
+             errno ? std::strerror(errno) : "write failed");
+  return code == kExitOk ? kExitBadInput : code;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace brdfit::cli;
+  InstallInterruptHandler();  // before any thread: they all inherit the blocked signals
   CLI::App app{
       "brdfit: fit analytic models to tabulated isotropic BRDFs, factor them, preview "
       "and report.\nRun 'brdfit <command> --help' for a command's options and examples."};
@@ -40,7 +62,7 @@ int main(int argc, char** argv) {
   }
   try {
     for (auto& [sub, run] : runs) {
-      if (sub->parsed()) return run();
+      if (sub->parsed()) return CheckStdout(run());
     }
   } catch (const brdfit::InputError& e) {
     fmt::print(stderr, "brdfit: error: {}\n", e.what());

@@ -1,48 +1,43 @@
 #include "io/atomic_file.h"
 
-#include <unistd.h>
+#include <sys/stat.h>
 
-#include <atomic>
 #include <cstdio>
 #include <fstream>
 #include <system_error>
 
 #include "core/error.h"
+#include "io/temp_files.h"
 
 namespace brdfit {
 
 namespace fs = std::filesystem;
 
-namespace {
-fs::path TemporarySibling(const fs::path& dest) {
-  static std::atomic<unsigned> counter{0};
-  const fs::path dir = dest.has_parent_path() ? dest.parent_path() : fs::path(".");
-  std::string name = ".";
-  name += dest.filename().string();
-  name += ".tmp-";
-  name += std::to_string(::getpid());
-  name += '-';
-  name += std::to_string(counter++);
-  return dir / name;
-}
-}  // namespace
-
 void WriteFileAtomically(const fs::path& dest,
                          const std::function<void(const fs::path& tmp)>& write) {
   std::error_code ec;
   if (fs::is_directory(dest, ec)) throw OutputError(dest, "is a directory");
-  const fs::path tmp = TemporarySibling(dest);
+  // Never rename over a FIFO, device or socket (io/output_policy.h checks this up front too).
+  struct stat st {};
+  if (::stat(dest.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    throw OutputError(dest, "is not a regular file; refusing to replace it");
+  }
+  const fs::path tmp = TemporaryFor(dest);
+  BeginTemporary(tmp);
   try {
     write(tmp);
   } catch (...) {
     fs::remove(tmp, ec);
+    EndTemporary(tmp);
     throw;
   }
   fs::rename(tmp, dest, ec);
   if (ec) {
     fs::remove(tmp, ec);
+    EndTemporary(tmp);
     throw OutputError(dest, "cannot rename temporary file into place: " + ec.message());
   }
+  EndTemporary(tmp);
 }
 
 void WriteTextAtomically(const fs::path& dest, const std::string& contents) {

@@ -6,6 +6,7 @@
 
 #include "io/atomic_file.h"
 #include "core/error.h"
+#include "core/file_stem.h"
 #include "io/input_file.h"
 
 namespace brdfit {
@@ -20,6 +21,9 @@ std::string FormatTag() {
 }  // namespace
 
 FactorPaths FactorFilePaths(const std::filesystem::path& dir, const std::string& stem) {
+  if (SafeFileStem(stem) != stem) {  // a name from inside a file must not climb out of dir
+    throw OutputError(dir / stem, "not a safe file name (core/file_stem.h SafeFileStem)");
+  }
   return {dir / (stem + ".factor.json"), dir / (stem + ".p.exr"), dir / (stem + ".q.exr")};
 }
 

@@ -37,6 +37,7 @@ struct FactorPaths {
   std::filesystem::path json, p, q;
 };
 
+// Throws OutputError if `stem` is not one safe path component (core/file_stem.h).
 FactorPaths FactorFilePaths(const std::filesystem::path& dir, const std::string& stem);
 
 // Writes p and q, then the sidecar, each atomically. Adds "format", "format_version" and

@@ -134,6 +134,7 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
 
   // Resume: keep what the report holds; skip fits already done with the same options.
   std::vector<FitReportEntry> kept = ReadKept(req.report, req.force);
+  if (req.on_report_written) req.on_report_written(kept.size());  // reliability hook
   std::set<std::tuple<std::string, std::string, std::string>> done;
   for (const auto& e : kept) {
     if (!e.result.Failed()) done.insert({e.source, e.result.model, e.options});
@@ -167,7 +168,9 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
     std::vector<FitReportEntry> all = kept;
     all.insert(all.end(), result.fresh.begin(), result.fresh.end());
     MarkChosenFits(all);
+    const std::size_t entries = all.size();
     WriteFitReport(std::move(all), req.report, req.timings);
+    if (req.on_report_written) req.on_report_written(entries);  // reliability hook
     if (!final) last_write = Clock::now();
   };
 

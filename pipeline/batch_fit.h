@@ -51,6 +51,9 @@ struct BatchFitRequest {
   bool force = false;            // redo fits the report already holds
   bool timings = true;           // false: no timings in the report (byte-identical reruns)
   int jobs = 1;                  // fits in parallel
+  // Reliability (cli/cmd_fit.cc's interrupt message): called, serialized, with the number of
+  // entries the report on disk holds, once at the start and after every write.
+  std::function<void(std::size_t entries)> on_report_written;
 };
 
 struct BatchFitResult {

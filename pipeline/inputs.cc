@@ -42,6 +42,12 @@ std::vector<std::string> ExpandInputs(const std::vector<std::string>& inputs) {
   return out;
 }
 
+std::vector<fs::path> InputFiles(const std::vector<std::string>& inputs) {
+  std::vector<fs::path> out;
+  for (const std::string& in : inputs) out.push_back(IsNbrdfInput(in) ? NbrdfArchive() : fs::path(in));
+  return out;
+}
+
 Table LoadInput(const std::string& input) {
   if (!IsNbrdfInput(input)) return LoadTable(input);
   const NbrdfNetwork net = ReadNbrdf(NbrdfArchive(), report::MaterialName(input));

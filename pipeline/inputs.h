@@ -19,6 +19,10 @@ std::filesystem::path NbrdfArchive(const std::string& given = "");
 // "nbrdf:all" becomes one "nbrdf:NAME" per material of the archive; other inputs are kept.
 std::vector<std::string> ExpandInputs(const std::vector<std::string>& inputs);
 
+// The files the inputs read (nbrdf:NAME reads the archive), for the output policy
+// (io/output_policy.h).
+std::vector<std::filesystem::path> InputFiles(const std::vector<std::string>& inputs);
+
 // Loads a file or tabulates an NBRDF network (provenance.source = the input). Throws InputError.
 Table LoadInput(const std::string& input);
 

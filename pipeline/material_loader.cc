@@ -1,6 +1,9 @@
 #include "pipeline/material_loader.h"
 
+#include <fmt/core.h>
+
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -69,6 +72,25 @@ class TableCache {
   std::map<std::string, std::shared_ptr<const Table>> tables_;
 };
 
+// Why cached parameters of `model` are unusable ("" if they are usable): a cache entry is a
+// file like any other, and may hold anything (docs/reliability.md).
+std::string CheckCachedParams(const std::string& model, const std::vector<double>& params) {
+  const ModelInfo* info = FindModel(model);
+  if (!info) return "unknown model '" + model + "'";
+  if (params.size() != info->params.size()) {
+    return fmt::format("{} parameters, model {} has {}", params.size(), model,
+                       info->params.size());
+  }
+  for (std::size_t k = 0; k < params.size(); ++k) {
+    const ParamSpec& s = info->params[k];
+    if (!std::isfinite(params[k]) || params[k] < s.lower || params[k] > s.upper) {
+      return fmt::format("parameter {} = {} outside the model's bounds [{}, {}]",
+                         info->param_names[k], params[k], s.lower, s.upper);
+    }
+  }
+  return "";
+}
+
 // Cache entry of a fit: {"model", "params", "param_names", "status", "source", "key"}.
 std::vector<double> FitCached(const MaterialSpec& m, const std::filesystem::path& cache_dir,
                               TableCache* tables, ExplainLog* log) {
@@ -86,15 +108,21 @@ std::vector<double> FitCached(const MaterialSpec& m, const std::filesystem::path
       const nlohmann::json j = nlohmann::json::parse(in);
       if (j.at("model").get<std::string>() == m.model) {
         auto params = j.at("params").get<std::vector<double>>();
+        if (const std::string bad = CheckCachedParams(m.model, params); !bad.empty()) {
+          throw InputError(entry, bad);  // recomputed below
+        }
         if (log) {
           log->Add("reuse", "fit " + m.model + " of " + m.fit_table.string() + " from cache " +
                                 entry.string());
         }
         return params;
       }
-    } catch (const std::exception&) {
+    } catch (const std::exception& e) {
       // A damaged entry is recomputed and overwritten below.
-      if (log) log->Add("note", "cache entry " + entry.string() + " unreadable: recomputing");
+      if (log) {
+        log->Add("note", "cache entry " + entry.string() + " unreadable (" + e.what() +
+                             "): recomputing");
+      }
     }
   }
   const auto table = tables->Get(m.fit_table);

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include <cmath>
@@ -109,6 +110,34 @@ TEST_F(RenderCli, LoadsOnlyWhatTheSceneUsesAndReusesTheCache) {
   EXPECT_EQ(Count(second.out, "reuse: fit lambert+ggx of"), 1) << second.out;
   // Both renders show the same image.
   EXPECT_TRUE(fs::exists(dir_ / "out.png"));
+}
+
+// Issue 14 item 5: a cache entry with parameters of 1e300 crashed `render --compare --cache`.
+// An entry whose parameters are out of the model's bounds is recomputed, with a note naming it.
+TEST_F(RenderCli, OutOfRangeCacheEntryIsRecomputed) {
+  const std::string args = (dir_ / "t0.h5").string() + " -o " + (dir_ / "out.png").string() +
+                           " --compare --size 64x32 --explain --cache " +
+                           (dir_ / "cache").string();
+  const CliRun first = RunCli("render " + args);
+  ASSERT_EQ(first.code, 0) << first.out;
+  std::vector<fs::path> entries;
+  for (const auto& e : fs::directory_iterator(dir_ / "cache")) {
+    if (e.path().filename().string().starts_with("fit-")) entries.push_back(e.path());
+  }
+  ASSERT_EQ(entries.size(), 1u) << first.out;
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(entries[0]));
+  for (auto& p : j["params"]) p = 1e300;
+  std::ofstream(entries[0]) << j.dump();
+
+  const CliRun second = RunCli("render " + args);
+  ASSERT_EQ(second.code, 0) << second.out;
+  EXPECT_EQ(Count(second.out, "cache entry " + entries[0].string() + " unreadable"), 1)
+      << second.out;
+  EXPECT_NE(second.out.find("outside the model's bounds"), std::string::npos) << second.out;
+  EXPECT_EQ(Count(second.out, "compute: fit"), 1) << second.out;
+  // The recomputed entry replaced the bad one.
+  const nlohmann::json fixed = nlohmann::json::parse(std::ifstream(entries[0]));
+  for (const auto& p : fixed["params"]) EXPECT_LT(std::abs(p.get<double>()), 1e3) << fixed.dump();
 }
 
 TEST_F(RenderCli, CullsLightsThatReachNothing) {

@@ -25,12 +25,11 @@
 #include <thread>
 #include <vector>
 
+#include "cli_process.h"
 #include "io/fit_report.h"
 #include "io/hdf5_table.h"
 #include "core/synth.h"
 #include "models/registry.h"
-
-extern char** environ;
 
 namespace brdfit {
 namespace {
@@ -38,34 +37,9 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-std::string ReadAll(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
-// Starts `brdfit args...` with stdout and stderr to `log`; returns the pid.
-pid_t Spawn(const std::vector<std::string>& args, const fs::path& log) {
-  std::vector<std::string> argv_s = {BRDFIT_EXE};
-  argv_s.insert(argv_s.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : argv_s) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&fa, 1, 2);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, BRDFIT_EXE, &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  EXPECT_EQ(rc, 0) << "cannot start " << BRDFIT_EXE;
-  return pid;
-}
-
-int Wait(pid_t pid) {
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
+using testing_cli::ReadAll;
+using testing_cli::Spawn;
+using testing_cli::Wait;
 
 class KillResume : public ::testing::Test {
  protected:
@@ -153,6 +127,7 @@ TEST_F(KillResume, KilledBatchLeavesCompleteOutputsAndResumesToTheSameReport) {
     std::vector<std::string> temporaries;
     for (const auto& e : fs::directory_iterator(dir_ / "run")) {
       const std::string name = e.path().filename().string();
+      if (name == ".fits.h5.lock") continue;  // the report's lock (io/file_lock.h)
       if (name != "fits.h5") temporaries.push_back(name);
       if (name == "fits.h5") {
         std::vector<FitReportEntry> entries;
