@@ -95,36 +95,46 @@ double MedianOf(std::vector<double> v) {
   return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
-// Per model over the tables: mean and median of each metric, median init + solve time.
-void PrintSummary(std::FILE* out, const std::vector<FitReportEntry>& entries,
-                  const std::vector<std::string>& models) {
-  fmt::print(out, "\n{:<30} {:>6} {:>19} {:>19} {:>17} {:>10} {:>6}\n", "model (over tables)",
-             "fits", "log_rmse mean/med", "cbrt_rmse mean/med", "rel_l2 mean/med", "solve_ms",
-             "failed");
-  for (const std::string& m : models) {
-    std::vector<double> l, c, r, t;
-    int failed = 0;
+// Per (model, loss) over the tables: mean and median rendered PSNR, median of the median
+// luminance errors, mean and median log_rmse, median init + solve time, failures; how often
+// the run's fits of that kind were chosen.
+void PrintSummary(std::FILE* out, const std::vector<FitReportEntry>& entries) {
+  std::vector<std::pair<std::string, std::string>> kinds;
+  for (const FitReportEntry& e : entries) {
+    const std::pair<std::string, std::string> k{e.result.model, LossOf(e)};
+    if (std::find(kinds.begin(), kinds.end(), k) == kinds.end()) kinds.push_back(k);
+  }
+  fmt::print(out, "\n{:<26} {:<8} {:>5} {:>15} {:>8} {:>19} {:>9} {:>6} {:>6}\n",
+             "model (over tables)", "loss", "fits", "psnr_dB mean/med", "med_lum",
+             "log_rmse mean/med", "solve_ms", "chosen", "failed");
+  auto mean = [](const std::vector<double>& v) {
+    double s = 0;
+    for (double x : v) s += x;
+    return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+  };
+  for (const auto& [model, loss] : kinds) {
+    std::vector<double> l, p, lum, t;
+    int failed = 0, fits = 0, chosen = 0;
     for (const FitReportEntry& e : entries) {
-      if (e.result.model != m) continue;
+      if (e.result.model != model || LossOf(e) != loss) continue;
+      ++fits;
+      chosen += e.chosen;
       if (e.result.Failed()) {
         ++failed;
         continue;
       }
       l.push_back(e.result.metrics.log_rmse);
-      c.push_back(e.result.metrics.cbrt_rmse);
-      r.push_back(e.result.metrics.rel_l2);
       t.push_back(e.result.times.init + e.result.times.solve);
+      if (e.result.metrics.rendered.ok) {
+        p.push_back(e.result.metrics.rendered.psnr_db);
+        lum.push_back(e.result.metrics.rendered.median_rel_error);
+      }
     }
-    if (l.empty() && failed == 0) continue;
-    auto mean = [](const std::vector<double>& v) {
-      double s = 0;
-      for (double x : v) s += x;
-      return v.empty() ? 0.0 : s / static_cast<double>(v.size());
-    };
-    fmt::print(
-        out, "{:<30} {:>6} {:>9.5f}/{:<9.5f} {:>9.5f}/{:<9.5f} {:>8.4f}/{:<8.4f} {:>10.1f} {:>6}\n",
-        m, l.size() + failed, mean(l), MedianOf(l), mean(c), MedianOf(c), mean(r), MedianOf(r),
-        MedianOf(t), failed);
+    const std::string psnr =
+        p.empty() ? "-" : fmt::format("{:.2f}/{:.2f}", mean(p), MedianOf(p));
+    const std::string med = lum.empty() ? "-" : fmt::format("{:.1f}%", 100 * MedianOf(lum));
+    fmt::print(out, "{:<26} {:<8} {:>5} {:>15} {:>8} {:>9.5f}/{:<9.5f} {:>9.1f} {:>6} {:>6}\n",
+               model, loss, fits, psnr, med, mean(l), MedianOf(l), MedianOf(t), chosen, failed);
   }
 }
 
@@ -226,12 +236,7 @@ int RunFit(const FitCliOptions& o) {
   if (!o.quiet) {
     std::FILE* table_out = json_to_stdout ? stderr : stdout;
     if (!run.fresh.empty()) PrintTable(table_out, run.fresh);
-    std::vector<std::string> model_names;
-    for (const auto& m : req.models) {
-      if (std::find(model_names.begin(), model_names.end(), m.model) == model_names.end())
-        model_names.push_back(m.model);
-    }
-    if (num_inputs > 1 && !run.fresh.empty()) PrintSummary(table_out, run.fresh, model_names);
+    if (num_inputs > 1 && !run.fresh.empty()) PrintSummary(table_out, run.fresh);
     fmt::print(table_out, "{} fits, {} skipped{}; report {}{}\n", run.fresh.size(), run.skipped,
                run.skipped ? " (already in the report with the same options; --force redoes "
                              "them)"

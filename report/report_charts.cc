@@ -259,7 +259,9 @@ json PsnrSummaryChart(const std::string& title, const Report& report, const Pale
         if (e.name == model) of.push_back(e);
       }
       const BestPick p = PickBest(of);
-      const bool has = p.index >= 0 && p.by == BestBy::kRendered;
+      // The chosen fit is picked by the rendered score too (core/model_choice.h).
+      const bool has = p.index >= 0 && (p.by == BestBy::kRendered || p.by == BestBy::kChosen) &&
+                       of[static_cast<std::size_t>(p.index)].metrics.rendered.ok;
       data.push_back(Value(has ? of[static_cast<std::size_t>(p.index)].metrics.rendered.psnr_db : NAN));
     }
     datasets.push_back(

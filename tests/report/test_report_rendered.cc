@@ -18,6 +18,7 @@
 #include "report/bench_csv.h"
 #include "report/compare.h"
 #include "report/html_report.h"
+#include "report/report_charts.h"
 #include "report/rendered_colors.h"
 #include "report/report_model.h"
 #include "tests/report/report_fixture.h"
@@ -95,6 +96,23 @@ Report TwoFits() {
   m.entries[0].metrics.rendered = Rendered(33.43, 0.787);
   m.entries[1].metrics.rendered = Rendered(30.55, 0.563);
   return r;
+}
+
+// Every model with a rendered error has its bar, the chosen fit's model included (its pick is
+// BestBy::kChosen, not kRendered: the chart drew no bar for it, seen on a `--model auto` report).
+TEST(RenderedCharts, PsnrSummaryHasABarForEveryRenderedModelChosenIncluded) {
+  Report r = TwoFits();
+  r.materials[0].entries[1].chosen = true;
+  const Palette palette(r);
+  const nlohmann::json chart = PsnrSummaryChart("t", r, palette);
+  const auto& sets = chart["data"]["datasets"];
+  ASSERT_EQ(sets.size(), 2u);
+  for (const auto& set : sets) {
+    ASSERT_EQ(set["data"].size(), 1u);
+    ASSERT_TRUE(set["data"][0].is_number()) << set.dump();
+    const double want = set["label"] == "lambert+ggx" ? 33.43 : 30.55;
+    EXPECT_DOUBLE_EQ(set["data"][0].get<double>(), want) << set["label"];
+  }
 }
 
 TEST(RenderedHtml, PsnrAndLuminanceErrorLeadTheTablesAndPickTheStar) {
