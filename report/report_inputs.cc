@@ -58,6 +58,18 @@ double Get(const json& j, const char* key, double fallback = 0) {
   return it != j.end() && it->is_number() ? it->get<double>() : fallback;
 }
 
+// The rendered-image metric's summary of `parent` ("rendered", io/metrics_json.h), when there.
+void ReadRendered(const json& parent, FitMetrics* m) {
+  const auto r = parent.find("rendered");
+  if (r == parent.end() || !r->is_object()) return;
+  m->rendered.ok = r->value("ok", true);
+  m->rendered.problem = r->value("problem", std::string());
+  m->rendered.psnr_db = Get(*r, "psnr_db");
+  m->rendered.psnr_srgb_db = Get(*r, "psnr_srgb_db");
+  m->rendered.median_rel_error = Get(*r, "median_rel_error");
+  m->rendered.p95_rel_error = Get(*r, "p95_rel_error");
+}
+
 // The metrics of a factorization sidecar ("fit_metrics") or a fit parameters file ("metrics",
 // without "ok": ok_default) as the writers name them (core/metrics.h); absent fields are 0.
 FitMetrics MetricsFromJson(const json& j, bool ok_default) {
@@ -70,16 +82,7 @@ FitMetrics MetricsFromJson(const json& j, bool ok_default) {
   m.cells = j.value("cells", std::size_t{0});
   m.weighting = j.value("weighting", std::string());
   m.cutoff_deg = Get(j, "cutoff_deg");
-  // The rendered-image metric's summary, written when computed (io/fit_report.h FitParamsJson).
-  const auto r = j.find("rendered");
-  if (r != j.end() && r->is_object()) {
-    m.rendered.ok = r->value("ok", true);
-    m.rendered.problem = r->value("problem", std::string());
-    m.rendered.psnr_db = Get(*r, "psnr_db");
-    m.rendered.psnr_srgb_db = Get(*r, "psnr_srgb_db");
-    m.rendered.median_rel_error = Get(*r, "median_rel_error");
-    m.rendered.p95_rel_error = Get(*r, "p95_rel_error");
-  }
+  ReadRendered(j, &m);
   return m;
 }
 
@@ -117,8 +120,12 @@ Entry FactorEntry(const fs::path& sidecar, std::string* material, std::string* t
   e.time_ms = 1e3 * seconds;
   e.times_ms = {{"system", 1e3 * system}, {"solve", 1e3 * (seconds - system)}};
   if (stats.value("system_reused", false)) e.message = "factored system reused";
-  const json fm = j.value("metrics", json::object()).value("fit_metrics", json::object());
+  const json metrics = j.value("metrics", json::object());
+  const json fm = metrics.value("fit_metrics", json::object());
   e.metrics = MetricsFromJson(fm, false);
+  // A sidecar's rendered error sits beside fit_metrics (docs/formats.md): factorizations are
+  // then ranked with the fits by the same rendered score (core/model_choice.h).
+  ReadRendered(metrics, &e.metrics);
   if (!e.metrics.ok) {
     e.status = "failed";
     e.message = fm.value("problem", std::string("no metrics in the sidecar"));

@@ -331,7 +331,10 @@ TEST(Inputs, FactorSidecarBecomesAnEntryOfItsTablesMaterial) {
       {"metrics",
        {{"fit_metrics",
          {{"ok", true}, {"log_rmse", 0.03}, {"cbrt_rmse", 0.04}, {"rel_l2", 0.5}, {"cells", 77},
-          {"weighting", "bin-measure"}, {"cutoff_deg", 80}}}}}};
+          {"weighting", "bin-measure"}, {"cutoff_deg", 80}}},
+        {"rendered",
+         {{"ok", true}, {"psnr_db", 31.5}, {"psnr_srgb_db", 30.1}, {"median_rel_error", 0.058},
+          {"p95_rel_error", 0.2}}}}}};
   WriteFile(dir / "gold-paint.halfdiff.factor.json", j.dump());
   std::string material, table;
   const Entry e = FactorEntry(dir / "gold-paint.halfdiff.factor.json", &material, &table);
@@ -343,6 +346,10 @@ TEST(Inputs, FactorSidecarBecomesAnEntryOfItsTablesMaterial) {
   EXPECT_DOUBLE_EQ(e.time_ms, 250);
   EXPECT_DOUBLE_EQ(e.metrics.log_rmse, 0.03);
   EXPECT_EQ(e.metrics.cells, 77u);
+  // The rendered error beside fit_metrics is read (the report ranks factorizations by it).
+  EXPECT_TRUE(e.metrics.rendered.ok);
+  EXPECT_DOUBLE_EQ(e.metrics.rendered.psnr_db, 31.5);
+  EXPECT_DOUBLE_EQ(e.metrics.rendered.median_rel_error, 0.058);
   WriteFile(dir / "other.factor.json", R"({"format": "something-else"})");
   EXPECT_THROW(FactorEntry(dir / "other.factor.json", &material, &table), InputError);
 }
