@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 
 namespace brdfit::report {
@@ -212,36 +213,12 @@ json MetricsChart(const std::string& title, const Material& m) {
           {"options", options}};
 }
 
-json SummaryChart(const std::string& title, const Report& report, const Palette& palette) {
-  std::vector<std::string> models;
-  for (const Material& m : report.materials) {
-    for (const Entry& e : m.entries) {
-      if (std::find(models.begin(), models.end(), e.name) == models.end()) models.push_back(e.name);
-    }
-  }
-  json labels = json::array();
-  for (const Material& m : report.materials) labels.push_back(m.name);
-  json datasets = json::array();
-  for (const std::string& model : models) {
-    json data = json::array();
-    for (const Material& m : report.materials) {
-      double best = NAN;
-      for (const Entry& e : m.entries) {
-        if (e.name != model || e.Failed() || !e.metrics.ok) continue;
-        if (!(best <= e.metrics.log_rmse)) best = e.metrics.log_rmse;
-      }
-      data.push_back(Value(best));
-    }
-    datasets.push_back(
-        {{"label", model}, {"data", data}, {"backgroundColor", palette.Color(model)}});
-  }
-  json options = BaseOptions(title);
-  options["scales"] = {{"y", Axis("logarithmic", "best log_rmse (log scale; lower is better)")}};
-  return {{"type", "bar"}, {"data", {{"labels", labels}, {"datasets", datasets}}},
-          {"options", options}};
-}
+namespace {
 
-json PsnrSummaryChart(const std::string& title, const Report& report, const Palette& palette) {
+// One bar per (material, model): value(entries of that model in that material), NaN for none.
+json PerModelBars(const std::string& title, const Report& report, const Palette& palette,
+                  const std::function<double(const std::vector<Entry>&)>& value,
+                  const json& y_axis) {
   std::vector<std::string> models;
   for (const Material& m : report.materials) {
     for (const Entry& e : m.entries) {
@@ -258,19 +235,45 @@ json PsnrSummaryChart(const std::string& title, const Report& report, const Pale
       for (const Entry& e : m.entries) {
         if (e.name == model) of.push_back(e);
       }
-      const BestPick p = PickBest(of);
-      // The chosen fit is picked by the rendered score too (core/model_choice.h).
-      const bool has = p.index >= 0 && (p.by == BestBy::kRendered || p.by == BestBy::kChosen) &&
-                       of[static_cast<std::size_t>(p.index)].metrics.rendered.ok;
-      data.push_back(Value(has ? of[static_cast<std::size_t>(p.index)].metrics.rendered.psnr_db : NAN));
+      data.push_back(Value(value(of)));
     }
     datasets.push_back(
         {{"label", model}, {"data", data}, {"backgroundColor", palette.Color(model)}});
   }
   json options = BaseOptions(title);
-  options["scales"] = {{"y", Axis("linear", "rendered PSNR of the best fit (dB; higher is better)")}};
+  options["scales"] = {{"y", y_axis}};
   return {{"type", "bar"}, {"data", {{"labels", labels}, {"datasets", datasets}}},
           {"options", options}};
+}
+
+}  // namespace
+
+json SummaryChart(const std::string& title, const Report& report, const Palette& palette) {
+  return PerModelBars(
+      title, report, palette,
+      [](const std::vector<Entry>& of) {
+        double best = NAN;
+        for (const Entry& e : of) {
+          if (e.Failed() || !e.metrics.ok) continue;
+          if (!(best <= e.metrics.log_rmse)) best = e.metrics.log_rmse;
+        }
+        return best;
+      },
+      Axis("logarithmic", "best log_rmse (log scale; lower is better)"));
+}
+
+json PsnrSummaryChart(const std::string& title, const Report& report, const Palette& palette) {
+  return PerModelBars(
+      title, report, palette,
+      [](const std::vector<Entry>& of) {
+        const BestPick p = PickBest(of);
+        // The chosen fit is picked by the rendered score too (core/model_choice.h).
+        const bool has = p.index >= 0 &&
+                         (p.by == BestBy::kRendered || p.by == BestBy::kChosen) &&
+                         of[static_cast<std::size_t>(p.index)].metrics.rendered.ok;
+        return has ? of[static_cast<std::size_t>(p.index)].metrics.rendered.psnr_db : NAN;
+      },
+      Axis("linear", "rendered PSNR of the best fit (dB; higher is better)"));
 }
 
 }  // namespace brdfit::report
