@@ -76,15 +76,8 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  const fs::path zip = fs::path(BRDFIT_SHARED_DATA) / "merl_nbrdf.zip";
-  if (!fs::exists(zip)) {
-    fmt::print(stderr, "{} not found: nothing to measure\n", zip.string());
-    return 0;
-  }
-  setenv("BRDFIT_NBRDF_ZIP", zip.c_str(), 1);
-  std::vector<std::string> inputs;
-  for (const auto& n : nbrdf) inputs.push_back("nbrdf:" + n);
-  inputs = pipeline::ExpandInputs(inputs);
+  const std::vector<std::string> inputs = bench::NbrdfStudyInputs(nbrdf);
+  if (inputs.empty()) return 0;
   std::vector<Config> configs;
   for (const auto& m : models) {
     for (const auto& l : losses) {

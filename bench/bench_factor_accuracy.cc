@@ -93,15 +93,8 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "{}\n", e.what());
     return 2;
   }
-  const fs::path zip = fs::path(BRDFIT_SHARED_DATA) / "merl_nbrdf.zip";
-  if (!fs::exists(zip)) {
-    fmt::print(stderr, "{} not found: nothing to measure\n", zip.string());
-    return 0;
-  }
-  setenv("BRDFIT_NBRDF_ZIP", zip.c_str(), 1);
-  std::vector<std::string> inputs;
-  for (const auto& n : nbrdf) inputs.push_back("nbrdf:" + n);
-  inputs = pipeline::ExpandInputs(inputs);
+  const std::vector<std::string> inputs = bench::NbrdfStudyInputs(nbrdf);
+  if (inputs.empty()) return 0;
 
   const auto t0 = std::chrono::steady_clock::now();
   FactorSystemCache cache(16);  // thread-safe; one system per configuration and reduced mask

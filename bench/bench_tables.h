@@ -1,6 +1,10 @@
 // Tables shared by the benchmark programs.
 #pragma once
 
+#include <fmt/core.h>
+
+#include <cstdlib>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -8,6 +12,7 @@
 #include "core/synth.h"
 #include "io/model_params.h"
 #include "models/registry.h"
+#include "pipeline/inputs.h"
 
 namespace brdfit::bench {
 
@@ -24,6 +29,20 @@ inline std::vector<std::string> SplitList(const std::string& s) {
 
 // Lambert + GGX (alpha 0.08, warm colours) on the full MERL grid with 5 % log-normal noise and
 // 10 % holes, seed 1: the synthetic table of bench_fit and bench_metrics.
+// The inputs nbrdf:NAME of a study over ../shared/data/merl_nbrdf.zip ("all": every material),
+// or none, with a message, when the archive is absent.
+inline std::vector<std::string> NbrdfStudyInputs(const std::vector<std::string>& names) {
+  const std::filesystem::path zip = std::filesystem::path(BRDFIT_SHARED_DATA) / "merl_nbrdf.zip";
+  if (!std::filesystem::exists(zip)) {
+    fmt::print(stderr, "{} not found: nothing to measure\n", zip.string());
+    return {};
+  }
+  setenv("BRDFIT_NBRDF_ZIP", zip.c_str(), 1);
+  std::vector<std::string> inputs;
+  for (const auto& n : names) inputs.push_back("nbrdf:" + n);
+  return pipeline::ExpandInputs(inputs);
+}
+
 inline Table SyntheticLambertGgxTable() {
   const ModelInfo& m = *FindModel("lambert+ggx");
   const std::vector<double> p = ResolveModelParams(
