@@ -53,7 +53,10 @@ using ModelCatalog = std::tuple<
     // added after the first release: appended, so that the earlier entries keep their index
     // (and their fit/problem_instances_*.cc shard)
     GgxF0, Sum<Lambert, GgxF0>, Sum<Lambert, GgxHc>, Abc, Sum<Lambert, Abc>, Sgd,
-    Sum<Lambert, Sgd>>;
+    Sum<Lambert, Sgd>,
+    // rough diffuse bodies under a GGX lobe: for fabrics and matte paints, whose grazing
+    // brightening Lambert cannot hold (docs/accuracy.md)
+    Sum<OrenNayar, Ggx>, Sum<Burley, Ggx>>;
 
 // Calls f(std::type_identity<M>{}) for every model type M in the catalog.
 template <class F>

@@ -216,11 +216,20 @@ struct FurnaceParams {
   }
 };
 // A sum: colour weights 1 / (number of lobes), the lobes' grids joined (JoinLobeSets; a full
-// product of the lobes' grids would be slow).
+// product of the lobes' grids would be slow); then each lobe alone at full weight, the others
+// at 0, where a lobe that does not conserve energy shows it (oren-nayar+ggx: at weights 1/2
+// the sum's albedo stays below 1).
 template <class... L>
 struct FurnaceParams<Sum<L...>> {
   static ParamSets Get() {
-    return test::JoinLobeSets({FurnaceParams<L>::Get(1.0 / sizeof...(L))...});
+    ParamSets all = test::JoinLobeSets({FurnaceParams<L>::Get(1.0 / sizeof...(L))...});
+    for (std::size_t alone = 0; alone < sizeof...(L); ++alone) {
+      std::size_t i = 0;  // braced lists evaluate left to right
+      const ParamSets one =
+          test::JoinLobeSets({FurnaceParams<L>::Get(i++ == alone ? 1.0 : 0.0)...});
+      all.insert(all.end(), one.begin(), one.end());
+    }
+    return all;
   }
 };
 
