@@ -201,7 +201,8 @@ int RunFit(const FitCliOptions& o) {
 
   // Before any work: the outputs pass the output policy, and the report is ours for the run.
   CheckOutputs(pipeline::InputFiles(req.inputs), {{o.out, "-o"}, {o.json, "--json"}});
-  const OutputLock report_lock(o.out);
+  // The hook first: a signal that arrives while the lock is being taken still gets the fit's
+  // message (make test-asan: SIGINT right after the lock file appeared found no hook).
   const auto state = std::make_shared<RunState>();
   req.on_report_written = [state](std::size_t entries) {
     state->on_disk = entries;
@@ -211,6 +212,7 @@ int RunFit(const FitCliOptions& o) {
     OnInterrupt(*state, report, sig, drained);
   });
   const HookReset reset_hook;
+  const OutputLock report_lock(o.out);
 
   // The progress bar counts the fits still to make: the report may already hold some.
   const auto run = pipeline::RunBatchFit(req, [&](std::size_t planned, const std::string& label) {

@@ -376,6 +376,12 @@ TEST(Signals, SigintAndSighupExitWith130And129AndLeaveNothing) {
     const pid_t pid = Spawn(FitArgs(tables, run / "fits.h5"), run / "fit.log");
     // Interrupt once the run holds its lock (it has started, no checkpoint yet).
     ASSERT_TRUE(WaitFor(run / ".fits.h5.lock", pid, 60s)) << ReadAll(run / "fit.log");
+    // The lock file exists from open(2); it is registered for removal once locked and its pid
+    // written: wait for the pid, then a little (under ASan the steps are slow).
+    for (int i = 0; i < 600 && ReadAll(run / ".fits.h5.lock").empty(); ++i) {
+      std::this_thread::sleep_for(10ms);
+    }
+    std::this_thread::sleep_for(200ms);
     ASSERT_EQ(kill(pid, sig), 0);
     EXPECT_EQ(Wait(pid), code);
     EXPECT_THAT(ReadAll(run / "fit.log"), HasSubstr("fits kept, rerun to resume"));
