@@ -20,7 +20,23 @@
 
 namespace brdfit {
 
-using FactorOptions = FactorSystemOptions;
+// The factored form and how it is solved, beyond what the cached system depends on.
+//   diffuse: f = kd/pi + products (RGB kd >= 0 solved jointly with the textures);
+//   rank:    number of products K in [1, kMaxFactorRank] (greedy: each new term starts from
+//            what the previous ones leave, then all are refined together);
+//   refine:  after the log-linear solve, Levenberg-Marquardt on the log-texel values (and kd)
+//            under the relative loss of the analytic fits, (f - m) / (m + eps) with the
+//            solid-angle cell weights (fit/loss.h: the loss shown to track rendered error,
+//            docs/accuracy.md). diffuse or rank > 1 imply it: they have no log-linear solve.
+inline constexpr int kMaxFactorRank = 4;
+struct FactorOptions : FactorSystemOptions {
+  bool diffuse = false;
+  int rank = 1;
+  bool refine = false;
+  int refine_iterations = 30;         // LM iterations per channel, at most
+  std::size_t refine_rows = 1 << 17;  // rows the refinement uses at most (deterministic stride)
+  bool NeedsRefinement() const { return refine || diffuse || rank > 1; }
+};
 
 struct FactorStats {
   std::size_t grid_cells = 0;
@@ -35,6 +51,12 @@ struct FactorStats {
   double system_seconds = 0;          // building + factoring M in this call (0 if reused)
   double seconds = 0;                 // the whole Factor() call
   double solve_log_rms = 0;           // weighted RMS log residual of the solution, pre-bake
+  // Refinement (FactorOptions::NeedsRefinement), channels pooled, over the rows it used:
+  std::size_t refine_rows = 0;        // rows used (a deterministic subset of the used cells)
+  int refine_iterations = 0;          // LM iterations, summed over channels and terms
+  double refine_rel_rms_start = 0;    // sqrt(weighted mean rel^2) of the log-linear start
+  double refine_rel_rms = 0;          // ... and of the refined solution
+  double refine_seconds = 0;
 };
 
 struct Factorization {

@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 #include <cmath>
+#include <string>
 #include <utility>
 
 #include "core/error.h"
@@ -34,28 +35,44 @@ Bilinear Lookup(const FactorTextureSpec& spec, const RgbImage& img, const Vec3& 
 }  // namespace
 
 FactoredBrdf::FactoredBrdf(FactorParam param, RgbImage p, RgbImage q)
-    : param_(param), p_(std::move(p)), q_(std::move(q)) {
-  CheckTexture(p_, spec().p, "p");
-  CheckTexture(q_, spec().q, "q");
+    : FactoredBrdf(param, {0, 0, 0}, {FactorTerm{std::move(p), std::move(q)}}) {}
+
+FactoredBrdf::FactoredBrdf(FactorParam param, std::array<double, 3> diffuse,
+                           std::vector<FactorTerm> terms)
+    : param_(param), diffuse_(diffuse), terms_(std::move(terms)) {
+  if (terms_.empty()) throw InputError("a factorization needs at least one term");
+  for (std::size_t k = 0; k < terms_.size(); ++k) {
+    const std::string suffix = k == 0 ? "" : std::to_string(k + 1);
+    CheckTexture(terms_[k].p, spec().p, ("p" + suffix).c_str());
+    CheckTexture(terms_[k].q, spec().q, ("q" + suffix).c_str());
+  }
+  for (double d : diffuse_) {
+    if (!std::isfinite(d) || d < 0) {
+      throw InputError(fmt::format("diffuse value {} is negative or not finite", d));
+    }
+  }
 }
 
 std::array<double, 3> FactoredBrdf::Eval(const Vec3& wi, const Vec3& wo) const {
   if (wi.z <= 0 || wo.z <= 0) return {0, 0, 0};
   const FactorParamSpec& s = spec();
   const Vec3 h = Normalize(wi + wo);
-  std::array<double, 3> out;
-  if (param_ == FactorParam::kMcCool) {
-    // McCool et al. 2001: f = p(wi) q(wh) p(wo).
-    const auto pi = SampleTexture(p_, Lookup(s.p, p_, wi));
-    const auto po = SampleTexture(p_, Lookup(s.p, p_, wo));
-    const auto qh = SampleTexture(q_, Lookup(s.q, q_, h));
-    for (int c = 0; c < 3; ++c) out[c] = pi[c] * qh[c] * po[c];
-  } else {
-    // Kautz & McCool 1999: f = p(wh) q(theta_d, phi_d).
-    const HalfDiffAngles a = ToHalfDiff(wi, wo);
-    const auto ph = SampleTexture(p_, Lookup(s.p, p_, h));
-    const auto qd = SampleTexture(q_, ThetaDPhiDLookup(a.theta_d, a.phi_d, q_.width, q_.height));
-    for (int c = 0; c < 3; ++c) out[c] = ph[c] * qd[c];
+  std::array<double, 3> out = diffuse_;
+  const HalfDiffAngles a = param_ == FactorParam::kHalfDiff ? ToHalfDiff(wi, wo) : HalfDiffAngles{};
+  for (const FactorTerm& t : terms_) {
+    if (param_ == FactorParam::kMcCool) {
+      // McCool et al. 2001: f = p(wi) q(wh) p(wo).
+      const auto pi = SampleTexture(t.p, Lookup(s.p, t.p, wi));
+      const auto po = SampleTexture(t.p, Lookup(s.p, t.p, wo));
+      const auto qh = SampleTexture(t.q, Lookup(s.q, t.q, h));
+      for (int c = 0; c < 3; ++c) out[c] += pi[c] * qh[c] * po[c];
+    } else {
+      // Kautz & McCool 1999: f = p(wh) q(theta_d, phi_d).
+      const auto ph = SampleTexture(t.p, Lookup(s.p, t.p, h));
+      const auto qd =
+          SampleTexture(t.q, ThetaDPhiDLookup(a.theta_d, a.phi_d, t.q.width, t.q.height));
+      for (int c = 0; c < 3; ++c) out[c] += ph[c] * qd[c];
+    }
   }
   return out;
 }
