@@ -1,9 +1,11 @@
 // Factorizations as seen: the rendered-image metric (docs/accuracy.md) of `brdfit factor`'s
-// rank-1 factorizations over the NBRDF proxies of the 100 MERL materials, per parameterization
-// and resolution, with the columns of the fit study in docs/accuracy.md (bench_accuracy). The
-// "Rendered error" section of docs/factorization.md is made with it.
+// factorizations over the NBRDF proxies of the 100 MERL materials, per form (parameterization,
+// diffuse, rank, refinement) and resolution, with the columns of the fit study in
+// docs/accuracy.md (bench_accuracy). The "Rendered error" section of docs/factorization.md is
+// made with it.
 //
-//   bench_factor_accuracy --csv FILE [--params mccool,halfdiff] [--res 64] [--lambda 1e-8]
+//   bench_factor_accuracy --csv FILE [--params mccool,halfdiff,mccool+d+r2,...] [--res 64]
+//                         [--lambda 1e-8]
 //                         [--nbrdf all|m1,m2] [--jobs 2]
 //
 // Each material is scored exactly as `brdfit factor` scores it (factor/factor_metrics.h: the
@@ -14,11 +16,13 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <tuple>
@@ -36,17 +40,48 @@ namespace {
 using namespace brdfit;
 namespace fs = std::filesystem;
 
+// A factored form: "mccool", "halfdiff", with "+d" (diffuse), "+rK" (rank K), "+ref"
+// (refinement of rank 1 without diffuse; the others always refine), e.g. "mccool+d+r2".
 struct Config {
+  std::string form;
   FactorParam param;
   int resolution;
-  std::string Key() const { return fmt::format("{} {}^2", ToString(param), resolution); }
+  bool diffuse = false, refine = false;
+  int rank = 1;
+  std::string Key() const { return fmt::format("{} {}^2", form, resolution); }
 };
+
+Config ParseForm(const std::string& form, int resolution) {
+  Config c{form, FactorParam::kMcCool, resolution};
+  std::size_t start = 0;
+  for (int part = 0;; ++part) {
+    const std::size_t end = form.find('+', start);
+    const std::string t = form.substr(start, end == std::string::npos ? end : end - start);
+    if (part == 0) {
+      c.param = FactorParamFromString(t);
+    } else if (t == "d") {
+      c.diffuse = true;
+    } else if (t == "ref") {
+      c.refine = true;
+    } else if (t.size() == 2 && t[0] == 'r' && t[1] >= '1' && t[1] <= '4') {
+      c.rank = t[1] - '0';
+    } else {
+      throw std::invalid_argument("unknown part '" + t + "' of form '" + form +
+                                  "' (d, ref, r1..r4)");
+    }
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return c;
+}
 
 struct Row {
   std::string material;
   std::size_t config = 0;
   std::string error;  // factorization failed (InputError / runtime_error)
   double ln_ratio_rmse = 0, factor_ms = 0;
+  FactorStats stats;
+  std::array<double, 3> diffuse{0, 0, 0};
   FitMetrics fit;
   RenderedError rendered;
 };
@@ -87,7 +122,7 @@ int main(int argc, char** argv) {
   std::vector<Config> configs;
   try {
     for (const auto& p : params) {
-      for (int r : resolutions) configs.push_back({FactorParamFromString(p), r});
+      for (int r : resolutions) configs.push_back(ParseForm(p, r));
     }
   } catch (const std::exception& e) {
     fmt::print(stderr, "{}\n", e.what());
@@ -112,9 +147,14 @@ int main(int argc, char** argv) {
         o.param = configs[c].param;
         o.resolution = configs[c].resolution;
         o.lambda = lambda;
+        o.diffuse = configs[c].diffuse;
+        o.rank = configs[c].rank;
+        o.refine = configs[c].refine;
         try {
           const Factorization r = Factor(table, o, &cache);
           row.factor_ms = 1e3 * r.stats.seconds;
+          row.stats = r.stats;
+          row.diffuse = r.brdf.diffuse();
           row.ln_ratio_rmse = FactorLnRatioRmse(table, r.brdf, o.max_theta);
           row.fit = ScoreFactorization(table, r.brdf);
           row.rendered = ScoreFactorizationRendered(table, r.brdf);
@@ -141,14 +181,19 @@ int main(int argc, char** argv) {
 
   std::string out =
       "material,param,res,status,ln_ratio_rmse,log_rmse,psnr_db,psnr_srgb_db,median_rel_error,"
-      "p95_rel_error,factor_ms\n";
+      "p95_rel_error,factor_ms,refine_ms,refine_rel_rms_start,refine_rel_rms,diffuse_r,diffuse_g,"
+      "diffuse_b\n";
   for (const Row& r : rows) {
     const RenderedError& e = r.rendered;
     const std::string status = !r.error.empty() ? "failed" : e.ok ? "ok" : "metric_failed";
-    out += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.4f},{:.4f},{:.6f},{:.6f},{:.1f}\n", r.material,
-                       ToString(configs[r.config].param), configs[r.config].resolution, status,
+    out += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.4f},{:.4f},{:.6f},{:.6f},{:.1f},{:.1f},{:.5g},{:.5g},"
+                       "{:.5g},{:.5g},{:.5g}\n",
+                       r.material,
+                       configs[r.config].form, configs[r.config].resolution, status,
                        r.ln_ratio_rmse, r.fit.log_rmse, e.psnr_db, e.psnr_srgb_db,
-                       e.median_rel_error, e.p95_rel_error, r.factor_ms);
+                       e.median_rel_error, e.p95_rel_error, r.factor_ms,
+                       1e3 * r.stats.refine_seconds, r.stats.refine_rel_rms_start,
+                       r.stats.refine_rel_rms, r.diffuse[0], r.diffuse[1], r.diffuse[2]);
   }
   WriteTextAtomically(csv, out);
 

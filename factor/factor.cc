@@ -5,7 +5,10 @@
 #include <limits>
 #include <stdexcept>
 
+#include <fmt/core.h>
+
 #include "core/error.h"
+#include "factor/factor_refine.h"
 
 namespace brdfit {
 namespace {
@@ -78,6 +81,12 @@ RgbImage BakeTexels(const Eigen::MatrixX3d& x, int offset, int n, std::size_t* c
 
 Factorization Factor(const Table& table, const FactorOptions& options, FactorSystemCache* cache) {
   const auto t0 = std::chrono::steady_clock::now();
+  if (options.rank < 1 || options.rank > kMaxFactorRank) {
+    throw InputError(fmt::format("rank must be in [1, {}] (got {})", kMaxFactorRank, options.rank));
+  }
+  if (options.refine_iterations < 1 || options.refine_rows < 1) {
+    throw InputError("refinement needs at least one iteration and one row");
+  }
   FactorSystemCache local(1);
   if (!cache) cache = &local;
   Factorization out;
@@ -121,11 +130,33 @@ Factorization Factor(const Table& table, const FactorOptions& options, FactorSys
 
   const int n = options.resolution;
   const int k = sys->num_p();
-  RgbImage p = BakeDisk(x, 0, k, n, &st.clamped_texels);
-  RgbImage q = options.param == FactorParam::kMcCool
-                   ? BakeDisk(x, k, sys->num_q(), n, &st.clamped_texels)
-                   : BakeTexels(x, k, n, &st.clamped_texels);
-  out.brdf = FactoredBrdf(options.param, std::move(p), std::move(q));
+  auto bake = [&](const Eigen::MatrixX3d& xt) {
+    FactorTerm t;
+    t.p = BakeDisk(xt, 0, k, n, &st.clamped_texels);
+    t.q = options.param == FactorParam::kMcCool ? BakeDisk(xt, k, sys->num_q(), n, &st.clamped_texels)
+                                                : BakeTexels(xt, k, n, &st.clamped_texels);
+    return t;
+  };
+  if (!options.NeedsRefinement()) {
+    out.brdf = FactoredBrdf(options.param, {0, 0, 0}, {bake(x)});
+  } else {
+    const auto t1 = std::chrono::steady_clock::now();
+    RefineOptions ro;
+    ro.diffuse = options.diffuse;
+    ro.rank = options.rank;
+    ro.max_iterations = options.refine_iterations;
+    ro.max_rows = options.refine_rows;
+    const RefineResult r = RefineFactorization(*sys, table, x, removed, ro);
+    std::vector<FactorTerm> terms;
+    for (const auto& xt : r.terms) terms.push_back(bake(xt));
+    out.brdf = FactoredBrdf(options.param, r.diffuse, std::move(terms));
+    st.refine_rows = r.rows;
+    st.refine_iterations = r.iterations;
+    st.refine_rel_rms_start = r.rel_rms_start;
+    st.refine_rel_rms = r.rel_rms;
+    st.refine_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  }
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

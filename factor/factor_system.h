@@ -89,6 +89,13 @@ class FactorSystem {
   const std::vector<std::uint32_t>& row_cells() const { return row_cells_; }
   const std::vector<double>& row_weights() const { return row_weight_; }
   double build_seconds() const { return build_seconds_; }
+  // A in compressed row storage: row r's unknowns cols()[row_start()[r] .. row_start()[r+1]),
+  // weights vals() (log f_r = sum vals * x[cols]); one block of num_p() + num_q() unknowns.
+  const std::vector<int>& row_start() const { return row_start_; }
+  const std::vector<int>& cols() const { return col_; }
+  const std::vector<double>& vals() const { return val_; }
+  // L (smoothness, sqrt(lambda)-scaled) with the gauge row g below it: M = A^T W A + S^T S.
+  const Eigen::SparseMatrix<double>& smoothing() const { return smooth_; }
 
   // Solves for x (n x 3) given y = log f per row (rows x 3). Rows listed in `removed` (sorted,
   // no duplicates) are dropped for this material: their y is ignored and their contribution is

@@ -1,0 +1,406 @@
+#include "factor/factor_refine.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+
+#include "fit/loss.h"
+
+namespace brdfit {
+namespace {
+
+// Above this log value a texel product is taken as diverged (e^80 ~ 5e34 1/sr).
+constexpr double kMaxLog = 80;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr int kMaxTerms = 16;
+
+// The rows the refinement uses: every stride-th row of the system with finite values.
+struct RowSet {
+  std::vector<std::uint32_t> row;
+  std::vector<double> w;
+  RowValues m;
+  double weight_sum = 0;
+};
+
+RowSet PickRows(const FactorSystem& sys, const Table& table, std::size_t max_rows) {
+  const std::size_t n = sys.num_rows();
+  const std::size_t stride = std::max<std::size_t>(1, (n + max_rows - 1) / std::max<std::size_t>(1, max_rows));
+  RowSet s;
+  std::vector<std::array<double, 3>> m;
+  for (std::size_t r = 0; r < n; r += stride) {
+    const double* v = table.Value(sys.row_cells()[r]);
+    if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) continue;
+    s.row.push_back(static_cast<std::uint32_t>(r));
+    s.w.push_back(sys.row_weights()[r] * static_cast<double>(stride));
+    s.weight_sum += s.w.back();
+    m.push_back({v[0], v[1], v[2]});
+  }
+  s.m.resize(static_cast<Eigen::Index>(m.size()), 3);
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    for (int c = 0; c < 3; ++c) s.m(static_cast<Eigen::Index>(i), c) = m[i][c];
+  }
+  return s;
+}
+
+// a_r^T x for one block of unknowns.
+inline double RowLog(const FactorSystem& sys, std::uint32_t r, const double* x) {
+  const int b = sys.row_start()[r], e = sys.row_start()[r + 1];
+  double s = 0;
+  for (int j = b; j < e; ++j) s += sys.vals()[j] * x[sys.cols()[j]];
+  return s;
+}
+
+// One channel's problem. Unknowns theta = [x_0 (n), ..., x_{K-1} (n), d (if diffuse)].
+class ChannelProblem {
+ public:
+  ChannelProblem(const FactorSystem& sys, const RowSet& rows, int channel, int rank, bool diffuse,
+                 const Eigen::SparseMatrix<double>& sts)
+      : sys_(sys), rows_(rows), ch_(channel), rank_(rank), diffuse_(diffuse), sts_(sts) {
+    n_ = sys.num_p() + sys.num_q();
+    nt_ = rank_ * n_ + (diffuse_ ? 1 : 0);
+  }
+  int num_unknowns() const { return nt_; }
+
+  // Data part of the objective only (sum w rel^2), for reporting.
+  double DataCost(const Eigen::VectorXd& th) const {
+    double cost = 0;
+    for (std::size_t i = 0; i < rows_.row.size(); ++i) {
+      double f = diffuse_ ? th[nt_ - 1] : 0.0;
+      for (int k = 0; k < rank_; ++k) {
+        const double lg = RowLog(sys_, rows_.row[i], th.data() + k * n_);
+        if (!(lg <= kMaxLog)) return kInf;
+        f += std::exp(lg);
+      }
+      const double m = rows_.m(static_cast<Eigen::Index>(i), ch_);
+      const double rel = (f - m) / (std::abs(m) + kRelEpsilon);
+      cost += rows_.w[i] * rel * rel;
+    }
+    return cost;
+  }
+
+  double Cost(const Eigen::VectorXd& th) const {
+    double cost = DataCost(th);
+    for (int k = 0; k < rank_; ++k) {
+      const auto x = th.segment(k * n_, n_);
+      cost += x.dot(sts_ * x);
+    }
+    return cost;
+  }
+
+  // Levenberg-Marquardt from *th; returns the iterations taken.
+  int Minimize(Eigen::VectorXd* th, int max_iterations, std::size_t dense_limit,
+               double tolerance) {
+    const bool dense = static_cast<std::size_t>(nt_) <= dense_limit;
+    double cost = Linearize(*th, dense);
+    if (!std::isfinite(cost)) return 0;
+    double mu = 1e-4;
+    int it = 0;
+    for (; it < max_iterations; ++it) {
+      Eigen::VectorXd step = dense ? DenseStep(mu) : SparseStep(mu);
+      Eigen::VectorXd trial = *th + step;
+      if (diffuse_) trial[nt_ - 1] = std::max(0.0, trial[nt_ - 1]);
+      const double c = trial.allFinite() ? Cost(trial) : kInf;
+      if (c < cost) {
+        const double gain = (cost - c) / cost;
+        *th = trial;
+        mu = std::max(mu / 3, 1e-10);
+        if (gain < tolerance) {
+          ++it;
+          break;
+        }
+        cost = Linearize(*th, dense);
+      } else {
+        mu *= 4;
+        if (mu > 1e10) break;
+      }
+    }
+    return it;
+  }
+
+ private:
+  // Gradient g = J^T r + S^T S x and H = J^T J + S^T S, dense or in a sparse upper pattern.
+  // Returns the cost.
+  double Linearize(const Eigen::VectorXd& th, bool dense) {
+    g_.setZero(nt_);
+    diag_.setZero(nt_);
+    if (dense) {
+      h_.setZero(nt_, nt_);
+    } else {
+      if (!have_pattern_) BuildPattern();
+      std::fill(hs_.valuePtr(), hs_.valuePtr() + hs_.nonZeros(), 0.0);
+    }
+    const std::size_t rows = rows_.row.size();
+    double ce[kMaxTerms + 1];
+    std::vector<int> idx;
+    std::vector<double> val;
+    double cost = 0;
+    for (std::size_t i = 0; i < rows; ++i) {
+      const std::uint32_t r = rows_.row[i];
+      const double m = rows_.m(static_cast<Eigen::Index>(i), ch_);
+      const double s = std::sqrt(rows_.w[i]) / (std::abs(m) + kRelEpsilon);
+      double f = diffuse_ ? th[nt_ - 1] : 0.0;
+      for (int k = 0; k < rank_; ++k) {
+        const double lg = RowLog(sys_, r, th.data() + k * n_);
+        if (!(lg <= kMaxLog)) return kInf;
+        const double e = std::exp(lg);
+        f += e;
+        ce[k] = s * e;
+      }
+      ce[rank_] = s;
+      const double res = s * (f - m);
+      cost += res * res;
+      idx.clear();
+      val.clear();
+      const int b = sys_.row_start()[r], e = sys_.row_start()[r + 1];
+      for (int k = 0; k < rank_; ++k) {
+        for (int j = b; j < e; ++j) {
+          idx.push_back(k * n_ + sys_.cols()[j]);
+          val.push_back(ce[k] * sys_.vals()[j]);
+        }
+      }
+      if (diffuse_) {
+        idx.push_back(nt_ - 1);
+        val.push_back(s);
+      }
+      for (std::size_t a = 0; a < idx.size(); ++a) {
+        g_[idx[a]] += val[a] * res;
+        diag_[idx[a]] += val[a] * val[a];
+        // idx is ascending (columns sorted per row, blocks in order): upper triangle.
+        if (dense) {
+          for (std::size_t c = a; c < idx.size(); ++c) h_(idx[a], idx[c]) += val[a] * val[c];
+        } else {
+          for (std::size_t c = a; c < idx.size(); ++c) SparseAt(idx[a], idx[c]) += val[a] * val[c];
+        }
+      }
+    }
+    for (int k = 0; k < rank_; ++k) {
+      const auto x = th.segment(k * n_, n_);
+      const Eigen::VectorXd sx = sts_ * x;
+      cost += x.dot(sx);
+      g_.segment(k * n_, n_) += sx;
+      for (int j = 0; j < sts_.outerSize(); ++j) {
+        for (Eigen::SparseMatrix<double>::InnerIterator itr(sts_, j); itr; ++itr) {
+          const int a = k * n_ + static_cast<int>(itr.row()), c = k * n_ + static_cast<int>(itr.col());
+          if (a == c) diag_[a] += itr.value();
+          if (a <= c) (dense ? h_(a, c) : SparseAt(a, c)) += itr.value();
+        }
+      }
+    }
+    return cost;
+  }
+
+  Eigen::VectorXd Damping(double mu) const {
+    const double floor = 1e-12 * std::max(1e-300, diag_.maxCoeff());
+    return mu * diag_.cwiseMax(floor);
+  }
+
+  Eigen::VectorXd DenseStep(double mu) const {
+    Eigen::MatrixXd a = h_;
+    a.diagonal() += Damping(mu);
+    Eigen::LDLT<Eigen::MatrixXd, Eigen::Upper> ldlt(a);
+    return ldlt.solve(-g_);
+  }
+
+  Eigen::VectorXd SparseStep(double mu) {
+    Eigen::SparseMatrix<double> a = hs_;
+    const Eigen::VectorXd damp = Damping(mu);
+    for (int j = 0; j < nt_; ++j) a.coeffRef(j, j) += damp[j];
+    if (!ldlt_) {
+      ldlt_ = std::make_unique<SparseLdlt>();
+      ldlt_->analyzePattern(a);
+    }
+    ldlt_->factorize(a);
+    if (ldlt_->info() != Eigen::Success) return Eigen::VectorXd::Zero(nt_);
+    return ldlt_->solve(-g_);
+  }
+
+  // The upper-triangular pattern of J^T J + S^T S (+ the diagonal), values zero.
+  void BuildPattern() {
+    using Triplet = Eigen::Triplet<double>;
+    std::vector<Triplet> t;
+    std::vector<int> idx;
+    for (std::uint32_t r : rows_.row) {
+      idx.clear();
+      const int b = sys_.row_start()[r], e = sys_.row_start()[r + 1];
+      for (int k = 0; k < rank_; ++k) {
+        for (int j = b; j < e; ++j) idx.push_back(k * n_ + sys_.cols()[j]);
+      }
+      if (diffuse_) idx.push_back(nt_ - 1);
+      for (std::size_t x = 0; x < idx.size(); ++x) {
+        for (std::size_t y = x; y < idx.size(); ++y) t.emplace_back(idx[x], idx[y], 1.0);
+      }
+    }
+    for (int k = 0; k < rank_; ++k) {
+      for (int j = 0; j < sts_.outerSize(); ++j) {
+        for (Eigen::SparseMatrix<double>::InnerIterator itr(sts_, j); itr; ++itr) {
+          if (itr.row() <= itr.col()) {
+            t.emplace_back(k * n_ + static_cast<int>(itr.row()), k * n_ + static_cast<int>(itr.col()), 1.0);
+          }
+        }
+      }
+    }
+    for (int j = 0; j < nt_; ++j) t.emplace_back(j, j, 1.0);
+    hs_.resize(nt_, nt_);
+    hs_.setFromTriplets(t.begin(), t.end());
+    hs_.makeCompressed();
+    have_pattern_ = true;
+  }
+
+  // H(a, c), a <= c, in the compressed upper pattern.
+  double& SparseAt(int a, int c) {
+    const int* begin = hs_.innerIndexPtr() + hs_.outerIndexPtr()[c];
+    const int* end = hs_.innerIndexPtr() + hs_.outerIndexPtr()[c + 1];
+    const int* it = std::lower_bound(begin, end, a);
+    return hs_.valuePtr()[it - hs_.innerIndexPtr()];
+  }
+
+  const FactorSystem& sys_;
+  const RowSet& rows_;
+  int ch_, rank_;
+  bool diffuse_;
+  const Eigen::SparseMatrix<double>& sts_;
+  int n_ = 0, nt_ = 0;
+  Eigen::VectorXd g_, diag_;
+  Eigen::MatrixXd h_;                // dense H (upper), few unknowns
+  Eigen::SparseMatrix<double> hs_;   // sparse H (upper), many unknowns
+  using SparseLdlt = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper>;
+  std::unique_ptr<SparseLdlt> ldlt_;  // (not movable itself)
+  bool have_pattern_ = false;
+};
+
+// The model value of every system row (channels as columns) for the current terms and d.
+RowValues ModelRows(const FactorSystem& sys, const std::vector<Eigen::MatrixX3d>& terms,
+                    const std::array<double, 3>& d) {
+  RowValues f(static_cast<Eigen::Index>(sys.num_rows()), 3);
+  for (std::size_t r = 0; r < sys.num_rows(); ++r) {
+    for (int c = 0; c < 3; ++c) {
+      double v = d[c];
+      for (const auto& x : terms) {
+        const Eigen::VectorXd col = x.col(c);
+        v += std::exp(std::min(kMaxLog, RowLog(sys, static_cast<std::uint32_t>(r), col.data())));
+      }
+      f(static_cast<Eigen::Index>(r), c) = v;
+    }
+  }
+  return f;
+}
+
+// The log-linear solve of max(m - f, floor * m) (rows in `removed` ignored).
+Eigen::MatrixX3d SolveRemainder(const FactorSystem& sys, const Table& table, const RowValues& f,
+                                double floor, const std::vector<std::uint32_t>& removed,
+                                const Eigen::MatrixX3d& fallback) {
+  RowValues y(static_cast<Eigen::Index>(sys.num_rows()), 3);
+  std::size_t next = 0;
+  for (std::size_t r = 0; r < sys.num_rows(); ++r) {
+    if (next < removed.size() && removed[next] == r) {
+      ++next;
+      y.row(static_cast<Eigen::Index>(r)).setZero();
+      continue;
+    }
+    const double* v = table.Value(sys.row_cells()[r]);
+    for (int c = 0; c < 3; ++c) {
+      y(static_cast<Eigen::Index>(r), c) =
+          std::log(std::max(v[c] - f(static_cast<Eigen::Index>(r), c), floor * v[c]));
+    }
+  }
+  Eigen::MatrixX3d x;
+  FactorSolveInfo info;
+  if (!sys.Solve(y, removed, &x, &info) || !x.allFinite()) return fallback;
+  return x;
+}
+
+double RelRms(const std::vector<ChannelProblem>& problems,
+              const std::vector<Eigen::VectorXd>& theta, double weight_sum) {
+  double sum = 0;
+  for (std::size_t c = 0; c < problems.size(); ++c) sum += problems[c].DataCost(theta[c]);
+  return std::sqrt(sum / (3 * weight_sum));
+}
+
+}  // namespace
+
+RefineResult RefineFactorization(const FactorSystem& sys, const Table& table,
+                                 const Eigen::MatrixX3d& x0,
+                                 const std::vector<std::uint32_t>& removed,
+                                 const RefineOptions& options) {
+  const int n = sys.num_p() + sys.num_q();
+  const int rank = std::clamp(options.rank, 1, kMaxTerms);
+  const RowSet rows = PickRows(sys, table, options.max_rows);
+  RefineResult out;
+  out.rows = rows.row.size();
+  out.terms.push_back(x0);
+  if (rows.row.empty() || !(rows.weight_sum > 0)) return out;
+  const Eigen::SparseMatrix<double> sts =
+      Eigen::SparseMatrix<double>(sys.smoothing().transpose() * sys.smoothing());
+
+  // Start: the log-linear solution alone.
+  {
+    std::vector<ChannelProblem> p;
+    std::vector<Eigen::VectorXd> th;
+    for (int c = 0; c < 3; ++c) {
+      p.emplace_back(sys, rows, c, 1, false, sts);
+      th.push_back(x0.col(c));
+    }
+    out.rel_rms_start = RelRms(p, th, rows.weight_sum);
+    for (int c = 0; c < 3; ++c) out.objective_start += p[c].Cost(th[c]);
+  }
+
+  std::array<double, 3> d{0, 0, 0};
+  if (options.diffuse) {
+    // d starts at half the 5 % quantile of the measured values, the term on what is left.
+    for (int c = 0; c < 3; ++c) {
+      std::vector<double> v(rows.m.rows());
+      for (Eigen::Index i = 0; i < rows.m.rows(); ++i) v[i] = rows.m(i, c);
+      auto q = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 20);
+      std::nth_element(v.begin(), q, v.end());
+      d[c] = std::max(0.0, 0.5 * *q);
+    }
+    RowValues f(static_cast<Eigen::Index>(sys.num_rows()), 3);
+    for (int c = 0; c < 3; ++c) f.col(c).setConstant(d[c]);
+    out.terms[0] = SolveRemainder(sys, table, f, 0.25, removed, x0);
+  }
+
+  for (int k = 1; k <= rank; ++k) {
+    if (k > 1) {
+      const RowValues f = ModelRows(sys, out.terms, d);
+      const Eigen::MatrixX3d start = out.terms.back().array() + std::log(0.1);
+      out.terms.push_back(SolveRemainder(sys, table, f, 0.02, removed, start));
+    }
+    for (int c = 0; c < 3; ++c) {
+      ChannelProblem p(sys, rows, c, k, options.diffuse, sts);
+      Eigen::VectorXd th(p.num_unknowns());
+      for (int t = 0; t < k; ++t) th.segment(t * n, n) = out.terms[t].col(c);
+      if (options.diffuse) th[p.num_unknowns() - 1] = d[c];
+      out.iterations +=
+          p.Minimize(&th, options.max_iterations, options.dense_limit, options.tolerance);
+      for (int t = 0; t < k; ++t) out.terms[t].col(c) = th.segment(t * n, n);
+      if (options.diffuse) d[c] = th[p.num_unknowns() - 1];
+    }
+  }
+  out.diffuse = d;
+
+  std::vector<ChannelProblem> p;
+  std::vector<Eigen::VectorXd> th;
+  for (int c = 0; c < 3; ++c) {
+    p.emplace_back(sys, rows, c, rank, options.diffuse, sts);
+    Eigen::VectorXd t(p.back().num_unknowns());
+    for (int k = 0; k < rank; ++k) t.segment(k * n, n) = out.terms[k].col(c);
+    if (options.diffuse) t[t.size() - 1] = d[c];
+    th.push_back(std::move(t));
+  }
+  out.rel_rms = RelRms(p, th, rows.weight_sum);
+  for (int c = 0; c < 3; ++c) out.objective += p[c].Cost(th[c]);
+  for (const auto& x : out.terms) {
+    if (!x.allFinite()) throw std::runtime_error("factorization refinement diverged (non-finite)");
+  }
+  if (!std::isfinite(d[0] + d[1] + d[2])) {
+    throw std::runtime_error("factorization refinement diverged (non-finite diffuse value)");
+  }
+  return out;
+}
+
+}  // namespace brdfit
