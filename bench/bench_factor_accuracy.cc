@@ -41,12 +41,13 @@ using namespace brdfit;
 namespace fs = std::filesystem;
 
 // A factored form: "mccool", "halfdiff", with "+d" (diffuse), "+rK" (rank K), "+ref"
-// (refinement of rank 1 without diffuse; the others always refine), e.g. "mccool+d+r2".
+// (refinement of rank 1 without diffuse; the others always refine), "+lr" (log-ratio loss
+// instead of the relative one), e.g. "mccool+d+r2", "mccool+d+lr".
 struct Config {
   std::string form;
   FactorParam param;
   int resolution;
-  bool diffuse = false, refine = false;
+  bool diffuse = false, refine = false, logratio = false;
   int rank = 1;
   std::string Key() const { return fmt::format("{} {}^2", form, resolution); }
 };
@@ -63,11 +64,13 @@ Config ParseForm(const std::string& form, int resolution) {
       c.diffuse = true;
     } else if (t == "ref") {
       c.refine = true;
+    } else if (t == "lr") {
+      c.logratio = true;
     } else if (t.size() == 2 && t[0] == 'r' && t[1] >= '1' && t[1] <= '4') {
       c.rank = t[1] - '0';
     } else {
       throw std::invalid_argument("unknown part '" + t + "' of form '" + form +
-                                  "' (d, ref, r1..r4)");
+                                  "' (d, ref, lr, r1..r4)");
     }
     if (end == std::string::npos) break;
     start = end + 1;
@@ -150,6 +153,7 @@ int main(int argc, char** argv) {
         o.diffuse = configs[c].diffuse;
         o.rank = configs[c].rank;
         o.refine = configs[c].refine;
+        o.refine_loss = configs[c].logratio ? RefineLoss::kLogRatio : RefineLoss::kRel;
         try {
           const Factorization r = Factor(table, o, &cache);
           row.factor_ms = 1e3 * r.stats.seconds;
@@ -181,18 +185,18 @@ int main(int argc, char** argv) {
 
   std::string out =
       "material,param,res,status,ln_ratio_rmse,log_rmse,psnr_db,psnr_srgb_db,median_rel_error,"
-      "p95_rel_error,factor_ms,refine_ms,refine_rel_rms_start,refine_rel_rms,diffuse_r,diffuse_g,"
+      "p95_rel_error,factor_ms,refine_ms,refine_iterations,refine_rel_rms_start,refine_rel_rms,diffuse_r,diffuse_g,"
       "diffuse_b\n";
   for (const Row& r : rows) {
     const RenderedError& e = r.rendered;
     const std::string status = !r.error.empty() ? "failed" : e.ok ? "ok" : "metric_failed";
-    out += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.4f},{:.4f},{:.6f},{:.6f},{:.1f},{:.1f},{:.5g},{:.5g},"
+    out += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.4f},{:.4f},{:.6f},{:.6f},{:.1f},{:.1f},{},{:.5g},{:.5g},"
                        "{:.5g},{:.5g},{:.5g}\n",
                        r.material,
                        configs[r.config].form, configs[r.config].resolution, status,
                        r.ln_ratio_rmse, r.fit.log_rmse, e.psnr_db, e.psnr_srgb_db,
                        e.median_rel_error, e.p95_rel_error, r.factor_ms,
-                       1e3 * r.stats.refine_seconds, r.stats.refine_rel_rms_start,
+                       1e3 * r.stats.refine_seconds, r.stats.refine_iterations, r.stats.refine_rel_rms_start,
                        r.stats.refine_rel_rms, r.diffuse[0], r.diffuse[1], r.diffuse[2]);
   }
   WriteTextAtomically(csv, out);

@@ -142,6 +142,7 @@ Factorization Factor(const Table& table, const FactorOptions& options, FactorSys
   } else {
     const auto t1 = std::chrono::steady_clock::now();
     RefineOptions ro;
+    ro.loss = options.refine_loss;
     ro.diffuse = options.diffuse;
     ro.rank = options.rank;
     ro.max_iterations = options.refine_iterations;

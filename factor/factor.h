@@ -15,6 +15,7 @@
 
 #include "factor/factor_eval.h"
 #include "factor/factor_param.h"
+#include "factor/factor_refine.h"
 #include "factor/factor_system.h"
 #include "core/table.h"
 
@@ -30,11 +31,12 @@ namespace brdfit {
 //            docs/accuracy.md). diffuse or rank > 1 imply it: they have no log-linear solve.
 inline constexpr int kMaxFactorRank = 4;
 struct FactorOptions : FactorSystemOptions {
+  RefineLoss refine_loss = RefineLoss::kRel;
   bool diffuse = false;
   int rank = 1;
   bool refine = false;
   int refine_iterations = 30;         // LM iterations per channel, at most
-  std::size_t refine_rows = 1 << 15;  // rows the refinement uses at most (deterministic stride)
+  std::size_t refine_rows = 1 << 14;  // rows the refinement uses at most (deterministic stride)
   bool NeedsRefinement() const { return refine || diffuse || rank > 1; }
 };
 
@@ -53,7 +55,7 @@ struct FactorStats {
   double solve_log_rms = 0;           // weighted RMS log residual of the solution, pre-bake
   // Refinement (FactorOptions::NeedsRefinement), channels pooled, over the rows it used:
   std::size_t refine_rows = 0;        // rows used (a deterministic subset of the used cells)
-  int refine_iterations = 0;          // LM iterations, summed over channels and terms
+  int refine_iterations = 30;          // LM iterations, summed over channels and terms
   double refine_rel_rms_start = 0;    // sqrt(weighted mean rel^2) of the log-linear start
   double refine_rel_rms = 0;          // ... and of the refined solution
   double refine_seconds = 0;

@@ -55,18 +55,34 @@ inline double RowLog(const FactorSystem& sys, std::uint32_t r, const double* x) 
   return s;
 }
 
+// The data residual of one row and its derivative in f (w: the row's weight):
+//   rel:      sqrt(w) (f - m) / (|m| + eps)                 (fit/loss.h, Sun et al. 2018)
+//   logratio: sqrt(w) (ln(f + eps) - ln(m + eps))           (fit/loss.h GuardedLogOffset)
+inline double Residual(RefineLoss loss, double f, double m, double w, double* dres_df) {
+  const double sw = std::sqrt(w);
+  if (loss == RefineLoss::kRel) {
+    const double s = sw / (std::abs(m) + kRelEpsilon);
+    *dres_df = s;
+    return s * (f - m);
+  }
+  // f >= 0 here (a sum of exponentials and d >= 0): the logarithm's own branch.
+  *dres_df = sw / (f + kLogRatioEpsilon);
+  return sw * (std::log(f + kLogRatioEpsilon) - GuardedLogOffset(m));
+}
+
 // One channel's problem. Unknowns theta = [x_0 (n), ..., x_{K-1} (n), d (if diffuse)].
 class ChannelProblem {
  public:
   ChannelProblem(const FactorSystem& sys, const RowSet& rows, int channel, int rank, bool diffuse,
-                 const Eigen::SparseMatrix<double>& sts)
-      : sys_(sys), rows_(rows), ch_(channel), rank_(rank), diffuse_(diffuse), sts_(sts) {
+                 RefineLoss loss, const Eigen::SparseMatrix<double>& sts)
+      : sys_(sys), rows_(rows), ch_(channel), rank_(rank), diffuse_(diffuse), loss_(loss),
+        sts_(sts) {
     n_ = sys.num_p() + sys.num_q();
     nt_ = rank_ * n_ + (diffuse_ ? 1 : 0);
   }
   int num_unknowns() const { return nt_; }
 
-  // Data part of the objective only (sum w rel^2), for reporting.
+  // Data part of the objective only (sum of squared residuals), for reporting.
   double DataCost(const Eigen::VectorXd& th) const {
     double cost = 0;
     for (std::size_t i = 0; i < rows_.row.size(); ++i) {
@@ -76,9 +92,10 @@ class ChannelProblem {
         if (!(lg <= kMaxLog)) return kInf;
         f += std::exp(lg);
       }
-      const double m = rows_.m(static_cast<Eigen::Index>(i), ch_);
-      const double rel = (f - m) / (std::abs(m) + kRelEpsilon);
-      cost += rows_.w[i] * rel * rel;
+      double unused;
+      const double res =
+          Residual(loss_, f, rows_.m(static_cast<Eigen::Index>(i), ch_), rows_.w[i], &unused);
+      cost += res * res;
     }
     return cost;
   }
@@ -141,18 +158,17 @@ class ChannelProblem {
     double cost = 0;
     for (std::size_t i = 0; i < rows; ++i) {
       const std::uint32_t r = rows_.row[i];
-      const double m = rows_.m(static_cast<Eigen::Index>(i), ch_);
-      const double s = std::sqrt(rows_.w[i]) / (std::abs(m) + kRelEpsilon);
       double f = diffuse_ ? th[nt_ - 1] : 0.0;
       for (int k = 0; k < rank_; ++k) {
         const double lg = RowLog(sys_, r, th.data() + k * n_);
         if (!(lg <= kMaxLog)) return kInf;
-        const double e = std::exp(lg);
-        f += e;
-        ce[k] = s * e;
+        ce[k] = std::exp(lg);
+        f += ce[k];
       }
+      double s;
+      const double res = Residual(loss_, f, rows_.m(static_cast<Eigen::Index>(i), ch_), rows_.w[i], &s);
+      for (int k = 0; k < rank_; ++k) ce[k] *= s;
       ce[rank_] = s;
-      const double res = s * (f - m);
       cost += res * res;
       idx.clear();
       val.clear();
@@ -200,10 +216,12 @@ class ChannelProblem {
   }
 
   Eigen::VectorXd DenseStep(double mu) const {
+    // H + mu D is symmetric positive definite (S^T S pins the gauge, mu D > 0): Cholesky.
     Eigen::MatrixXd a = h_;
     a.diagonal() += Damping(mu);
-    Eigen::LDLT<Eigen::MatrixXd, Eigen::Upper> ldlt(a);
-    return ldlt.solve(-g_);
+    Eigen::LLT<Eigen::MatrixXd, Eigen::Upper> llt(a);
+    if (llt.info() != Eigen::Success) return Eigen::VectorXd::Zero(nt_);
+    return llt.solve(-g_);
   }
 
   Eigen::VectorXd SparseStep(double mu) {
@@ -263,6 +281,7 @@ class ChannelProblem {
   const RowSet& rows_;
   int ch_, rank_;
   bool diffuse_;
+  RefineLoss loss_;
   const Eigen::SparseMatrix<double>& sts_;
   int n_ = 0, nt_ = 0;
   Eigen::VectorXd g_, diag_;
@@ -342,7 +361,7 @@ RefineResult RefineFactorization(const FactorSystem& sys, const Table& table,
     std::vector<ChannelProblem> p;
     std::vector<Eigen::VectorXd> th;
     for (int c = 0; c < 3; ++c) {
-      p.emplace_back(sys, rows, c, 1, false, sts);
+      p.emplace_back(sys, rows, c, 1, false, options.loss, sts);
       th.push_back(x0.col(c));
     }
     out.rel_rms_start = RelRms(p, th, rows.weight_sum);
@@ -371,7 +390,7 @@ RefineResult RefineFactorization(const FactorSystem& sys, const Table& table,
       out.terms.push_back(SolveRemainder(sys, table, f, 0.02, removed, start));
     }
     for (int c = 0; c < 3; ++c) {
-      ChannelProblem p(sys, rows, c, k, options.diffuse, sts);
+      ChannelProblem p(sys, rows, c, k, options.diffuse, options.loss, sts);
       Eigen::VectorXd th(p.num_unknowns());
       for (int t = 0; t < k; ++t) th.segment(t * n, n) = out.terms[t].col(c);
       if (options.diffuse) th[p.num_unknowns() - 1] = d[c];
@@ -386,7 +405,7 @@ RefineResult RefineFactorization(const FactorSystem& sys, const Table& table,
   std::vector<ChannelProblem> p;
   std::vector<Eigen::VectorXd> th;
   for (int c = 0; c < 3; ++c) {
-    p.emplace_back(sys, rows, c, rank, options.diffuse, sts);
+    p.emplace_back(sys, rows, c, rank, options.diffuse, options.loss, sts);
     Eigen::VectorXd t(p.back().num_unknowns());
     for (int k = 0; k < rank; ++k) t.segment(k * n, n) = out.terms[k].col(c);
     if (options.diffuse) t[t.size() - 1] = d[c];

@@ -26,16 +26,28 @@
 
 #include <Eigen/Core>
 
+#include "core/enum_names.h"
 #include "core/table.h"
 #include "factor/factor_system.h"
 
 namespace brdfit {
 
+// The data term of the refinement: the relative loss or the log-ratio loss of the analytic
+// fits (fit/loss.h; the log-linear solve minimizes the log-ratio with eps = 0).
+enum class RefineLoss { kRel, kLogRatio };
+
+inline constexpr auto kRefineLossNames = MakeEnumNames<RefineLoss>(
+    "refinement loss", {{RefineLoss::kRel, "rel"}, {RefineLoss::kLogRatio, "logratio"}});
+constexpr const auto& EnumNamesOf(RefineLoss) {
+  return kRefineLossNames;
+}
+
 struct RefineOptions {
+  RefineLoss loss = RefineLoss::kRel;
   bool diffuse = false;
   int rank = 1;
   int max_iterations = 30;            // LM iterations per channel and stage
-  std::size_t max_rows = 1 << 15;     // rows used at most (every s-th row, weights times s)
+  std::size_t max_rows = 1 << 14;     // rows used at most (every s-th row, weights times s)
   std::size_t dense_limit = 1024;     // unknowns per channel up to which H is solved densely
   double tolerance = 1e-6;            // stop when a step lowers the objective by less (relative)
 };
@@ -45,7 +57,7 @@ struct RefineResult {
   std::vector<Eigen::MatrixX3d> terms;  // log-texel unknowns per term (system layout)
   std::size_t rows = 0;
   int iterations = 0;
-  double rel_rms_start = 0;  // sqrt(sum w rel^2 / (3 sum w)) over the rows used, at the start
+  double rel_rms_start = 0;  // sqrt(sum res^2 / (3 sum w)) over the rows used, at the start
   double rel_rms = 0;        // ... at the end
   double objective_start = 0;  // E (data + smoothness), channels summed, at the start
   double objective = 0;        // ... at the end (never above objective_start at rank 1)
