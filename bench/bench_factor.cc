@@ -11,11 +11,11 @@
 #include <filesystem>
 #include <string>
 
+#include "core/synth.h"
 #include "factor/factor.h"
 #include "factor/factor_form.h"
 #include "factor/factor_metrics.h"
 #include "io/nbrdf.h"
-#include "core/synth.h"
 #include "models/registry.h"
 
 namespace brdfit {

@@ -54,7 +54,8 @@ Form ParseForm(const std::string& s) {
   f.name = s;
   std::string rest = s;
   if (const auto slash = rest.find('/'); slash != std::string::npos) {
-    if (rest.substr(slash) != "/refine") throw std::invalid_argument("form " + s + ": /refine or nothing");
+    if (rest.substr(slash) != "/refine")
+      throw std::invalid_argument("form " + s + ": /refine or nothing");
     f.refine = true;
     rest = rest.substr(0, slash);
   }
@@ -194,12 +195,12 @@ int main(int argc, char** argv) {
   for (const Row& r : rows) {
     const RenderedError& e = r.rendered;
     const std::string status = !r.error.empty() ? "failed" : e.ok ? "ok" : "metric_failed";
-    out += fmt::format("{},{},{},{},{},{},{},{},{},{:.6g},{:.6g},{:.4f},{:.4f},{:.6f},{:.6f},{:.1f}\n",
-                       r.material, ToString(configs[r.config].param), configs[r.config].resolution,
-                       configs[r.config].form.name, r.solved_form, r.cost.texture_bytes,
-                       r.cost.fetches_per_light, r.cost.fetches_per_fragment, status,
-                       r.ln_ratio_rmse, r.fit.log_rmse, e.psnr_db, e.psnr_srgb_db,
-                       e.median_rel_error, e.p95_rel_error, r.factor_ms);
+    out += fmt::format(
+        "{},{},{},{},{},{},{},{},{},{:.6g},{:.6g},{:.4f},{:.4f},{:.6f},{:.6f},{:.1f}\n", r.material,
+        ToString(configs[r.config].param), configs[r.config].resolution,
+        configs[r.config].form.name, r.solved_form, r.cost.texture_bytes, r.cost.fetches_per_light,
+        r.cost.fetches_per_fragment, status, r.ln_ratio_rmse, r.fit.log_rmse, e.psnr_db,
+        e.psnr_srgb_db, e.median_rel_error, e.p95_rel_error, r.factor_ms);
   }
   WriteTextAtomically(csv, out);
 

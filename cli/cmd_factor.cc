@@ -15,20 +15,20 @@
 
 #include "cli/command.h"
 #include "cli/demo.h"
-#include "pipeline/inputs.h"
-#include "factor/factor.h"
-#include "factor/factor_form.h"
-#include "pipeline/factor_export.h"
-#include "factor/factor_metrics.h"
 #include "core/error.h"
 #include "core/file_stem.h"
+#include "factor/factor.h"
+#include "factor/factor_form.h"
+#include "factor/factor_metrics.h"
 #include "io/factor_io.h"
-#include "io/output_policy.h"
 #include "io/input_file.h"
 #include "io/metrics_json.h"
 #include "io/nbrdf.h"
-#include "report/report_inputs.h"
+#include "io/output_policy.h"
 #include "io/table_io.h"
+#include "pipeline/factor_export.h"
+#include "pipeline/inputs.h"
+#include "report/report_inputs.h"
 
 namespace brdfit::cli {
 namespace {
@@ -36,7 +36,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // The defaults of the factored form and its solve, in one place: they are to be chosen by a
-// study over the MERL proxies (docs/factorization.md); until then, McCool et al.'s rank-1 form.
+// study over the MERL proxies (docs/factorization.md §12); until then McCool et al.'s rank 1.
 constexpr bool kDefaultDiffuse = false;
 constexpr int kDefaultRank = 1;
 constexpr bool kDefaultRefine = false;
@@ -157,23 +157,25 @@ void PrintSummary(const std::string& stem, const Factorization& r, double ln_rms
   const std::string psnr = re.ok ? fmt::format("{:.1f}", re.psnr_db) : "-";
   const std::string lum = re.ok ? fmt::format("{:.1f}%", 100 * re.median_rel_error) : "-";
   // Per light, and (mccool's p(wo)) per fragment.
-  const std::string fetches = cost.fetches_per_fragment > 0
-                                  ? fmt::format("{}+{}", cost.fetches_per_light,
-                                                cost.fetches_per_fragment)
-                                  : fmt::format("{}", cost.fetches_per_light);
+  const std::string fetches =
+      cost.fetches_per_fragment > 0
+          ? fmt::format("{}+{}", cost.fetches_per_light, cost.fetches_per_fragment)
+          : fmt::format("{}", cost.fetches_per_light);
   const FactorStats& s = r.stats;
-  fmt::print("{:<28} {:<13} {:>4} {:>8} {:>7} {:>10.4g} {:>9.4g} {:>9.4g} {:>7} {:>7} {:>8.1f} "
-             "{:>7} {:>8} {:>8.1f}ms\n",
-             stem, FactorFormLabel(form), r.options.resolution, s.used_cells, s.nonpositive_cells,
-             ln_rmse, m.log_rmse, m.cbrt_rmse, psnr, lum, cost.texture_bytes / 1024.0, fetches,
-             s.system_rebuilt  ? "rebuilt"
-             : s.system_reused ? "reused"
-                               : "built",
-             1e3 * s.seconds);
+  fmt::print(
+      "{:<28} {:<13} {:>4} {:>8} {:>7} {:>10.4g} {:>9.4g} {:>9.4g} {:>7} {:>7} {:>8.1f} "
+      "{:>7} {:>8} {:>8.1f}ms\n",
+      stem, FactorFormLabel(form), r.options.resolution, s.used_cells, s.nonpositive_cells, ln_rmse,
+      m.log_rmse, m.cbrt_rmse, psnr, lum, cost.texture_bytes / 1024.0, fetches,
+      s.system_rebuilt  ? "rebuilt"
+      : s.system_reused ? "reused"
+                        : "built",
+      1e3 * s.seconds);
   if (r.options.diffuse || r.brdf.has_diffuse()) {
     const auto& d = r.brdf.diffuse();
-    fmt::print("  diffuse d = kd/pi = ({:.4g}, {:.4g}, {:.4g}) 1/sr (kd = {:.4g}, {:.4g}, {:.4g})\n",
-               d[0], d[1], d[2], kPi * d[0], kPi * d[1], kPi * d[2]);
+    fmt::print(
+        "  diffuse d = kd/pi = ({:.4g}, {:.4g}, {:.4g}) 1/sr (kd = {:.4g}, {:.4g}, {:.4g})\n", d[0],
+        d[1], d[2], kPi * d[0], kPi * d[1], kPi * d[2]);
   }
   if (r.brdf.rank() != r.options.rank) {
     fmt::print("  rank {} of the {} asked for\n", r.brdf.rank(), r.options.rank);
@@ -194,10 +196,11 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
   FactorSystemCache cache;
   int code = kExitOk;
   if (!o.quiet) {
-    fmt::print("{:<28} {:<13} {:>4} {:>8} {:>7} {:>10} {:>9} {:>9} {:>7} {:>7} {:>8} {:>7} {:>8} "
-               "{:>9}\n",
-               "table", "form", "res", "cells", "f<=0", "ln-rmse", "E2-log", "cbrt", "psnr_dB",
-               "med_lum", "tex_KiB", "fetches", "system", "time");
+    fmt::print(
+        "{:<28} {:<13} {:>4} {:>8} {:>7} {:>10} {:>9} {:>9} {:>7} {:>7} {:>8} {:>7} {:>8} "
+        "{:>9}\n",
+        "table", "form", "res", "cells", "f<=0", "ln-rmse", "E2-log", "cbrt", "psnr_dB", "med_lum",
+        "tex_KiB", "fetches", "system", "time");
   }
   for (const std::string& file : pipeline::ExpandInputs(o.files)) {
     try {
@@ -259,9 +262,9 @@ Registrar reg{
       sub.add_flag("--diffuse,!--no-diffuse", o->diffuse,
                    "add a diffuse value d = kd/pi to the products, solved with them")
           ->capture_default_str();
-      sub.add_option("--rank", o->rank,
-                     fmt::format("products in the sum, 1 to {} (two textures each)",
-                                 kMaxFactorRank))
+      sub.add_option(
+             "--rank", o->rank,
+             fmt::format("products in the sum, 1 to {} (two textures each)", kMaxFactorRank))
           ->capture_default_str();
       sub.add_flag("--refine,!--no-refine", o->refine,
                    "refine the log-space solution under the relative loss of the analytic fits "

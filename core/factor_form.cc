@@ -32,7 +32,8 @@ FactorCost ComputeFactorCost(const FactorForm& form) {
     throw std::invalid_argument("unknown parameterization '" + form.parameterization + "'");
   }
   FactorCost c;
-  for (const FactorForm::Term& t : form.terms) c.texture_bytes += TextureBytes(t.p) + TextureBytes(t.q);
+  for (const FactorForm::Term& t : form.terms)
+    c.texture_bytes += TextureBytes(t.p) + TextureBytes(t.q);
   if (form.diffuse) c.texture_bytes += kDiffuseBytes;
   c.fetches_per_light = 2 * form.rank();
   c.fetches_per_fragment = mccool ? form.rank() : 0;
@@ -48,7 +49,8 @@ std::string BytesText(std::size_t bytes) {
 std::string FactorCostText(const FactorCost& cost) {
   std::string s = fmt::format("{}, {} fetches per light", BytesText(cost.texture_bytes),
                               cost.fetches_per_light);
-  if (cost.fetches_per_fragment > 0) s += fmt::format(" + {} per fragment", cost.fetches_per_fragment);
+  if (cost.fetches_per_fragment > 0)
+    s += fmt::format(" + {} per fragment", cost.fetches_per_fragment);
   return s;
 }
 

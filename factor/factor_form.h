@@ -9,6 +9,8 @@ namespace brdfit {
 // Parameterization, diffuse (FactoredBrdf::has_diffuse) and every term's texture sizes.
 FactorForm FormOf(const FactoredBrdf& brdf);
 
-inline FactorCost CostOf(const FactoredBrdf& brdf) { return ComputeFactorCost(FormOf(brdf)); }
+inline FactorCost CostOf(const FactoredBrdf& brdf) {
+  return ComputeFactorCost(FormOf(brdf));
+}
 
 }  // namespace brdfit

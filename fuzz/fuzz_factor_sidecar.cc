@@ -74,9 +74,9 @@ int FuzzFactorSidecar(const std::uint8_t* data, std::size_t size) {
   CheckAgreement(back);
   CheckInvariant(back.terms.size() == f.terms.size(), "round trip rank");
   for (std::size_t k = 0; k < f.terms.size(); ++k) {
-    CheckInvariant(back.terms[k].p.image == f.terms[k].p.image &&
-                       back.terms[k].q.image == f.terms[k].q.image,
-                   "round trip images");
+    CheckInvariant(
+        back.terms[k].p.image == f.terms[k].p.image && back.terms[k].q.image == f.terms[k].q.image,
+        "round trip images");
   }
   CheckInvariant(back.diffuse == f.diffuse, "round trip diffuse value");
   CheckInvariant(back.sidecar.at("parameterization") == f.sidecar.at("parameterization"),

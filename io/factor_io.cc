@@ -8,9 +8,9 @@
 #include <optional>
 #include <utility>
 
-#include "io/atomic_file.h"
 #include "core/error.h"
 #include "core/file_stem.h"
+#include "io/atomic_file.h"
 #include "io/input_file.h"
 #include "models/geometry.h"
 
@@ -58,8 +58,7 @@ void CheckDiffuse(const std::array<double, 3>& d, const std::filesystem::path& f
 // valid one through a narrowing get<int>()).
 std::optional<std::int64_t> Integer(const nlohmann::json& v) {
   if (!v.is_number_integer()) return std::nullopt;
-  if (v.is_number_unsigned() &&
-      v.get<std::uint64_t>() > static_cast<std::uint64_t>(INT64_MAX)) {
+  if (v.is_number_unsigned() && v.get<std::uint64_t>() > static_cast<std::uint64_t>(INT64_MAX)) {
     return std::nullopt;
   }
   return v.get<std::int64_t>();
@@ -70,10 +69,9 @@ int ReadVersion(const nlohmann::json& j, const std::filesystem::path& json_path)
   const auto it = j.find("format_version");
   const auto v = it == j.end() ? std::nullopt : Integer(*it);
   if (!v || *v < kFactorFormatOldestVersion || *v > kFactorFormatVersion) {
-    throw InputError(json_path,
-                     fmt::format("unsupported format_version {} (this reader: {} to {})",
-                                 it == j.end() ? std::string("(missing)") : it->dump(),
-                                 kFactorFormatOldestVersion, kFactorFormatVersion));
+    throw InputError(json_path, fmt::format("unsupported format_version {} (this reader: {} to {})",
+                                            it == j.end() ? std::string("(missing)") : it->dump(),
+                                            kFactorFormatOldestVersion, kFactorFormatVersion));
   }
   return static_cast<int>(*v);
 }
@@ -95,16 +93,16 @@ std::array<double, 3> ReadDiffuse(const nlohmann::json& j, const std::filesystem
   const auto it = j.find("diffuse");
   if (it == j.end()) throw InputError(json_path, "missing 'diffuse'");
   if (!it->is_array() || it->size() != 3) {
-    throw InputError(json_path,
-                     fmt::format("diffuse {} is not an array of three numbers (R, G, B in 1/sr)",
-                                 it->dump()));
+    throw InputError(
+        json_path,
+        fmt::format("diffuse {} is not an array of three numbers (R, G, B in 1/sr)", it->dump()));
   }
   std::array<double, 3> d{};
   for (int c = 0; c < 3; ++c) {
     const nlohmann::json& v = (*it)[static_cast<std::size_t>(c)];
     if (!v.is_number()) {
-      throw InputError(json_path, fmt::format("diffuse {} is not an array of three numbers",
-                                              it->dump()));
+      throw InputError(json_path,
+                       fmt::format("diffuse {} is not an array of three numbers", it->dump()));
     }
     d[c] = v.get<double>();
   }
@@ -168,8 +166,8 @@ void WriteFactorFiles(const FactorPaths& paths, FactorFiles files) {
     throw InputError(paths.json, fmt::format("rank {} outside [1, {}]", rank, kFactorFileMaxRank));
   }
   if (paths.terms.size() != files.terms.size()) {
-    throw InputError(paths.json, fmt::format("{} terms for the file names of {}", rank,
-                                             paths.terms.size()));
+    throw InputError(paths.json,
+                     fmt::format("{} terms for the file names of {}", rank, paths.terms.size()));
   }
   CheckDiffuse(files.diffuse, paths.json);
   const std::string param = j["parameterization"].get<std::string>();
@@ -178,7 +176,8 @@ void WriteFactorFiles(const FactorPaths& paths, FactorFiles files) {
   j["rank"] = rank;
   j["diffuse"] = files.diffuse;
   j["kd"] = {kPi * files.diffuse[0], kPi * files.diffuse[1], kPi * files.diffuse[2]};
-  if (!j.contains("textures") || !j["textures"].is_object()) j["textures"] = nlohmann::json::object();
+  if (!j.contains("textures") || !j["textures"].is_object())
+    j["textures"] = nlohmann::json::object();
   // Textures of a higher rank the caller's sidecar may name are not this factorization's.
   for (auto it = j["textures"].begin(); it != j["textures"].end();) {
     it = LooksLikeFactorTexture(it.key()) && !IsTextureOfRank(it.key(), rank)
@@ -238,7 +237,8 @@ FactorFiles ReadFactorFiles(const std::filesystem::path& json_path) {
     for (const bool is_q : {false, true}) {
       const std::string name = FactorTextureName(k, is_q);
       FactorTextureFile& tex = is_q ? f.terms[k].q : f.terms[k].p;
-      const auto t = textures.is_object() ? textures.value(name, nlohmann::json()) : nlohmann::json();
+      const auto t =
+          textures.is_object() ? textures.value(name, nlohmann::json()) : nlohmann::json();
       if (!t.is_object() || !t.contains("file") || !t["file"].is_string() || !t.contains("width") ||
           !t.contains("height")) {
         throw InputError(json_path, fmt::format("missing textures.{} (file, width, height) of "
@@ -258,8 +258,8 @@ FactorFiles ReadFactorFiles(const std::filesystem::path& json_path) {
       }
       if (attr(kExrAttrParameterization) != param) {
         throw InputError(
-            exr, fmt::format("attribute {} is '{}', the sidecar says '{}'", kExrAttrParameterization,
-                             attr(kExrAttrParameterization), param));
+            exr, fmt::format("attribute {} is '{}', the sidecar says '{}'",
+                             kExrAttrParameterization, attr(kExrAttrParameterization), param));
       }
       if (t["width"] != tex.image.width || t["height"] != tex.image.height) {
         throw InputError(

@@ -46,15 +46,18 @@ std::string Formula(const FactoredBrdf& b) {
   return s;
 }
 
-bool Refined(const FactorStats& s) { return s.refine_rows > 0; }
+bool Refined(const FactorStats& s) {
+  return s.refine_rows > 0;
+}
 
 std::string SolverText(const Factorization& r) {
   const FactorOptions& o = r.options;
-  return fmt::format("log-space least squares{}, resolution {}, lambda {}, weighting {}, max theta "
-                     "{} deg, rank {}, diffuse {}",
-                     Refined(r.stats) ? " + relative-loss refinement" : "", o.resolution, o.lambda,
-                     ToString(o.weighting), o.max_theta * 180 / kPi, r.brdf.rank(),
-                     r.brdf.has_diffuse() ? "yes" : "no");
+  return fmt::format(
+      "log-space least squares{}, resolution {}, lambda {}, weighting {}, max theta "
+      "{} deg, rank {}, diffuse {}",
+      Refined(r.stats) ? " + relative-loss refinement" : "", o.resolution, o.lambda,
+      ToString(o.weighting), o.max_theta * 180 / kPi, r.brdf.rank(),
+      r.brdf.has_diffuse() ? "yes" : "no");
 }
 
 ExrAttributes TextureAttributes(const Factorization& r, const FactorTextureSpec& t) {

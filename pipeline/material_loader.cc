@@ -176,8 +176,8 @@ std::shared_ptr<const FactorTextures> FactorCached(const MaterialSpec& m,
   if (!m.factors.empty()) {
     auto f = ToFactorTextures(LoadFactoredBrdf(m.factors));
     if (log) {
-      log->Add("load", "factorization " + m.factors.string() + " (" + FactorFormLabel(f->form()) +
-                           ")");
+      log->Add("load",
+               "factorization " + m.factors.string() + " (" + FactorFormLabel(f->form()) + ")");
     }
     return f;
   }

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/factor_form.h"
-#include "core/table.h"
 #include "core/image.h"
+#include "core/table.h"
 #include "preview/scene.h"
 
 namespace brdfit::preview {
@@ -39,7 +39,8 @@ struct FactorTextures {
   // Label ("mccool+d r2") and cost of the form (core/factor_form.h).
   FactorForm form() const {
     FactorForm f{parameterization, has_diffuse(), {}};
-    for (const Term& t : terms) f.terms.push_back({{t.p.width, t.p.height}, {t.q.width, t.q.height}});
+    for (const Term& t : terms)
+      f.terms.push_back({{t.p.width, t.p.height}, {t.q.width, t.q.height}});
     return f;
   }
 };

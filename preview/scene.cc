@@ -10,8 +10,8 @@
 
 #include "core/error.h"
 #include "io/nbrdf.h"
-#include "preview/material.h"
 #include "models/registry.h"
+#include "preview/material.h"
 
 namespace brdfit::preview {
 

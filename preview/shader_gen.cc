@@ -68,7 +68,8 @@ std::string ShaderVariant::Key() const {
   std::string k = std::string(ToString(material));
   if (material == MaterialKind::kAnalytic) k += ":" + model;
   if (material == MaterialKind::kMeasured) k += std::string(":") + ToString(theta_h_mapping);
-  if (material == MaterialKind::kFactored) k += ":" + factor_param + " r" + std::to_string(factor_rank);
+  if (material == MaterialKind::kFactored)
+    k += ":" + factor_param + " r" + std::to_string(factor_rank);
   k += " dir=" + std::to_string(num_directional) + " point=" + std::to_string(num_point) +
        " spot=" + std::to_string(num_spot) + (punctual_pi ? " pi" : "") + (mesh ? " mesh" : "");
   return k;

@@ -552,13 +552,14 @@ class Page {
       return fmt::format("<td{}>{}</td>", std::isfinite(v) && v == b ? " class=\"bestv\"" : "",
                          Num(v, spec));
     };
-    body_ += "<div class=\"scroll\"><table><tr><th class=\"l\">approximation</th>"
-             "<th>PSNR (dB)</th><th class=\"wrap\">median lum. err.</th>"
-             "<th class=\"l\">loss</th><th class=\"l\">budget</th><th class=\"l\">status</th>"
-             "<th>log_rmse</th><th>cbrt_rmse</th><th>rel_l2</th><th>cells</th>"
-             "<th class=\"wrap\">memory · params</th><th class=\"wrap\">fetches / light</th>"
-             "<th class=\"wrap\">fetches / fragment</th><th>time (ms)</th>"
-             "<th class=\"l\">stages (ms)</th><th>iter.</th><th>Pareto</th></tr>\n";
+    body_ +=
+        "<div class=\"scroll\"><table><tr><th class=\"l\">approximation</th>"
+        "<th>PSNR (dB)</th><th class=\"wrap\">median lum. err.</th>"
+        "<th class=\"l\">loss</th><th class=\"l\">budget</th><th class=\"l\">status</th>"
+        "<th>log_rmse</th><th>cbrt_rmse</th><th>rel_l2</th><th>cells</th>"
+        "<th class=\"wrap\">memory · params</th><th class=\"wrap\">fetches / light</th>"
+        "<th class=\"wrap\">fetches / fragment</th><th>time (ms)</th>"
+        "<th class=\"l\">stages (ms)</th><th>iter.</th><th>Pareto</th></tr>\n";
     for (const std::size_t i : order) {
       const Entry& e = m.entries[i];
       std::string stages;
@@ -584,8 +585,9 @@ class Page {
                       rendered ? fmt::format("{:.1f} %", lum) : "–"),
           HtmlEscape(e.loss), HtmlEscape(e.budget), status,
           cell(ok ? e.metrics.log_rmse : NAN, best_log),
-          cell(ok ? e.metrics.cbrt_rmse : NAN, best_cbrt), cell(ok ? e.metrics.rel_l2 : NAN, best_rel),
-          e.metrics.cells, CostCells(e), cell(e.time_ms, ok ? best_time : NAN, "{:.1f}"), stages,
+          cell(ok ? e.metrics.cbrt_rmse : NAN, best_cbrt),
+          cell(ok ? e.metrics.rel_l2 : NAN, best_rel), e.metrics.cells, CostCells(e),
+          cell(e.time_ms, ok ? best_time : NAN, "{:.1f}"), stages,
           e.kind == Entry::Kind::kFit ? std::to_string(e.iterations) : std::string("–"),
           front.count(i) ? "◆" : "");
     }

@@ -82,8 +82,8 @@ inline Grid SmallGrid() {
 // A factorization built by hand, not solved: `rank` terms of smooth positive textures, term k
 // at resolution `res` >> k (so terms differ in size; halfdiff's q is res x res/2, not square),
 // term k's lobe narrower and weaker with k, plus `diffuse` (1/sr).
-inline FactoredBrdf HandBuiltFactoredBrdf(FactorParam param, int rank, std::array<double, 3> diffuse,
-                                          int res = 16) {
+inline FactoredBrdf HandBuiltFactoredBrdf(FactorParam param, int rank,
+                                          std::array<double, 3> diffuse, int res = 16) {
   const FactorParamSpec& spec = GetFactorParamSpec(param);
   std::vector<FactorTerm> terms;
   for (int k = 0; k < rank; ++k) {
@@ -99,8 +99,8 @@ inline FactoredBrdf HandBuiltFactoredBrdf(FactorParam param, int rank, std::arra
                                   ? 0.3 * (i + 0.5) / w + 0.1 * std::cos(2 * kPi * (j + 0.5) / h)
                                   : 0.0;
           for (int c = 0; c < 3; ++c) {
-            img.At(i, j)[c] = static_cast<float>(
-                floor + scale * (1 + 0.15 * c) * std::exp(-(2.0 + k) * r2 + rect));
+            img.At(i, j)[c] = static_cast<float>(floor + scale * (1 + 0.15 * c) *
+                                                             std::exp(-(2.0 + k) * r2 + rect));
           }
         }
       }

@@ -124,9 +124,10 @@ TEST_F(FactorCli, BadInputsExitTwoNamingTheFile) {
 // section, every texture of the rank written and the form shown in the table.
 TEST_F(FactorCli, FormOptionsAreValidatedRecordedAndShown) {
   const std::string out = (dir_ / "out").string();
-  for (const std::vector<std::string>& opts :
-       {std::vector<std::string>{"--rank", "0"}, {"--rank", "5"}, {"--rank", "two"},
-        {"--refine-iterations", "0"}}) {
+  for (const std::vector<std::string>& opts : {std::vector<std::string>{"--rank", "0"},
+                                               {"--rank", "5"},
+                                               {"--rank", "two"},
+                                               {"--refine-iterations", "0"}}) {
     std::vector<std::string> args = {"factor", table_, "-o", out};
     args.insert(args.end(), opts.begin(), opts.end());
     const CliRun r = Brdfit(args, dir_);

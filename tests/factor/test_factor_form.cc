@@ -59,8 +59,8 @@ TEST(FactorCost, LabelShowsDiffuseAndRank) {
   EXPECT_EQ(FactorFormLabel(Form("mccool", true, {{}})), "mccool+d");
   EXPECT_EQ(FactorFormLabel(Form("halfdiff", false, {{}, {}})), "halfdiff r2");
   EXPECT_EQ(FactorFormLabel(Form("mccool", true, {{}, {}, {}, {}})), "mccool+d r4");
-  EXPECT_EQ(FactorFormLabel(FormOf(testing::HandBuiltFactoredBrdf(FactorParam::kHalfDiff, 2,
-                                                                    {0, 0, 0.5}))),
+  EXPECT_EQ(FactorFormLabel(
+                FormOf(testing::HandBuiltFactoredBrdf(FactorParam::kHalfDiff, 2, {0, 0, 0.5}))),
             "halfdiff+d r2");
 }
 

@@ -39,7 +39,9 @@ json ReadJsonFile(const fs::path& p) {
   std::ifstream in(p);
   return json::parse(in);
 }
-void WriteJsonFile(const fs::path& p, const json& j) { std::ofstream(p) << j.dump(2); }
+void WriteJsonFile(const fs::path& p, const json& j) {
+  std::ofstream(p) << j.dump(2);
+}
 
 // Random directions of the upper hemisphere, some near the horizon.
 std::vector<Vec3> Directions(int n, unsigned seed) {
@@ -189,7 +191,10 @@ TEST(FactorIoRank, InconsistentSidecarsAreInputErrorsNamingFileAndProblem) {
       {"textures.p3: not a texture of a rank-2",
        [](json& j) { j["textures"]["p3"] = j["textures"]["p2"]; }},
       {"diffuse value -0.1 is negative", [](json& j) { j["diffuse"][1] = -0.1; }},
-      {"diffuse [0.1,0.2] is not an array of three", [](json& j) { j["diffuse"] = {0.1, 0.2}; }},
+      {"diffuse [0.1,0.2] is not an array of three",
+       [](json& j) {
+         j["diffuse"] = {0.1, 0.2};
+       }},
       {"diffuse null", [](json& j) { j["diffuse"] = nullptr; }},  // NaN is written as null
       {"not an array of three numbers", [](json& j) { j["diffuse"][2] = nullptr; }},
       {"missing 'diffuse'", [](json& j) { j.erase("diffuse"); }},

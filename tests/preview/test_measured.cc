@@ -137,7 +137,8 @@ TEST(Factored, RankKWithDiffuseGpuMatchesCpuEvaluator) {
                         Case{FactorParam::kMcCool, 4, {0.0, 0.0, 0.0}},
                         Case{FactorParam::kHalfDiff, 4, {0.02, 0.0, 0.01}}}) {
     SCOPED_TRACE(fmt::format("{} rank {} diffuse {}", ToString(c.param), c.rank, c.diffuse[0]));
-    const FactoredBrdf brdf = brdfit::testing::HandBuiltFactoredBrdf(c.param, c.rank, c.diffuse, 16);
+    const FactoredBrdf brdf =
+        brdfit::testing::HandBuiltFactoredBrdf(c.param, c.rank, c.diffuse, 16);
     Scene scene = SphereScene();
     auto render = [&](const FactoredBrdf& b, Image* cpu, ReferenceExtras* ex) {
       MaterialSet mats;

@@ -83,9 +83,11 @@ TEST(Scene, FactoredMaterialTakesRankAndDiffuse) {
   EXPECT_EQ(d.materials[0].factor_rank, 1);
   EXPECT_FALSE(d.materials[0].factor_diffuse);
   ExpectError(R"({"materials": {"f": {"type": "factored", "table": "t.binary", "rank": 5}},
-                  "objects": [{"material": "f"}]})", "'rank' must be in [1, 4]");
+                  "objects": [{"material": "f"}]})",
+              "'rank' must be in [1, 4]");
   ExpectError(R"({"materials": {"f": {"type": "factored", "table": "t.binary", "diffuse": 1}},
-                  "objects": [{"material": "f"}]})", "'diffuse' must be true or false");
+                  "objects": [{"material": "f"}]})",
+              "'diffuse' must be true or false");
 }
 
 TEST(Lights, SeedSemantics) {

@@ -11,10 +11,10 @@
 #include <sstream>
 
 #include "factor/factor_form.h"
-#include "pipeline/factor_export.h"
-#include "report/bench_csv.h"
 #include "io/fit_report.h"
 #include "models/registry.h"
+#include "pipeline/factor_export.h"
+#include "report/bench_csv.h"
 #include "tests/factor/factor_test_util.h"
 #include "tests/report/report_fixture.h"
 

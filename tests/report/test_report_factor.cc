@@ -32,8 +32,13 @@ fs::path SaveHandBuilt(const fs::path& dir, const std::string& stem, FactorParam
   r.brdf = testing::HandBuiltFactoredBrdf(param, rank, diffuse, 16);
   if (refined) r.stats.refine_rows = 1000;
   const json metrics = {{"fit_metrics",
-                         {{"ok", true}, {"log_rmse", 0.05}, {"cbrt_rmse", 0.04}, {"rel_l2", 0.3},
-                          {"cells", 500}, {"weighting", "bin-measure"}, {"cutoff_deg", 80}}}};
+                         {{"ok", true},
+                          {"log_rmse", 0.05},
+                          {"cbrt_rmse", 0.04},
+                          {"rel_l2", 0.3},
+                          {"cells", 500},
+                          {"weighting", "bin-measure"},
+                          {"cutoff_deg", 80}}}};
   return SaveFactorization(r, dir, stem,
                            {{"source", {{"file", "/data/gold.binary"}}}, {"metrics", metrics}})
       .json;
@@ -56,9 +61,9 @@ TEST(ReportFactor, EntryIsLabelledWithItsFormAndCarriesItsCost) {
   EXPECT_EQ(e.cost.fetches_per_light, 4);
   EXPECT_EQ(e.cost.fetches_per_fragment, 2);
 
-  const Entry r = FactorEntry(SaveHandBuilt(dir.path(), "gold.r", FactorParam::kHalfDiff, 1,
-                                            {0, 0, 0}, /*refined=*/true),
-                              &material, &table);
+  const Entry r = FactorEntry(
+      SaveHandBuilt(dir.path(), "gold.r", FactorParam::kHalfDiff, 1, {0, 0, 0}, /*refined=*/true),
+      &material, &table);
   EXPECT_EQ(r.name, "factor:halfdiff");  // rank 1 without diffuse: the name it always had
   EXPECT_EQ(r.loss, "log (linear) + rel (refined)");
   EXPECT_EQ(r.cost.fetches_per_light, 2);
