@@ -1,19 +1,14 @@
 // Factorizations as seen: the rendered-image metric (docs/accuracy.md) of `brdfit factor`'s
-// factorizations over the NBRDF proxies of the 100 MERL materials, per parameterization,
-// resolution and form (rank, diffuse value, refinement), with the columns of the fit study in
-// docs/accuracy.md (bench_accuracy). The "Rendered error" section of docs/factorization.md is
-// made with it; the study of the factored form's defaults (cli/cmd_factor.cc) runs its forms.
+// rank-1 factorizations over the NBRDF proxies of the 100 MERL materials, per parameterization
+// and resolution, with the columns of the fit study in docs/accuracy.md (bench_accuracy). The
+// "Rendered error" section of docs/factorization.md is made with it.
 //
 //   bench_factor_accuracy --csv FILE [--params mccool,halfdiff] [--res 64] [--lambda 1e-8]
-//                         [--forms r1,r1+d,r2+d,r1/refine] [--nbrdf all|m1,m2] [--jobs 2]
-//
-// A form is "r<K>" with "+d" for a diffuse value and "/refine" for the relative-loss
-// refinement (FactorOptions; default r1, the rank-1 pure form).
+//                         [--nbrdf all|m1,m2] [--jobs 2]
 //
 // Each material is scored exactly as `brdfit factor` scores it (factor/factor_metrics.h: the
 // float32 textures through FactoredBrdf::Eval, what the preview draws; the default scene). One
-// CSV row per factorization: material, param, res, form, rank and diffuse as solved, texture
-// bytes and fetches per light (core/factor_form.h), ln_ratio_rmse, log_rmse (E2), psnr_db,
+// CSV row per factorization: material, param, res, ln_ratio_rmse, log_rmse (E2), psnr_db,
 // psnr_srgb_db, median and p95 relative luminance error, factor time; the summary per
 // configuration on stdout (bench/rendered_summary.h).
 #include <fmt/core.h>
@@ -24,7 +19,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
-#include <stdexcept>
 #include <string>
 #include <thread>
 #include <tuple>
@@ -33,7 +27,6 @@
 #include "bench/bench_tables.h"
 #include "bench/rendered_summary.h"
 #include "factor/factor.h"
-#include "factor/factor_form.h"
 #include "factor/factor_metrics.h"
 #include "io/atomic_file.h"
 #include "pipeline/inputs.h"
@@ -43,41 +36,10 @@ namespace {
 using namespace brdfit;
 namespace fs = std::filesystem;
 
-// A form of --forms: "r2+d/refine" is rank 2, a diffuse value, refined.
-struct Form {
-  std::string name;
-  int rank = 1;
-  bool diffuse = false, refine = false;
-};
-Form ParseForm(const std::string& s) {
-  Form f;
-  f.name = s;
-  std::string rest = s;
-  if (const auto slash = rest.find('/'); slash != std::string::npos) {
-    if (rest.substr(slash) != "/refine")
-      throw std::invalid_argument("form " + s + ": /refine or nothing");
-    f.refine = true;
-    rest = rest.substr(0, slash);
-  }
-  if (rest.size() >= 2 && rest.compare(rest.size() - 2, 2, "+d") == 0) {
-    f.diffuse = true;
-    rest = rest.substr(0, rest.size() - 2);
-  }
-  if (rest.size() != 2 || rest[0] != 'r' || rest[1] < '1' || rest[1] > '0' + kMaxFactorRank) {
-    throw std::invalid_argument(
-        fmt::format("form {}: r1 to r{}, then +d and /refine if wanted", s, kMaxFactorRank));
-  }
-  f.rank = rest[1] - '0';
-  return f;
-}
-
 struct Config {
   FactorParam param;
   int resolution;
-  Form form;
-  std::string Key() const {
-    return fmt::format("{} {}^2 {}", ToString(param), resolution, form.name);
-  }
+  std::string Key() const { return fmt::format("{} {}^2", ToString(param), resolution); }
 };
 
 struct Row {
@@ -85,8 +47,6 @@ struct Row {
   std::size_t config = 0;
   std::string error;  // factorization failed (InputError / runtime_error)
   double ln_ratio_rmse = 0, factor_ms = 0;
-  std::string solved_form;  // the label of what the solver returned (core/factor_form.h)
-  FactorCost cost;
   FitMetrics fit;
   RenderedError rendered;
 };
@@ -95,7 +55,7 @@ struct Row {
 
 int main(int argc, char** argv) {
   std::string csv = "factor_accuracy.csv";
-  std::vector<std::string> params = {"mccool", "halfdiff"}, nbrdf = {"all"}, forms = {"r1"};
+  std::vector<std::string> params = {"mccool", "halfdiff"}, nbrdf = {"all"};
   std::vector<int> resolutions = {64};
   double lambda = FactorOptions{}.lambda;
   int jobs = 2;
@@ -115,8 +75,6 @@ int main(int argc, char** argv) {
       for (const auto& r : bench::SplitList(v)) resolutions.push_back(std::atoi(r.c_str()));
     } else if (a == "--lambda") {
       lambda = std::atof(v.c_str());
-    } else if (a == "--forms") {
-      forms = bench::SplitList(v);
     } else if (a == "--nbrdf") {
       nbrdf = bench::SplitList(v);
     } else if (a == "--jobs") {
@@ -129,9 +87,7 @@ int main(int argc, char** argv) {
   std::vector<Config> configs;
   try {
     for (const auto& p : params) {
-      for (int r : resolutions) {
-        for (const auto& f : forms) configs.push_back({FactorParamFromString(p), r, ParseForm(f)});
-      }
+      for (int r : resolutions) configs.push_back({FactorParamFromString(p), r});
     }
   } catch (const std::exception& e) {
     fmt::print(stderr, "{}\n", e.what());
@@ -156,13 +112,8 @@ int main(int argc, char** argv) {
         o.param = configs[c].param;
         o.resolution = configs[c].resolution;
         o.lambda = lambda;
-        o.rank = configs[c].form.rank;
-        o.diffuse = configs[c].form.diffuse;
-        o.refine = configs[c].form.refine;
         try {
           const Factorization r = Factor(table, o, &cache);
-          row.solved_form = FactorFormLabel(FormOf(r.brdf));
-          row.cost = CostOf(r.brdf);
           row.factor_ms = 1e3 * r.stats.seconds;
           row.ln_ratio_rmse = FactorLnRatioRmse(table, r.brdf, o.max_theta);
           row.fit = ScoreFactorization(table, r.brdf);
@@ -189,18 +140,15 @@ int main(int argc, char** argv) {
   });
 
   std::string out =
-      "material,param,res,form,solved_form,texture_bytes,fetches_per_light,fetches_per_fragment,"
-      "status,ln_ratio_rmse,log_rmse,psnr_db,psnr_srgb_db,median_rel_error,p95_rel_error,"
-      "factor_ms\n";
+      "material,param,res,status,ln_ratio_rmse,log_rmse,psnr_db,psnr_srgb_db,median_rel_error,"
+      "p95_rel_error,factor_ms\n";
   for (const Row& r : rows) {
     const RenderedError& e = r.rendered;
     const std::string status = !r.error.empty() ? "failed" : e.ok ? "ok" : "metric_failed";
-    out += fmt::format(
-        "{},{},{},{},{},{},{},{},{},{:.6g},{:.6g},{:.4f},{:.4f},{:.6f},{:.6f},{:.1f}\n", r.material,
-        ToString(configs[r.config].param), configs[r.config].resolution,
-        configs[r.config].form.name, r.solved_form, r.cost.texture_bytes, r.cost.fetches_per_light,
-        r.cost.fetches_per_fragment, status, r.ln_ratio_rmse, r.fit.log_rmse, e.psnr_db,
-        e.psnr_srgb_db, e.median_rel_error, e.p95_rel_error, r.factor_ms);
+    out += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.4f},{:.4f},{:.6f},{:.6f},{:.1f}\n", r.material,
+                       ToString(configs[r.config].param), configs[r.config].resolution, status,
+                       r.ln_ratio_rmse, r.fit.log_rmse, e.psnr_db, e.psnr_srgb_db,
+                       e.median_rel_error, e.p95_rel_error, r.factor_ms);
   }
   WriteTextAtomically(csv, out);
 
