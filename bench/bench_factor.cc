@@ -11,10 +11,11 @@
 #include <filesystem>
 #include <string>
 
+#include "core/synth.h"
 #include "factor/factor.h"
+#include "factor/factor_form.h"
 #include "factor/factor_metrics.h"
 #include "io/nbrdf.h"
-#include "core/synth.h"
 #include "models/registry.h"
 
 namespace brdfit {
@@ -55,7 +56,7 @@ FactorOptions Options(const benchmark::State& state) {
 }
 
 void Label(benchmark::State& state, const Factorization& r) {
-  state.SetLabel(TheMaterial().name + " " + ToString(r.options.param));
+  state.SetLabel(TheMaterial().name + " " + FactorFormLabel(FormOf(r.brdf)));
   state.counters["cells"] = static_cast<double>(r.stats.used_cells);
   state.counters["f<=0"] = static_cast<double>(r.stats.nonpositive_cells);
   state.counters["pcg_it"] = r.stats.pcg_iterations;

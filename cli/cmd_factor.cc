@@ -1,5 +1,6 @@
-// `brdfit factor FILES... -o DIR`: rank-1 homomorphic factorization of each table into two
-// float32 OpenEXR textures plus a JSON sidecar (factor/factor.h, docs/factorization.md), scored
+// `brdfit factor FILES... -o DIR`: homomorphic factorization of each table into float32 OpenEXR
+// textures (two per term; with --rank K, K products, with --diffuse a diffuse value added) plus
+// a JSON sidecar (factor/factor.h, docs/factorization.md), scored
 // like a fit (fit metrics and the rendered-image metric, docs/accuracy.md). The factored system
 // is built once per grid and mask and reused for every further file.
 #include <fmt/core.h>
@@ -14,24 +15,32 @@
 
 #include "cli/command.h"
 #include "cli/demo.h"
-#include "pipeline/inputs.h"
-#include "factor/factor.h"
-#include "pipeline/factor_export.h"
-#include "factor/factor_metrics.h"
 #include "core/error.h"
 #include "core/file_stem.h"
+#include "factor/factor.h"
+#include "factor/factor_form.h"
+#include "factor/factor_metrics.h"
 #include "io/factor_io.h"
-#include "io/output_policy.h"
 #include "io/input_file.h"
 #include "io/metrics_json.h"
 #include "io/nbrdf.h"
-#include "report/report_inputs.h"
+#include "io/output_policy.h"
 #include "io/table_io.h"
+#include "pipeline/factor_export.h"
+#include "pipeline/inputs.h"
+#include "report/report_inputs.h"
 
 namespace brdfit::cli {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The defaults of the factored form and its solve, in one place: they are to be chosen by a
+// study over the MERL proxies (docs/factorization.md §12); until then McCool et al.'s rank 1.
+constexpr bool kDefaultDiffuse = false;
+constexpr int kDefaultRank = 1;
+constexpr bool kDefaultRefine = false;
+constexpr int kMaxRefineIterations = 10000;
 
 struct FactorCliOptions {
   std::vector<std::string> files;
@@ -42,6 +51,10 @@ struct FactorCliOptions {
   std::string weighting = "solid-angle";
   double max_theta_deg = 90;
   double metric_cutoff_deg = SampleOptions{}.cutoff_deg;
+  bool diffuse = kDefaultDiffuse;
+  int rank = kDefaultRank;
+  bool refine = kDefaultRefine;
+  int refine_iterations = FactorOptions{}.refine_iterations;
   std::string suffix;  // appended to each output stem (the demo writes both forms)
   bool quiet = false;
 };
@@ -106,6 +119,17 @@ FactorOptions CheckOptions(const FactorCliOptions& o) {
   if (!(o.lambda > 0) || !std::isfinite(o.lambda)) {
     throw InputError(fmt::format("--lambda {} must be a positive number", o.lambda));
   }
+  if (o.rank < 1 || o.rank > kMaxFactorRank) {
+    throw InputError(fmt::format("--rank {} outside [1, {}]", o.rank, kMaxFactorRank));
+  }
+  if (o.refine_iterations < 1 || o.refine_iterations > kMaxRefineIterations) {
+    throw InputError(fmt::format("--refine-iterations {} outside [1, {}]", o.refine_iterations,
+                                 kMaxRefineIterations));
+  }
+  f.diffuse = o.diffuse;
+  f.rank = o.rank;
+  f.refine = o.refine;
+  f.refine_iterations = o.refine_iterations;
   std::map<std::string, std::string> stems;
   const std::vector<std::string> inputs = pipeline::ExpandInputs(o.files);
   std::vector<PlannedOutput> outputs;
@@ -115,12 +139,53 @@ FactorOptions CheckOptions(const FactorCliOptions& o) {
     if (auto [it, fresh] = stems.emplace(stem, file); !fresh) {
       throw InputError(file, fmt::format("writes the same outputs ({}.*) as {}", stem, it->second));
     }
-    const FactorPaths paths = FactorFilePaths(o.out_dir, stem);
-    for (const fs::path& p : {paths.p, paths.q, paths.json}) outputs.push_back({p, "-o " + o.out_dir});
+    for (const fs::path& p : FactorFilePaths(o.out_dir, stem, o.rank).All()) {
+      outputs.push_back({p, "-o " + o.out_dir});
+    }
   }
   CheckOutputFolder(o.out_dir, "-o");
   CheckOutputs(pipeline::InputFiles(inputs), outputs);
   return f;
+}
+
+// One line per table (as brdfit fit prints its metrics: "-" when the rendered metric failed,
+// the sidecar says why), then, when there is one, the diffuse value, and what the refinement did.
+void PrintSummary(const std::string& stem, const Factorization& r, double ln_rmse,
+                  const FitMetrics& m, const RenderedError& re) {
+  const FactorForm form = FormOf(r.brdf);
+  const FactorCost cost = ComputeFactorCost(form);
+  const std::string psnr = re.ok ? fmt::format("{:.1f}", re.psnr_db) : "-";
+  const std::string lum = re.ok ? fmt::format("{:.1f}%", 100 * re.median_rel_error) : "-";
+  // Per light, and (mccool's p(wo)) per fragment.
+  const std::string fetches =
+      cost.fetches_per_fragment > 0
+          ? fmt::format("{}+{}", cost.fetches_per_light, cost.fetches_per_fragment)
+          : fmt::format("{}", cost.fetches_per_light);
+  const FactorStats& s = r.stats;
+  fmt::print(
+      "{:<28} {:<13} {:>4} {:>8} {:>7} {:>10.4g} {:>9.4g} {:>9.4g} {:>7} {:>7} {:>8.1f} "
+      "{:>7} {:>8} {:>8.1f}ms\n",
+      stem, FactorFormLabel(form), r.options.resolution, s.used_cells, s.nonpositive_cells, ln_rmse,
+      m.log_rmse, m.cbrt_rmse, psnr, lum, cost.texture_bytes / 1024.0, fetches,
+      s.system_rebuilt  ? "rebuilt"
+      : s.system_reused ? "reused"
+                        : "built",
+      1e3 * s.seconds);
+  if (r.options.diffuse || r.brdf.has_diffuse()) {
+    const auto& d = r.brdf.diffuse();
+    fmt::print(
+        "  diffuse d = kd/pi = ({:.4g}, {:.4g}, {:.4g}) 1/sr (kd = {:.4g}, {:.4g}, {:.4g})\n", d[0],
+        d[1], d[2], kPi * d[0], kPi * d[1], kPi * d[2]);
+  }
+  if (r.brdf.rank() != r.options.rank) {
+    fmt::print("  rank {} of the {} asked for\n", r.brdf.rank(), r.options.rank);
+  }
+  if (s.refine_rows > 0) {
+    fmt::print("  refine: relative RMS {:.4g} -> {:.4g}, {} iterations, {} rows, {:.2f} s\n",
+               s.refine_rel_rms_start, s.refine_rel_rms, s.refine_iterations, s.refine_rows,
+               s.refine_seconds);
+  }
+  std::fflush(stdout);  // one table at a time, visible as it finishes
 }
 
 int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullptr) {
@@ -131,9 +196,11 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
   FactorSystemCache cache;
   int code = kExitOk;
   if (!o.quiet) {
-    fmt::print("{:<28} {:<8} {:>4} {:>8} {:>7} {:>10} {:>9} {:>9} {:>7} {:>7} {:>8} {:>9}\n",
-               "table", "param", "res", "cells", "f<=0", "ln-rmse", "E2-log", "cbrt", "psnr_dB",
-               "med_lum", "system", "time");
+    fmt::print(
+        "{:<28} {:<13} {:>4} {:>8} {:>7} {:>10} {:>9} {:>9} {:>7} {:>7} {:>8} {:>7} {:>8} "
+        "{:>9}\n",
+        "table", "form", "res", "cells", "f<=0", "ln-rmse", "E2-log", "cbrt", "psnr_dB", "med_lum",
+        "tex_KiB", "fetches", "system", "time");
   }
   for (const std::string& file : pipeline::ExpandInputs(o.files)) {
     try {
@@ -153,22 +220,9 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
           r, o.out_dir, stem,
           {{"source", SourceJson(file, table)}, {"metrics", MetricsJson(m, re, ln_rmse)}});
       if (written) {
-        for (const fs::path& p : {paths.p, paths.q, paths.json}) written->push_back(p);
+        for (const fs::path& p : paths.All()) written->push_back(p);
       }
-      if (!o.quiet) {
-        // As brdfit fit prints them: "-" when the metric failed (the sidecar says why).
-        const std::string psnr = re.ok ? fmt::format("{:.1f}", re.psnr_db) : "-";
-        const std::string lum = re.ok ? fmt::format("{:.1f}%", 100 * re.median_rel_error) : "-";
-        fmt::print("{:<28} {:<8} {:>4} {:>8} {:>7} {:>10.4g} {:>9.4g} {:>9.4g} {:>7} {:>7} {:>8} "
-                   "{:>8.1f}ms\n",
-                   stem, o.param, options.resolution, r.stats.used_cells, r.stats.nonpositive_cells,
-                   ln_rmse, m.log_rmse, m.cbrt_rmse, psnr, lum,
-                   r.stats.system_rebuilt  ? "rebuilt"
-                   : r.stats.system_reused ? "reused"
-                                           : "built",
-                   1e3 * r.stats.seconds);
-        std::fflush(stdout);  // one line per table, visible as it finishes
-      }
+      if (!o.quiet) PrintSummary(stem, r, ln_rmse, m, re);
     } catch (const InputError& e) {
       fmt::print(stderr, "brdfit: error: {}\n", e.what());
       code = kExitBadInput;
@@ -182,7 +236,7 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
 }
 
 Registrar reg{
-    "factor", "Factor tables into two textures (McCool 2001 homomorphic factorization)",
+    "factor", "Factor tables into textures (McCool 2001 homomorphic factorization)",
     [](CLI::App& sub) {
       auto o = std::make_shared<FactorCliOptions>();
       sub.add_option("files", o->files,
@@ -205,13 +259,30 @@ Registrar reg{
       sub.add_option("--metric-cutoff", o->metric_cutoff_deg,
                      "angle cut-off of the fit metrics (degrees), as brdfit fit")
           ->capture_default_str();
+      sub.add_flag("--diffuse,!--no-diffuse", o->diffuse,
+                   "add a diffuse value d = kd/pi to the products, solved with them")
+          ->capture_default_str();
+      sub.add_option(
+             "--rank", o->rank,
+             fmt::format("products in the sum, 1 to {} (two textures each)", kMaxFactorRank))
+          ->capture_default_str();
+      sub.add_flag("--refine,!--no-refine", o->refine,
+                   "refine the log-space solution under the relative loss of the analytic fits "
+                   "(implied by --diffuse and --rank > 1)")
+          ->capture_default_str();
+      sub.add_option("--refine-iterations", o->refine_iterations,
+                     "Levenberg-Marquardt iterations of the refinement, at most")
+          ->capture_default_str();
       sub.add_flag("-q,--quiet", o->quiet, "no table on stdout");
       sub.footer(
           "Exit codes: 0 ok, 2 bad input (named, the other tables are still factored).\n"
-          "Writes DIR/<stem>.p.exr, DIR/<stem>.q.exr (float32 RGB OpenEXR) and "
-          "DIR/<stem>.factor.json per table\n(docs/formats.md, docs/factorization.md).\n"
+          "Writes DIR/<stem>.p.exr, DIR/<stem>.q.exr (float32 RGB OpenEXR; with --rank K also\n"
+          "<stem>.p2.exr, <stem>.q2.exr, ... up to K) and DIR/<stem>.factor.json per table\n"
+          "(docs/formats.md, docs/factorization.md). The table: form (parameterization, +d with a\n"
+          "diffuse value, rK for rank K), texture memory and fetches per light (+ per fragment).\n"
           "Examples:\n"
           "  brdfit factor gold-paint.binary -o out\n"
+          "  brdfit factor gold-paint.binary --diffuse --rank 2 -o out\n"
           "  brdfit factor mats/*.binary --param halfdiff --res 32 --lambda 1e-4 -o out\n"
           "  brdfit factor nbrdf:all --res 32 -o nbrdf-factors");
       return [o] { return RunFactor(*o); };

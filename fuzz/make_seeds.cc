@@ -399,30 +399,51 @@ void SidecarCrafted(const fs::path& dir) {
 }
 
 void SidecarSeeds(const fs::path& dir) {
-  // The fuzz_factor_sidecar harness writes p (3 x 2) and q (2 x 4) as f.p.exr, f.q.exr with
-  // parameterization "pq"; this sidecar is what WriteFactorFiles writes for them.
+  // The fuzz_factor_sidecar harness writes, with parameterization "pq", p (3 x 2), q (2 x 4),
+  // p2 (2 x 2) and q2 (3 x 3) as f.p.exr, f.q.exr, f.p2.exr, f.q2.exr; these sidecars are what
+  // WriteFactorFiles writes for them at rank 2 (with a diffuse value) and at rank 1.
   const fs::path tmp = dir / ".tmp";
   fs::create_directories(tmp);
   FactorFiles f;
   f.sidecar = {{"parameterization", "pq"},
-               {"formula", "f = p(wi) q(wh) p(wo)"},
+               {"formula", "f = d + p(wi) q(wh) p(wo) + p2(wi) q2(wh) p2(wo)"},
                {"statistics", {{"cells", 12}, {"rms", 0.25}}}};
-  f.p.image = RgbImage::Filled(3, 2, 0.25f);
-  f.q.image = RgbImage::Filled(2, 4, 2.0f);
-  const FactorPaths paths = FactorFilePaths(tmp, "f");
-  WriteFactorFiles(paths, f);
-  const std::string valid = ReadAll(paths.json);
+  f.diffuse = {0.01, 0.02, 0.03};
+  f.terms.resize(2);
+  f.terms[0].p.image = RgbImage::Filled(3, 2, 0.25f);
+  f.terms[0].q.image = RgbImage::Filled(2, 4, 2.0f);
+  f.terms[1].p.image = RgbImage::Filled(2, 2, 0.5f);
+  f.terms[1].q.image = RgbImage::Filled(3, 3, 1.0f);
+  WriteFactorFiles(FactorFilePaths(tmp, "f", 2), f);
+  const std::string valid = ReadAll(tmp / "f.factor.json");
+  f.terms.resize(1);
+  f.diffuse = {0, 0, 0};
+  WriteFactorFiles(FactorFilePaths(tmp, "f", 1), f);
+  const std::string rank1 = ReadAll(tmp / "f.factor.json");
   fs::remove_all(tmp);
   WriteBytes(dir / "valid.json", valid);
-  nlohmann::json j = nlohmann::json::parse(valid);
+  WriteBytes(dir / "valid-rank-1.json", rank1);
+  nlohmann::json j = nlohmann::json::parse(rank1);  // as version 1 wrote it
+  j["format_version"] = 1;
+  j.erase("rank");
+  j.erase("diffuse");
+  j.erase("kd");
+  WriteBytes(dir / "version-1.json", j.dump());
+  j = nlohmann::json::parse(valid);
   j["textures"]["q"]["width"] = 3;
   WriteBytes(dir / "size-mismatch.json", j.dump());
   j = nlohmann::json::parse(valid);
   j["textures"]["p"]["file"] = "f.q.exr";
   WriteBytes(dir / "swapped-factor.json", j.dump());
   j = nlohmann::json::parse(valid);
-  j["format_version"] = 2;
-  WriteBytes(dir / "version-2.json", j.dump());
+  j["rank"] = 3;
+  WriteBytes(dir / "rank-beyond-textures.json", j.dump());
+  j = nlohmann::json::parse(valid);
+  j["diffuse"] = {0.01, -0.02, 0.03};
+  WriteBytes(dir / "negative-diffuse.json", j.dump());
+  j = nlohmann::json::parse(valid);
+  j["format_version"] = 3;
+  WriteBytes(dir / "version-3.json", j.dump());
   WriteBytes(dir / "not-object.json", "[1, 2, 3]");
 }
 

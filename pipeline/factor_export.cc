@@ -16,26 +16,66 @@ constexpr const char* kAttrValues = "brdfit:values";
 constexpr const char* kAttrGauge = "brdfit:gauge";
 constexpr const char* kAttrSolver = "brdfit:solver";
 
+static_assert(kFactorFileMaxRank == kMaxFactorRank, "the files hold every rank the solver makes");
+
 const char* UnitsText(const char* units) {
   return std::string(units) == "1" ? "1 (dimensionless)" : units;
 }
 
+// Term k's product in the notation of the sidecar's texture names: "p2(wi) q2(wh) p2(wo)".
+std::string TermFormula(const FactorParamSpec& spec, int k) {
+  const std::string f = spec.formula;  // "f(wi,wo) = p(wi) q(wh) p(wo)"
+  const std::string rhs = f.substr(f.find("= ") + 2);
+  std::string out;
+  for (std::size_t i = 0; i < rhs.size(); ++i) {
+    const bool factor = (rhs[i] == 'p' || rhs[i] == 'q') && i + 1 < rhs.size() &&
+                        rhs[i + 1] == '(' && (i == 0 || rhs[i - 1] == ' ');
+    out += factor ? FactorTextureName(k, rhs[i] == 'q') : std::string(1, rhs[i]);
+  }
+  return out;
+}
+
+// The stored form: McCool et al.'s product at rank 1 without diffuse, else
+// "f(wi,wo) = d + p(wi) q(wh) p(wo) + p2(wi) q2(wh) p2(wo)".
+std::string Formula(const FactoredBrdf& b) {
+  const FactorParamSpec& spec = b.spec();
+  if (b.rank() == 1 && !b.has_diffuse()) return spec.formula;
+  std::string s = "f(wi,wo) = ";
+  if (b.has_diffuse()) s += "d + ";
+  for (int k = 0; k < b.rank(); ++k) s += (k ? " + " : "") + TermFormula(spec, k);
+  return s;
+}
+
+bool Refined(const FactorStats& s) {
+  return s.refine_rows > 0;
+}
+
+std::string SolverText(const Factorization& r) {
+  const FactorOptions& o = r.options;
+  return fmt::format(
+      "log-space least squares{}, resolution {}, lambda {}, weighting {}, max theta "
+      "{} deg, rank {}, diffuse {}",
+      Refined(r.stats) ? " + relative-loss refinement" : "", o.resolution, o.lambda,
+      ToString(o.weighting), o.max_theta * 180 / kPi, r.brdf.rank(),
+      r.brdf.has_diffuse() ? "yes" : "no");
+}
+
 ExrAttributes TextureAttributes(const Factorization& r, const FactorTextureSpec& t) {
   const FactorParamSpec& spec = r.brdf.spec();
+  const bool sum = r.brdf.rank() > 1 || r.brdf.has_diffuse();
   return {
-      {kAttrFormula, spec.formula},
+      {kAttrFormula, Formula(r.brdf)},
       {kAttrArgument, t.argument},
       {kAttrMap, ToString(t.map)},
       {kAttrMapFormula, MapFormula(t.map)},
       {kAttrUnits, UnitsText(t.units)},
       {kAttrValues,
-       "linear factor values, float32, linear RGB; the product is f_r in 1/sr without the "
-       "cosine"},
+       sum ? "linear factor values, float32, linear RGB; the diffuse value plus the sum of the "
+             "products is f_r in 1/sr without the cosine"
+           : "linear factor values, float32, linear RGB; the product is f_r in 1/sr without the "
+             "cosine"},
       {kAttrGauge, spec.gauge},
-      {kAttrSolver, fmt::format("log-space least squares, resolution {}, lambda {}, "
-                                "weighting {}, max theta {} deg",
-                                r.options.resolution, r.options.lambda,
-                                ToString(r.options.weighting), r.options.max_theta * 180 / kPi)},
+      {kAttrSolver, SolverText(r)},
   };
 }
 
@@ -51,21 +91,36 @@ nlohmann::json TextureJson(const FactorTextureSpec& t) {
 nlohmann::json DescribeFactorization(const Factorization& r) {
   const FactorParamSpec& spec = r.brdf.spec();
   const FactorStats& s = r.stats;
+  const FactorOptions& o = r.options;
   nlohmann::json j;
   j["parameterization"] = ToString(spec.param);
-  j["formula"] = spec.formula;
+  j["formula"] = Formula(r.brdf);
   j["values"] = "f_r in 1/sr without the cosine, linear RGB";
+  j["diffuse_definition"] = "d = kd / pi in 1/sr, linear RGB, added to the sum of the products";
   j["gauge"] = spec.gauge;
-  j["textures"]["p"] = TextureJson(spec.p);
-  j["textures"]["q"] = TextureJson(spec.q);
-  j["solver"] = {{"method",
-                  "log-space linear least squares, sparse LDLT of the normal "
-                  "equations (docs/factorization.md)"},
-                 {"resolution", r.options.resolution},
-                 {"profile_knots", r.options.resolution},
-                 {"lambda", r.options.lambda},
-                 {"weighting", ToString(r.options.weighting)},
-                 {"max_theta_deg", r.options.max_theta * 180 / kPi}};
+  for (int k = 0; k < r.brdf.rank(); ++k) {
+    j["textures"][FactorTextureName(k, false)] = TextureJson(spec.p);
+    j["textures"][FactorTextureName(k, true)] = TextureJson(spec.q);
+  }
+  std::string method =
+      "log-space linear least squares, sparse LDLT of the normal equations "
+      "(docs/factorization.md)";
+  if (Refined(s)) {
+    method +=
+        "; then Levenberg-Marquardt on the log-texel values (and the diffuse value) under the "
+        "relative loss (f - m) / (m + eps) with solid-angle weights";
+  }
+  j["solver"] = {{"method", method},
+                 {"resolution", o.resolution},
+                 {"profile_knots", o.resolution},
+                 {"lambda", o.lambda},
+                 {"weighting", ToString(o.weighting)},
+                 {"max_theta_deg", o.max_theta * 180 / kPi},
+                 {"diffuse", o.diffuse},
+                 {"rank", o.rank},
+                 {"refine", o.refine},
+                 {"refine_iterations", o.refine_iterations},
+                 {"refine_rows", o.refine_rows}};
   j["stats"] = {{"grid_cells", s.grid_cells},
                 {"valid_cells", s.valid_cells},
                 {"usable_cells", s.usable_cells},
@@ -77,7 +132,13 @@ nlohmann::json DescribeFactorization(const Factorization& r) {
                 {"clamped_texels", s.clamped_texels},
                 {"system_seconds", s.system_seconds},
                 {"seconds", s.seconds},
-                {"solve_log_rms", s.solve_log_rms}};
+                {"solve_log_rms", s.solve_log_rms},
+                {"refined", Refined(s)},
+                {"refine_rows", s.refine_rows},
+                {"refine_iterations", s.refine_iterations},
+                {"refine_rel_rms_start", s.refine_rel_rms_start},
+                {"refine_rel_rms", s.refine_rel_rms},
+                {"refine_seconds", s.refine_seconds}};
   return j;
 }
 
@@ -87,9 +148,12 @@ FactorPaths SaveFactorization(const Factorization& r, const std::filesystem::pat
   FactorFiles files;
   files.sidecar = DescribeFactorization(r);
   files.sidecar.update(extra, /*merge_objects=*/true);
-  files.p = {r.brdf.p(), TextureAttributes(r, spec.p)};
-  files.q = {r.brdf.q(), TextureAttributes(r, spec.q)};
-  const FactorPaths paths = FactorFilePaths(dir, stem);
+  files.diffuse = r.brdf.diffuse();
+  for (const FactorTerm& t : r.brdf.terms()) {
+    files.terms.push_back(
+        {{t.p, TextureAttributes(r, spec.p)}, {t.q, TextureAttributes(r, spec.q)}});
+  }
+  const FactorPaths paths = FactorFilePaths(dir, stem, r.brdf.rank());
   WriteFactorFiles(paths, std::move(files));
   return paths;
 }
@@ -104,21 +168,25 @@ FactoredBrdf LoadFactoredBrdf(const std::filesystem::path& json_path, nlohmann::
   }
   const FactorParamSpec& spec = GetFactorParamSpec(param);
   const std::filesystem::path dir = json_path.parent_path();
-  const FactorTextureSpec* specs[2] = {&spec.p, &spec.q};
-  const FactorTextureFile* tex[2] = {&f.p, &f.q};
-  const char* names[2] = {"p", "q"};
-  for (int k = 0; k < 2; ++k) {
-    const auto it = tex[k]->attributes.find(kAttrMap);
-    const std::string map = it == tex[k]->attributes.end() ? "(missing)" : it->second;
-    if (map != ToString(specs[k]->map)) {
-      throw InputError(dir / f.sidecar["textures"][names[k]]["file"].get<std::string>(),
-                       fmt::format("attribute {} is '{}', parameterization {} needs '{}'", kAttrMap,
-                                   map, ToString(param), ToString(specs[k]->map)));
+  std::vector<FactorTerm> terms;
+  for (std::size_t k = 0; k < f.terms.size(); ++k) {
+    for (const bool is_q : {false, true}) {
+      const FactorTextureFile& tex = is_q ? f.terms[k].q : f.terms[k].p;
+      const FactorMap want = is_q ? spec.q.map : spec.p.map;
+      const auto it = tex.attributes.find(kAttrMap);
+      const std::string map = it == tex.attributes.end() ? "(missing)" : it->second;
+      if (map != ToString(want)) {
+        const std::string name = FactorTextureName(static_cast<int>(k), is_q);
+        throw InputError(dir / f.sidecar["textures"][name]["file"].get<std::string>(),
+                         fmt::format("attribute {} is '{}', parameterization {} needs '{}'",
+                                     kAttrMap, map, ToString(param), ToString(want)));
+      }
     }
+    terms.push_back({std::move(f.terms[k].p.image), std::move(f.terms[k].q.image)});
   }
   if (sidecar) *sidecar = f.sidecar;
   try {
-    return FactoredBrdf(param, std::move(f.p.image), std::move(f.q.image));
+    return FactoredBrdf(param, f.diffuse, std::move(terms));
   } catch (const InputError& e) {
     throw InputError(json_path, e.what());
   }

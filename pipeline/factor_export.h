@@ -11,19 +11,22 @@
 
 namespace brdfit {
 
-// Writes <dir>/<stem>.p.exr, .q.exr and .factor.json. `extra` members (e.g. "source",
-// "metrics") are merged into the sidecar. Returns the paths written.
+// Writes <dir>/<stem>.p.exr, .q.exr (then .p2.exr, .q2.exr, ... for every further term) and
+// .factor.json, with the diffuse value and rank in the sidecar. `extra` members (e.g.
+// "source", "metrics") are merged into the sidecar. Returns the paths written.
 FactorPaths SaveFactorization(const Factorization& r, const std::filesystem::path& dir,
                               const std::string& stem,
                               const nlohmann::json& extra = nlohmann::json::object());
 
-// Reads a sidecar and its textures into an evaluable BRDF. Throws InputError naming the file
-// if the parameterization is unknown, an EXR's map does not match it, or a texture is unusable.
+// Reads a sidecar and its textures (every term, the diffuse value; version 1 files are rank 1
+// without diffuse) into an evaluable BRDF. Throws InputError naming the file if the sidecar is
+// inconsistent (io/factor_io.h), the parameterization is unknown, an EXR's map does not match
+// it, or a texture is unusable.
 FactoredBrdf LoadFactoredBrdf(const std::filesystem::path& json_path,
                               nlohmann::json* sidecar = nullptr);
 
 // The sidecar members describing a factorization (parameterization, formula, gauge, solver
-// options, textures' maps and units, stats).
+// options, every texture's map and units, stats with those of the refinement).
 nlohmann::json DescribeFactorization(const Factorization& r);
 
 }  // namespace brdfit

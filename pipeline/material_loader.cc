@@ -4,7 +4,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -14,6 +13,7 @@
 
 #include "core/error.h"
 #include "factor/factor.h"
+#include "factor/factor_form.h"
 #include "fit/fitter.h"
 #include "fit/options.h"
 #include "io/atomic_file.h"
@@ -23,6 +23,7 @@
 #include "models/registry.h"
 #include "pipeline/cache_key.h"
 #include "pipeline/factor_export.h"
+#include "pipeline/factor_textures.h"
 #include "pipeline/inputs.h"
 
 namespace brdfit::pipeline {
@@ -169,50 +170,36 @@ std::vector<double> FromReport(const MaterialSpec& m, ExplainLog* log) {
   throw InputError(m.fit_report, "no fit of model '" + m.model + "' for material '" + wanted + "'");
 }
 
-Image ToImage(const RgbImage& src) {
-  Image img(src.width, src.height);
-  for (std::size_t i = 0; i < static_cast<std::size_t>(src.width) * src.height; ++i) {
-    for (int c = 0; c < 3; ++c) img.rgba[4 * i + c] = src.rgb[3 * i + c];
-    img.rgba[4 * i + 3] = 1.0f;
-  }
-  return img;
-}
-
-std::shared_ptr<const FactorTextures> Textures(FactoredBrdf brdf) {
-  auto f = std::make_shared<FactorTextures>();
-  f->parameterization = ToString(brdf.param());
-  f->p = ToImage(brdf.p());
-  f->q = ToImage(brdf.q());
-  auto shared = std::make_shared<const FactoredBrdf>(std::move(brdf));
-  f->eval = [shared](const Vec3& wi, const Vec3& wo) { return shared->Eval(wi, wo); };
-  return f;
-}
-
 std::shared_ptr<const FactorTextures> FactorCached(const MaterialSpec& m,
                                                    const std::filesystem::path& cache_dir,
                                                    TableCache* tables, ExplainLog* log) {
   if (!m.factors.empty()) {
-    auto f = Textures(LoadFactoredBrdf(m.factors));
-    if (log) log->Add("load", "factorization " + m.factors.string());
+    auto f = ToFactorTextures(LoadFactoredBrdf(m.factors));
+    if (log) {
+      log->Add("load",
+               "factorization " + m.factors.string() + " (" + FactorFormLabel(f->form()) + ")");
+    }
     return f;
   }
   FactorOptions opt;
   opt.param = FactorParamFromString(m.factor_param);
   opt.resolution = m.factor_resolution;
+  opt.rank = m.factor_rank;
+  opt.diffuse = m.factor_diffuse;
   Fnv1a64 h;
   h.Add(InputContentKey(m.table.string()));
   // Every solver option (defaults included: a changed default never reuses an old entry).
-  char opts[160];
-  std::snprintf(opts, sizeof opts, "|factor|%s|%d|%.17g|%d|%.17g", m.factor_param.c_str(),
-                opt.resolution, opt.lambda, static_cast<int>(opt.weighting), opt.max_theta);
-  h.Add(opts);
+  h.Add(fmt::format("|factor|{}|{}|{:.17g}|{}|{:.17g}|rank {}|diffuse {}|refine {} {} {}",
+                    m.factor_param, opt.resolution, opt.lambda, static_cast<int>(opt.weighting),
+                    opt.max_theta, opt.rank, opt.diffuse, opt.refine, opt.refine_iterations,
+                    opt.refine_rows));
   const std::string stem = "factor-" + h.Hex();
   const FactorPaths paths = FactorFilePaths(cache_dir, stem);
   if (std::filesystem::exists(paths.json)) {
     try {
-      auto f = Textures(LoadFactoredBrdf(paths.json));
+      auto f = ToFactorTextures(LoadFactoredBrdf(paths.json));
       if (log) {
-        log->Add("reuse", "factorization " + m.factor_param + " " +
+        log->Add("reuse", "factorization " + FactorFormLabel(f->form()) + " " +
                               std::to_string(m.factor_resolution) + " of " + m.table.string() +
                               " from cache " + paths.json.string());
       }
@@ -227,11 +214,11 @@ std::shared_ptr<const FactorTextures> FactorCached(const MaterialSpec& m,
   std::filesystem::create_directories(cache_dir);
   SaveFactorization(r, cache_dir, stem, {{"source", m.table.string()}});
   if (log) {
-    log->Add("compute", "factorization " + m.factor_param + " " +
+    log->Add("compute", "factorization " + FactorFormLabel(FormOf(r.brdf)) + " " +
                             std::to_string(m.factor_resolution) + " of " + m.table.string() + " (" +
                             Fmt(MsSince(t0)) + " ms) -> " + paths.json.string());
   }
-  return Textures(std::move(r.brdf));
+  return ToFactorTextures(std::move(r.brdf));
 }
 
 }  // namespace

@@ -158,8 +158,9 @@ Image RenderComparison(Renderer& renderer, const Scene& scene, const MaterialSet
     Blit(renderer.ToDisplay(linear, panel_scene), &out, x0, y0);
     std::string label = p.label;
     if (it->second.kind == MaterialKind::kFactored && it->second.factors) {
-      label = "factored: " + it->second.factors->parameterization + " " +
-              std::to_string(it->second.factors->p.width);
+      const FactorTextures& f = *it->second.factors;
+      label = "factored: " + FactorFormLabel(f.form()) + " " +
+              std::to_string(f.terms.empty() ? 0 : f.terms.front().p.width);
     }
     Label(&out, x0, y0, pw, label);
   }

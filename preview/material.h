@@ -8,22 +8,41 @@
 #include <string>
 #include <vector>
 
-#include "core/table.h"
+#include "core/factor_form.h"
 #include "core/image.h"
+#include "core/table.h"
 #include "preview/scene.h"
 
 namespace brdfit::preview {
 
-// A factorization as two textures (McCool, Ang, Ahmad 2001; factor/factor_param.h):
-//   mccool:   f = p(wi) q(wh) p(wo), p on the parabolic disk map, q on the sqrt-theta disk map;
-//   halfdiff: f = p(wh) q(theta_d, phi_d), p on the sqrt-theta disk, q on the (theta_d, phi_d)
-//             rectangle (phi_d periodic).
+// A factorization as textures (McCool, Ang, Ahmad 2001; factor/factor_param.h, core/factor_form.h):
+//   f = d + sum_k term_k, d the diffuse value (1/sr), K = terms.size() in [1, 4] products:
+//   mccool:   term_k = p_k(wi) q_k(wh) p_k(wo), p on the parabolic disk map, q on the sqrt-theta
+//             disk map;
+//   halfdiff: term_k = p_k(wh) q_k(theta_d, phi_d), p on the sqrt-theta disk, q on the
+//             (theta_d, phi_d) rectangle (phi_d periodic).
 // Rows as stored (row 0 first), RGB in rgba with alpha 1.
+inline constexpr int kMaxFactorTextureTerms = 4;  // FACTOR_RANK of preview/glsl/factored.glsl
 struct FactorTextures {
   std::string parameterization;  // "mccool" or "halfdiff"
-  Image p, q;
-  // CPU evaluation through the same textures (factor/factor_eval.h), for the reference renderer.
+  Vec3 diffuse{0, 0, 0};         // d = kd / pi, 1/sr, linear RGB
+  struct Term {
+    Image p, q;
+  };
+  std::vector<Term> terms;
+  // CPU evaluation of the same factorization (FactoredBrdf::Eval, factor/factor_eval.h: the
+  // textures as float32 and the diffuse value), for the reference renderer.
   std::function<std::array<double, 3>(const Vec3& wi, const Vec3& wo)> eval;
+
+  bool has_diffuse() const { return diffuse.x > 0 || diffuse.y > 0 || diffuse.z > 0; }
+  int rank() const { return static_cast<int>(terms.size()); }
+  // Label ("mccool+d r2") and cost of the form (core/factor_form.h).
+  FactorForm form() const {
+    FactorForm f{parameterization, has_diffuse(), {}};
+    for (const Term& t : terms)
+      f.terms.push_back({{t.p.width, t.p.height}, {t.q.width, t.q.height}});
+    return f;
+  }
 };
 
 struct ResolvedMaterial {

@@ -89,8 +89,10 @@ const Texture& Renderer::TableTexture(const std::shared_ptr<const Table>& owner)
               .first->second.texture;
 }
 
-const Texture& Renderer::FactorTexture(const std::shared_ptr<const FactorTextures>& f, bool q) {
-  const Image& img = q ? f->q : f->p;
+const Texture& Renderer::FactorTexture(const std::shared_ptr<const FactorTextures>& f, int term,
+                                       bool q) {
+  const Image& img = q ? f->terms.at(static_cast<std::size_t>(term)).q
+                       : f->terms.at(static_cast<std::size_t>(term)).p;
   auto it = textures_.find(&img);
   if (it != textures_.end()) return *it->second.texture;
   auto tex = std::make_unique<Texture>(GL_TEXTURE_2D);
@@ -164,7 +166,7 @@ Image Renderer::RenderLinear(const Scene& scene, const MaterialSet& materials, E
         continue;
       }
       if (mat.kind == MaterialKind::kFactored && l.type == LightType::kSpot) {
-        // The factored path: point and directional lights, two fetches per light.
+        // The factored path: point and directional lights, two fetches per light and term.
         if (log) {
           log->Add("skip", "spot light '" + l.name + "' for object '" + obj.name +
                                "': the factored path supports point and directional lights "
@@ -181,7 +183,10 @@ Image Renderer::RenderLinear(const Scene& scene, const MaterialSet& materials, E
     v.material = mat.kind;
     v.model = mat.model;
     if (mat.table) v.theta_h_mapping = mat.table->grid.theta_h_mapping;
-    if (mat.factors) v.factor_param = mat.factors->parameterization;
+    if (mat.factors) {
+      v.factor_param = mat.factors->parameterization;
+      v.factor_rank = mat.factors->rank();
+    }
     v.num_directional = static_cast<int>(dir.size());
     v.num_point = static_cast<int>(point.size());
     v.num_spot = static_cast<int>(spot.size());
@@ -246,12 +251,21 @@ Image Renderer::RenderLinear(const Scene& scene, const MaterialSet& materials, E
         TableTexture(mat.table).Bind(0);
         prog.Set("uTable", 0);
         break;
-      case MaterialKind::kFactored:
-        FactorTexture(mat.factors, false).Bind(1);
-        FactorTexture(mat.factors, true).Bind(2);
-        prog.Set("uFactorP", 1);
-        prog.Set("uFactorQ", 2);
+      case MaterialKind::kFactored: {
+        // Term k's p and q on units 2k + 1 and 2k + 2 (unit 0 is the tables'), named as in
+        // preview/glsl/factored.glsl: uFactorP, uFactorQ, uFactorP2, uFactorQ2, ...
+        const FactorTextures& f = *mat.factors;
+        for (int k = 0; k < f.rank(); ++k) {
+          const std::string n = k == 0 ? "" : std::to_string(k + 1);
+          FactorTexture(mat.factors, k, false).Bind(2 * k + 1);
+          FactorTexture(mat.factors, k, true).Bind(2 * k + 2);
+          prog.Set("uFactorP" + n, 2 * k + 1);
+          prog.Set("uFactorQ" + n, 2 * k + 2);
+        }
+        prog.Set("uFactorDiffuse", static_cast<float>(f.diffuse.x), static_cast<float>(f.diffuse.y),
+                 static_cast<float>(f.diffuse.z));
         break;
+      }
     }
     if (is_mesh) {
       MeshBuffers(obj.mesh, log).Draw();

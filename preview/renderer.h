@@ -32,7 +32,8 @@ class Renderer {
   // Textures are cached by the object they were made from; the cache co-owns it, so an
   // address is never reused while its texture lives.
   const Texture& TableTexture(const std::shared_ptr<const Table>& table);
-  const Texture& FactorTexture(const std::shared_ptr<const FactorTextures>& f, bool q);
+  // Texture p (or q) of term `term` (from 0) of a factorization.
+  const Texture& FactorTexture(const std::shared_ptr<const FactorTextures>& f, int term, bool q);
   struct CachedTexture {
     std::shared_ptr<const void> owner;
     std::unique_ptr<Texture> texture;

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "io/nbrdf.h"
 #include "models/registry.h"
+#include "preview/material.h"
 
 namespace brdfit::preview {
 
@@ -261,11 +262,16 @@ MaterialSpec ParseMaterial(Reader r, const std::string& name) {
     m.factors = r.Path("factors");
     m.factor_resolution = r.Int("resolution", m.factor_resolution);
     m.factor_param = r.String("parameterization", m.factor_param);
+    m.factor_rank = r.Int("rank", m.factor_rank);
+    m.factor_diffuse = r.Bool("diffuse", m.factor_diffuse);
     if (m.table.empty() == m.factors.empty()) {
       r.Fail("a factored material needs either 'factors' (a .factor.json) or 'table' (to factor)");
     }
     if (m.factor_resolution < 4 || m.factor_resolution > 1024) {
       r.Fail("'resolution' must be in [4, 1024]");
+    }
+    if (m.factor_rank < 1 || m.factor_rank > kMaxFactorTextureTerms) {
+      r.Fail("'rank' must be in [1, " + std::to_string(kMaxFactorTextureTerms) + "]");
     }
   } else {
     r.Fail("unknown material type '" + type +

@@ -74,6 +74,8 @@ struct MaterialSpec {
   std::filesystem::path factors;  // "<stem>.factor.json" sidecar of `brdfit factor`
   int factor_resolution = 32;     // when computed from `table`
   std::string factor_param = "mccool";
+  int factor_rank = 1;          // when computed from `table`: products in the sum, 1..4
+  bool factor_diffuse = false;  // ... and with a diffuse value
 };
 
 enum class ObjectShape { kSphere, kMesh };

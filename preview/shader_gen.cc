@@ -1,10 +1,12 @@
 #include "preview/shader_gen.h"
 
 #include <set>
+#include <stdexcept>
 
 #include "preview/glsl_models.h"
 #include "preview/glsl_params.h"
 #include "preview/glsl_sources.h"
+#include "preview/material.h"
 
 namespace brdfit::preview {
 namespace {
@@ -66,7 +68,8 @@ std::string ShaderVariant::Key() const {
   std::string k = std::string(ToString(material));
   if (material == MaterialKind::kAnalytic) k += ":" + model;
   if (material == MaterialKind::kMeasured) k += std::string(":") + ToString(theta_h_mapping);
-  if (material == MaterialKind::kFactored) k += ":" + factor_param;
+  if (material == MaterialKind::kFactored)
+    k += ":" + factor_param + " r" + std::to_string(factor_rank);
   k += " dir=" + std::to_string(num_directional) + " point=" + std::to_string(num_point) +
        " spot=" + std::to_string(num_spot) + (punctual_pi ? " pi" : "") + (mesh ? " mesh" : "");
   return k;
@@ -98,7 +101,12 @@ std::string ShadeFragmentSource(const ShaderVariant& v) {
       break;
     }
     case MaterialKind::kFactored: {
-      src += Define("FACTOR_MCCOOL", v.factor_param == "mccool" ? 1 : 0);
+      if (v.factor_rank < 1 || v.factor_rank > kMaxFactorTextureTerms) {
+        throw std::logic_error("factored shader of rank " + std::to_string(v.factor_rank) +
+                               ": outside [1, " + std::to_string(kMaxFactorTextureTerms) + "]");
+      }
+      src += Define("FACTOR_MCCOOL", v.factor_param == "mccool" ? 1 : 0) +
+             Define("FACTOR_RANK", v.factor_rank);
       std::set<std::string> included;
       Include("preview/glsl/factored.glsl", &included, &src);
       break;

@@ -15,6 +15,7 @@ struct ShaderVariant {
   std::string model;                                     // kAnalytic: registry name
   ThetaHMapping theta_h_mapping = ThetaHMapping::kSqrt;  // kMeasured
   std::string factor_param = "mccool";                   // kFactored
+  int factor_rank = 1;  // kFactored: products in the sum, 1..kMaxFactorTextureTerms (FACTOR_RANK)
   int num_directional = 0, num_point = 0, num_spot = 0;
   bool punctual_pi = true;
   bool mesh = false;  // a triangle mesh (object.vert), else an analytic sphere (sphere.vert)

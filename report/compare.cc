@@ -70,6 +70,15 @@ EntryDelta Judge(const std::string& material, const Entry* a, const Entry* b,
     d.rendered_regression = o.judge_rendered && (-d.psnr_change_db > o.psnr_drop_db ||
                                                  d.lum_change_points > o.lum_rise_points);
   }
+  d.factor = any.kind == Entry::Kind::kFactor;
+  if (a && a->has_cost) {
+    d.old_has_cost = true;
+    d.old_cost = a->cost;
+  }
+  if (b && b->has_cost) {
+    d.new_has_cost = true;
+    d.new_cost = b->cost;
+  }
   if (a) {
     d.status_old = a->status;
     d.old_metrics = a->metrics;
@@ -178,6 +187,13 @@ nlohmann::ordered_json MetricsJson(const FitMetrics& m) {
   }
   return j;
 }
+
+nlohmann::ordered_json CostJson(bool has, const FactorCost& c) {
+  if (!has) return nullptr;
+  return {{"texture_bytes", c.texture_bytes},
+          {"fetches_per_light", c.fetches_per_light},
+          {"fetches_per_fragment", c.fetches_per_fragment}};
+}
 }  // namespace
 
 nlohmann::ordered_json ComparisonToJson(const Comparison& c) {
@@ -226,7 +242,10 @@ nlohmann::ordered_json ComparisonToJson(const Comparison& c) {
                       {"old_median_rel_error", Num(d.old_lum)},
                       {"new_median_rel_error", Num(d.new_lum)},
                       {"lum_change_points", Num(d.lum_change_points)},
-                      {"rendered_regression", d.rendered_regression}});
+                      {"rendered_regression", d.rendered_regression},
+                      {"kind", d.factor ? "factorization" : "fit"},
+                      {"old_cost", CostJson(d.old_has_cost, d.old_cost)},
+                      {"new_cost", CostJson(d.new_has_cost, d.new_cost)}});
   }
   j["deltas"] = deltas;
   return j;
@@ -273,6 +292,19 @@ std::string FormatComparison(const Comparison& c, bool all) {
                d.change != Change::kMissing && d.change != Change::kAdded) {
       detail += std::isfinite(d.old_psnr_db) ? "; rendered error only in the old report"
                                              : "; rendered error only in the new report";
+    }
+    if (d.factor && (d.old_has_cost || d.new_has_cost)) {
+      const bool same = d.old_has_cost && d.new_has_cost &&
+                        d.old_cost.texture_bytes == d.new_cost.texture_bytes &&
+                        d.old_cost.fetches_per_light == d.new_cost.fetches_per_light &&
+                        d.old_cost.fetches_per_fragment == d.new_cost.fetches_per_fragment;
+      if (same || !d.old_has_cost) {
+        detail += "; " + FactorCostText(d.new_cost);
+      } else if (!d.new_has_cost) {
+        detail += "; " + FactorCostText(d.old_cost) + " (old)";
+      } else {
+        detail += "; " + FactorCostText(d.old_cost) + " -> " + FactorCostText(d.new_cost);
+      }
     }
     out += fmt::format("  {:<12} {:<44} {}{}\n", ToString(d.change), what, detail,
                        d.regression ? "   <- REGRESSION" : "");

@@ -85,6 +85,11 @@ struct EntryDelta {
   double old_psnr_db = 0, new_psnr_db = 0, old_lum = 0, new_lum = 0;
   double psnr_change_db = 0, lum_change_points = 0;
   bool rendered_regression = false;  // beyond psnr_drop_db or lum_rise_points
+  // Factorizations: what each side costs to draw (Entry::cost; has_cost false where unknown or
+  // absent). Never a regression: a cost is a choice, shown beside the metrics.
+  bool factor = false;
+  bool old_has_cost = false, new_has_cost = false;
+  FactorCost old_cost, new_cost;
 };
 
 struct Comparison {

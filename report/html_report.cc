@@ -154,6 +154,19 @@ std::string LumPct(const Entry& e) {
   return HasRendered(e) ? fmt::format("{:.1f} %", 100 * e.metrics.rendered.median_rel_error) : "–";
 }
 
+// The cost columns of an entry: a factorization's texture memory and fetches per light and per
+// fragment (core/factor_form.h), a fit's parameter count, "–" where unknown.
+std::string CostCells(const Entry& e) {
+  if (e.kind == Entry::Kind::kFactor && e.has_cost) {
+    return fmt::format("<td>{}</td><td>{}</td><td>{}</td>", BytesText(e.cost.texture_bytes),
+                       e.cost.fetches_per_light, e.cost.fetches_per_fragment);
+  }
+  if (e.kind == Entry::Kind::kFit && !e.params.empty()) {
+    return fmt::format("<td>{} params</td><td>–</td><td>–</td>", e.params.size());
+  }
+  return "<td>–</td><td>–</td><td>–</td>";
+}
+
 // ---- page assembly ------------------------------------------------------------------------
 
 constexpr const char* kStyle = R"css(
@@ -539,11 +552,14 @@ class Page {
       return fmt::format("<td{}>{}</td>", std::isfinite(v) && v == b ? " class=\"bestv\"" : "",
                          Num(v, spec));
     };
-    body_ += "<div class=\"scroll\"><table><tr><th class=\"l\">approximation</th>"
-             "<th>PSNR (dB)</th><th class=\"wrap\">median lum. err.</th>"
-             "<th class=\"l\">loss</th><th class=\"l\">budget</th><th class=\"l\">status</th>"
-             "<th>log_rmse</th><th>cbrt_rmse</th><th>rel_l2</th><th>cells</th><th>time (ms)</th>"
-             "<th class=\"l\">stages (ms)</th><th>iter.</th><th>Pareto</th></tr>\n";
+    body_ +=
+        "<div class=\"scroll\"><table><tr><th class=\"l\">approximation</th>"
+        "<th>PSNR (dB)</th><th class=\"wrap\">median lum. err.</th>"
+        "<th class=\"l\">loss</th><th class=\"l\">budget</th><th class=\"l\">status</th>"
+        "<th>log_rmse</th><th>cbrt_rmse</th><th>rel_l2</th><th>cells</th>"
+        "<th class=\"wrap\">memory · params</th><th class=\"wrap\">fetches / light</th>"
+        "<th class=\"wrap\">fetches / fragment</th><th>time (ms)</th>"
+        "<th class=\"l\">stages (ms)</th><th>iter.</th><th>Pareto</th></tr>\n";
     for (const std::size_t i : order) {
       const Entry& e = m.entries[i];
       std::string stages;
@@ -561,7 +577,7 @@ class Page {
       const double lum = rendered ? 100 * e.metrics.rendered.median_rel_error : NAN;
       body_ += fmt::format(
           "<tr{}><td class=\"l\">{}{}</td>{}{}<td class=\"l\">{}</td><td class=\"l\">{}</td>"
-          "<td class=\"l\">{}</td>{}{}{}<td>{}</td>{}<td class=\"stages\">{}</td><td>{}</td>"
+          "<td class=\"l\">{}</td>{}{}{}<td>{}</td>{}{}<td class=\"stages\">{}</td><td>{}</td>"
           "<td>{}</td></tr>\n",
           cls, static_cast<int>(i) == best ? "★ " : "", HtmlEscape(e.name),
           cell(psnr, best_psnr, "{:.2f}"),
@@ -569,8 +585,9 @@ class Page {
                       rendered ? fmt::format("{:.1f} %", lum) : "–"),
           HtmlEscape(e.loss), HtmlEscape(e.budget), status,
           cell(ok ? e.metrics.log_rmse : NAN, best_log),
-          cell(ok ? e.metrics.cbrt_rmse : NAN, best_cbrt), cell(ok ? e.metrics.rel_l2 : NAN, best_rel),
-          e.metrics.cells, cell(e.time_ms, ok ? best_time : NAN, "{:.1f}"), stages,
+          cell(ok ? e.metrics.cbrt_rmse : NAN, best_cbrt),
+          cell(ok ? e.metrics.rel_l2 : NAN, best_rel), e.metrics.cells, CostCells(e),
+          cell(e.time_ms, ok ? best_time : NAN, "{:.1f}"), stages,
           e.kind == Entry::Kind::kFit ? std::to_string(e.iterations) : std::string("–"),
           front.count(i) ? "◆" : "");
     }
@@ -582,7 +599,9 @@ class Page {
              "; bold: best of each column; ◆ on the Pareto front of time against log_rmse. "
              "PSNR and lum. err.: the rendered-image metric (– : not computed). Time: from the "
              "loaded table to the result (fits: preparation, initializer and solve; "
-             "factorizations: the whole solve).";
+             "factorizations: the whole solve). Memory: a factorization's float32 RGB textures "
+             "and diffuse value; fetches: its texture reads per light, and per shaded fragment "
+             "whatever the lights (docs/factorization.md); a fit's number of parameters instead.";
     const Entry* any = nullptr;
     for (const Entry& e : m.entries) {
       if (e.metrics.ok) any = any ? any : &e;

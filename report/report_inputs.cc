@@ -3,11 +3,14 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/error.h"
+#include "io/factor_io.h"
 #include "io/fit_report.h"
 #include "io/nbrdf.h"
 #include "io/table_io.h"
@@ -93,6 +96,28 @@ bool LoadableTable(const std::string& source) {
   return IsNbrdfInput(source) || fs::is_regular_file(source, ec);
 }
 
+// The declared size of every texture of the first `rank` terms ("textures": p, q, p2, q2, ...,
+// io/factor_io.h), or nothing when one is missing or not a pair of integers >= 0.
+std::vector<FactorForm::Term> TermSizes(const json& j, int rank) {
+  const json textures = j.value("textures", json::object());
+  if (!textures.is_object()) return {};
+  std::vector<FactorForm::Term> terms(static_cast<std::size_t>(rank));
+  for (int k = 0; k < rank; ++k) {
+    for (const bool q : {false, true}) {
+      const json t = textures.value(FactorTextureName(k, q), json());
+      if (!t.is_object()) return {};
+      const json w = t.value("width", json()), h = t.value("height", json());
+      if (!w.is_number_unsigned() || !h.is_number_unsigned() || w.get<std::uint64_t>() > 1u << 20 ||
+          h.get<std::uint64_t>() > 1u << 20) {
+        return {};
+      }
+      FactorTextureSize& size = q ? terms[k].q : terms[k].p;
+      size = {w.get<int>(), h.get<int>()};
+    }
+  }
+  return terms;
+}
+
 }  // namespace
 
 std::string MaterialName(const fs::path& table) {
@@ -103,19 +128,34 @@ std::string MaterialName(const fs::path& table) {
 
 Entry FactorEntry(const fs::path& sidecar, std::string* material, std::string* table) {
   const json j = ReadJson(sidecar);
-  if (j.value("format", "") != "brdfit-factorization") {
+  if (j.value("format", "") != kFactorFormat) {
     throw InputError(sidecar,
                      "not a brdfit factorization sidecar (no format "
                      "\"brdfit-factorization\")");
   }
+  const FactorSidecarHeader header = ReadFactorSidecarHeader(j, sidecar);
+  FactorForm form;
+  form.parameterization = j.value("parameterization", std::string("?"));
+  form.diffuse = header.diffuse[0] > 0 || header.diffuse[1] > 0 || header.diffuse[2] > 0;
+  form.terms = TermSizes(j, header.rank);
+  const bool sized = !form.terms.empty();
+  form.terms.resize(static_cast<std::size_t>(header.rank));  // the label's rank, sizes or not
   Entry e;
   e.kind = Entry::Kind::kFactor;
-  e.name = "factor:" + j.value("parameterization", std::string("?"));
-  e.loss = "log (linear)";
+  e.name = "factor:" + FactorFormLabel(form);
+  if (sized) {
+    try {
+      e.cost = ComputeFactorCost(form);
+      e.has_cost = true;
+    } catch (const std::invalid_argument&) {
+      // An unknown parameterization: named in the entry, refused when its textures are loaded.
+    }
+  }
+  const json stats = j.value("stats", json::object());
+  e.loss = stats.value("refined", false) ? "log (linear) + rel (refined)" : "log (linear)";
   const json solver = j.value("solver", json::object());
   e.budget = fmt::format("res {}", solver.value("resolution", 0));
   e.status = "converged";
-  const json stats = j.value("stats", json::object());
   const double seconds = Get(stats, "seconds"), system = Get(stats, "system_seconds");
   e.time_ms = 1e3 * seconds;
   e.times_ms = {{"system", 1e3 * system}, {"solve", 1e3 * (seconds - system)}};

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/factor_form.h"
 #include "core/metrics.h"
 
 namespace brdfit::report {
@@ -18,8 +19,11 @@ namespace brdfit::report {
 struct Entry {
   enum class Kind { kFit, kFactor };
   Kind kind = Kind::kFit;
-  std::string name;    // model ("lambert+ggx") or factorization ("factor:mccool")
-  std::string loss;    // fits: loss name ("log"); factorizations: "log (linear)"
+  // Model ("lambert+ggx") or factorization: "factor:" and the label of its form
+  // (core/factor_form.h): "factor:mccool", "factor:mccool+d r2".
+  std::string name;
+  std::string loss;    // fits: loss name ("log"); factorizations: "log (linear)", with
+                       // " + rel (refined)" when the relative-loss refinement ran
   std::string budget;  // fits: "full", "stride:8", "random:N"; factorizations: "res 64"
   std::string status;  // "converged", "no_convergence", "failed" (core/result.h)
   std::string message;
@@ -28,6 +32,11 @@ struct Entry {
   std::vector<bool> at_bound;
   int iterations = 0;
   FitMetrics metrics;  // core/metrics.h; ok false: not computed or not finite (see message)
+  // Factorizations: what drawing it costs (texture memory, fetches per light and fragment;
+  // core/factor_form.h), when the sidecar gives every texture's size. Fits have their
+  // parameter count instead (params.size()).
+  bool has_cost = false;
+  FactorCost cost;
   // The fit `brdfit fit` recommended for its table (core/model_choice.h; fit reports and JSON
   // parameters), and why.
   bool chosen = false;

@@ -1,11 +1,14 @@
 // Synthetic tables for the factorization tests: exact products of known smooth factors.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
+#include <vector>
 
 #include "core/table.h"
+#include "factor/factor_eval.h"
 #include "models/geometry.h"
 
 namespace brdfit::testing {
@@ -74,6 +77,46 @@ inline Grid SmallGrid() {
   g.n_phi_d = 48;
   g.theta_h_mapping = ThetaHMapping::kLinear;
   return g;
+}
+
+// A factorization built by hand, not solved: `rank` terms of smooth positive textures, term k
+// at resolution `res` >> k (so terms differ in size; halfdiff's q is res x res/2, not square),
+// term k's lobe narrower and weaker with k, plus `diffuse` (1/sr).
+inline FactoredBrdf HandBuiltFactoredBrdf(FactorParam param, int rank,
+                                          std::array<double, 3> diffuse, int res = 16) {
+  const FactorParamSpec& spec = GetFactorParamSpec(param);
+  std::vector<FactorTerm> terms;
+  for (int k = 0; k < rank; ++k) {
+    const int n = std::max(4, res >> k);
+    auto fill = [&](FactorMap map, int w, int h, double scale, double floor) {
+      RgbImage img = RgbImage::Filled(w, h, 0.0f);
+      for (int j = 0; j < h; ++j) {
+        for (int i = 0; i < w; ++i) {
+          // Disk maps: squared radius of the texel centre; the rectangle: theta_d and phi_d.
+          const double s = DiskTexelCentre(i, w), t = DiskTexelCentre(j, h);
+          const double r2 = map == FactorMap::kThetaDPhiD ? 0.0 : s * s + t * t;
+          const double rect = map == FactorMap::kThetaDPhiD
+                                  ? 0.3 * (i + 0.5) / w + 0.1 * std::cos(2 * kPi * (j + 0.5) / h)
+                                  : 0.0;
+          for (int c = 0; c < 3; ++c) {
+            img.At(i, j)[c] = static_cast<float>(floor + scale * (1 + 0.15 * c) *
+                                                             std::exp(-(2.0 + k) * r2 + rect));
+          }
+        }
+      }
+      return img;
+    };
+    FactorTerm term;
+    const bool rect_q = spec.q.map == FactorMap::kThetaDPhiD;
+    // mccool: p dimensionless near 1, q the lobe (1/sr); halfdiff: p the lobe, q near 1.
+    const double lobe = 0.6 / (1 + k);
+    term.p = param == FactorParam::kMcCool ? fill(spec.p.map, n, n, 0.5, 0.5)
+                                           : fill(spec.p.map, n, n, lobe, 0.01);
+    term.q = param == FactorParam::kMcCool ? fill(spec.q.map, n, n, lobe, 0.01)
+                                           : fill(spec.q.map, n, rect_q ? n / 2 : n, 0.5, 0.5);
+    terms.push_back(std::move(term));
+  }
+  return FactoredBrdf(param, diffuse, std::move(terms));
 }
 
 }  // namespace brdfit::testing

@@ -120,6 +120,56 @@ TEST_F(FactorCli, BadInputsExitTwoNamingTheFile) {
   EXPECT_NE(r.err.find("same outputs"), std::string::npos) << r.err;
 }
 
+// The factored form's options: validated before any work, recorded in the sidecar's solver
+// section, every texture of the rank written and the form shown in the table.
+TEST_F(FactorCli, FormOptionsAreValidatedRecordedAndShown) {
+  const std::string out = (dir_ / "out").string();
+  for (const std::vector<std::string>& opts : {std::vector<std::string>{"--rank", "0"},
+                                               {"--rank", "5"},
+                                               {"--rank", "two"},
+                                               {"--refine-iterations", "0"}}) {
+    std::vector<std::string> args = {"factor", table_, "-o", out};
+    args.insert(args.end(), opts.begin(), opts.end());
+    const CliRun r = Brdfit(args, dir_);
+    EXPECT_EQ(r.code, 2) << opts[0] << " " << opts[1];
+    EXPECT_NE(r.err.find(opts[0]), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "out" / "product.factor.json"));
+  }
+  const std::string out_of_range = Brdfit({"factor", table_, "-o", out, "--rank", "5"}, dir_).err;
+  EXPECT_NE(out_of_range.find("brdfit: error: --rank 5 outside [1, 4]"), std::string::npos)
+      << out_of_range;
+
+  const CliRun r = Brdfit({"factor", table_, "--res", "8", "--rank", "2", "--diffuse", "--refine",
+                           "--refine-iterations", "7", "-o", out},
+                          dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  nlohmann::json sidecar;
+  const FactoredBrdf b = LoadFactoredBrdf(dir_ / "out" / "product.factor.json", &sidecar);
+  EXPECT_EQ(sidecar["solver"]["rank"], 2);
+  EXPECT_EQ(sidecar["solver"]["diffuse"], true);
+  EXPECT_EQ(sidecar["solver"]["refine"], true);
+  EXPECT_EQ(sidecar["solver"]["refine_iterations"], 7);
+  EXPECT_TRUE(sidecar["stats"].contains("refine_rel_rms"));
+  // Whatever rank the solver returned, the sidecar says it and every texture of it is there.
+  EXPECT_EQ(sidecar["rank"], b.rank());
+  for (int k = 0; k < b.rank(); ++k) {
+    const std::string n = k == 0 ? "" : std::to_string(k + 1);
+    EXPECT_TRUE(fs::exists(dir_ / "out" / ("product.p" + n + ".exr"))) << k;
+    EXPECT_TRUE(fs::exists(dir_ / "out" / ("product.q" + n + ".exr"))) << k;
+  }
+  EXPECT_NE(r.out.find("form"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("diffuse d = kd/pi = ("), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("rank 1 of the 2 asked for") != std::string::npos, b.rank() != 2) << r.out;
+
+  const CliRun plain =
+      Brdfit({"factor", table_, "--res", "8", "--diffuse", "--no-diffuse", "-o", out}, dir_);
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  const auto j = nlohmann::json::parse(Slurp(dir_ / "out" / "product.factor.json"));
+  EXPECT_EQ(j["solver"]["diffuse"], false);
+  EXPECT_EQ(j["solver"]["rank"], 1);
+  EXPECT_EQ(plain.out.find("diffuse d ="), std::string::npos) << plain.out;
+}
+
 // NBRDF inputs, as `brdfit fit` takes them: named by material, sidecar naming the input.
 TEST_F(FactorCli, FactorsNbrdfInputsByName) {
   const fs::path zip = fs::path(BRDFIT_SHARED_DATA) / "merl_nbrdf.zip";

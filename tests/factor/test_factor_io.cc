@@ -32,8 +32,9 @@ TEST(FactorIo, SaveLoadEvaluatesIdentically) {
     const Factorization r = Small(param);
     const FactorPaths paths =
         SaveFactorization(r, dir, ToString(param), {{"source", {{"file", "x.binary"}}}});
-    EXPECT_TRUE(fs::exists(paths.p));
-    EXPECT_TRUE(fs::exists(paths.q));
+    ASSERT_EQ(paths.terms.size(), 1u);
+    EXPECT_TRUE(fs::exists(paths.terms[0].p));
+    EXPECT_TRUE(fs::exists(paths.terms[0].q));
     nlohmann::json sidecar;
     const FactoredBrdf back = LoadFactoredBrdf(paths.json, &sidecar);
     EXPECT_EQ(back.param(), param);
@@ -50,13 +51,16 @@ TEST(FactorIo, SaveLoadEvaluatesIdentically) {
     EXPECT_EQ(sidecar["parameterization"], ToString(param));
     EXPECT_EQ(sidecar["formula"], GetFactorParamSpec(param).formula);
     EXPECT_EQ(sidecar["source"]["file"], "x.binary");
-    EXPECT_EQ(sidecar["textures"]["p"]["file"], paths.p.filename().string());
+    EXPECT_EQ(sidecar["textures"]["p"]["file"], paths.terms[0].p.filename().string());
+    EXPECT_EQ(sidecar["format_version"], 2);
+    EXPECT_EQ(sidecar["rank"], 1);
+    EXPECT_EQ(sidecar["diffuse"], nlohmann::json::array({0.0, 0.0, 0.0}));
     EXPECT_EQ(sidecar["textures"]["q"]["units"], GetFactorParamSpec(param).q.units);
     EXPECT_EQ(sidecar["solver"]["resolution"], 16);
 
     // Each EXR describes itself.
     ExrAttributes a;
-    ReadRgbExr(paths.q, &a);
+    ReadRgbExr(paths.terms[0].q, &a);
     EXPECT_EQ(a.at("brdfit:parameterization"), ToString(param));
     EXPECT_EQ(a.at("brdfit:factor"), "q");
     EXPECT_EQ(a.at("brdfit:formula"), GetFactorParamSpec(param).formula);
@@ -82,24 +86,25 @@ void ExpectInputError(const fs::path& json, const fs::path& named, const std::st
 TEST(FactorIo, InconsistentFilesAreInputErrors) {
   const ScratchDir scratch("bad");
   const fs::path& dir = scratch.path();
-  const FactorPaths paths = SaveFactorization(Small(FactorParam::kMcCool), dir, "m");
+  const FactorPaths m = SaveFactorization(Small(FactorParam::kMcCool), dir, "m");
   const FactorPaths hd = SaveFactorization(Small(FactorParam::kHalfDiff), dir, "h");
+  const FactorTermPaths& paths = m.terms[0];
 
   // p and q swapped on disk.
   fs::rename(paths.p, dir / "tmp.exr");
   fs::rename(paths.q, paths.p);
   fs::rename(dir / "tmp.exr", paths.q);
-  ExpectInputError(paths.json, paths.p, "brdfit:factor");
+  ExpectInputError(m.json, paths.p, "brdfit:factor");
 
   // A q texture of another parameterization.
-  fs::copy_file(hd.q, paths.q, fs::copy_options::overwrite_existing);
-  fs::copy_file(hd.p, paths.p, fs::copy_options::overwrite_existing);
-  ExpectInputError(paths.json, paths.p, "brdfit:parameterization");
+  fs::copy_file(hd.terms[0].q, paths.q, fs::copy_options::overwrite_existing);
+  fs::copy_file(hd.terms[0].p, paths.p, fs::copy_options::overwrite_existing);
+  ExpectInputError(m.json, paths.p, "brdfit:parameterization");
 
   // Missing texture.
   SaveFactorization(Small(FactorParam::kMcCool), dir, "m");
   fs::remove(paths.q);
-  ExpectInputError(paths.json, paths.q, "no such file");
+  ExpectInputError(m.json, paths.q, "no such file");
 
   // Not a sidecar.
   std::ofstream(dir / "x.factor.json") << R"({"format": "brdfit-table"})";

@@ -3,12 +3,17 @@
 // invalid cells; and a factorization's textures against its CPU evaluator when available.
 #include <gtest/gtest.h>
 
+#include <fmt/core.h>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/synth.h"
 #if __has_include("factor/factor.h")
 #include "factor/factor.h"
+#include "pipeline/factor_textures.h"
+#include "tests/factor/factor_test_util.h"
 #endif
 #include "models/registry.h"
 #include "preview/reference_render.h"
@@ -98,20 +103,7 @@ TEST(Factored, GpuTexturesMatchCpuEvaluator) {
     opt.param = FactorParamFromString(param);
     opt.resolution = 16;
     Factorization f = Factor(*table, opt);
-    auto tex = std::make_shared<FactorTextures>();
-    tex->parameterization = param;
-    auto to_image = [](const RgbImage& src) {
-      Image img(src.width, src.height);
-      for (std::size_t i = 0; i < static_cast<std::size_t>(src.width) * src.height; ++i) {
-        for (int c = 0; c < 3; ++c) img.rgba[4 * i + c] = src.rgb[3 * i + c];
-        img.rgba[4 * i + 3] = 1.0f;
-      }
-      return img;
-    };
-    tex->p = to_image(f.brdf.p());
-    tex->q = to_image(f.brdf.q());
-    auto brdf = std::make_shared<FactoredBrdf>(f.brdf);
-    tex->eval = [brdf](const Vec3& wi, const Vec3& wo) { return brdf->Eval(wi, wo); };
+    const auto tex = pipeline::ToFactorTextures(f.brdf);
     Scene scene = SphereScene();
     MaterialSet mats;
     ResolvedMaterial m;
@@ -125,6 +117,52 @@ TEST(Factored, GpuTexturesMatchCpuEvaluator) {
     const double err = MaxRel(gpu, cpu, ex);
     std::printf("factored %s: max relative error %.3g\n", param, err);
     EXPECT_LT(err, kTextureTolerance);
+  }
+}
+
+// The factored path at rank K with a diffuse value (hand-built textures, every term of its own
+// size): the shader's sum of products plus uFactorDiffuse against FactoredBrdf::Eval. Rank 4
+// binds the most textures (8). That the later terms and the diffuse value are drawn at all is
+// checked too: without them the CPU image is far away.
+TEST(Factored, RankKWithDiffuseGpuMatchesCpuEvaluator) {
+  BRDFIT_REQUIRE_GL();
+  Renderer renderer;
+  struct Case {
+    FactorParam param;
+    int rank;
+    std::array<double, 3> diffuse;
+  };
+  for (const Case& c : {Case{FactorParam::kMcCool, 2, {0.03, 0.05, 0.07}},
+                        Case{FactorParam::kHalfDiff, 2, {0.03, 0.05, 0.07}},
+                        Case{FactorParam::kMcCool, 4, {0.0, 0.0, 0.0}},
+                        Case{FactorParam::kHalfDiff, 4, {0.02, 0.0, 0.01}}}) {
+    SCOPED_TRACE(fmt::format("{} rank {} diffuse {}", ToString(c.param), c.rank, c.diffuse[0]));
+    const FactoredBrdf brdf =
+        brdfit::testing::HandBuiltFactoredBrdf(c.param, c.rank, c.diffuse, 16);
+    Scene scene = SphereScene();
+    auto render = [&](const FactoredBrdf& b, Image* cpu, ReferenceExtras* ex) {
+      MaterialSet mats;
+      ResolvedMaterial m;
+      m.name = "m";
+      m.kind = MaterialKind::kFactored;
+      m.factors = pipeline::ToFactorTextures(b);
+      mats["m"] = m;
+      *cpu = RenderReference(scene, mats, scene.width, scene.height, ex);
+      return renderer.RenderLinear(scene, mats, nullptr);
+    };
+    Image cpu;
+    ReferenceExtras ex;
+    const Image gpu = render(brdf, &cpu, &ex);
+    const double err = MaxRel(gpu, cpu, ex);
+    std::printf("factored %s rank %d: max relative error %.3g\n", ToString(c.param), c.rank, err);
+    EXPECT_LT(err, kTextureTolerance);
+
+    // The first term alone renders well away from the whole (so the parity above covers the
+    // other terms and the diffuse value, not only the first product).
+    Image cpu1;
+    ReferenceExtras ex1;
+    render(FactoredBrdf(c.param, brdf.p(), brdf.q()), &cpu1, &ex1);
+    EXPECT_GT(MaxRel(cpu1, cpu, ex), 0.2);
   }
 }
 #endif

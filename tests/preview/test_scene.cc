@@ -68,6 +68,28 @@ TEST(Scene, RejectsBadInput) {
 
 // Three.js r8x's falloff: colour * intensity * (1 - d / distance)^decay, zero outside the range;
 // the spot's smoothstep between cos(angle) and cos(angle (1 - penumbra)).
+// A factored material computed from a table takes its form (rank, diffuse value).
+TEST(Scene, FactoredMaterialTakesRankAndDiffuse) {
+  const Scene s = ParseScene(R"({"materials": {"f": {"type": "factored", "table": "t.binary",
+                                 "rank": 3, "diffuse": true}},
+                                 "objects": [{"material": "f"}]})",
+                             "mem.json");
+  ASSERT_EQ(s.materials.size(), 1u);
+  EXPECT_EQ(s.materials[0].factor_rank, 3);
+  EXPECT_TRUE(s.materials[0].factor_diffuse);
+  const Scene d = ParseScene(R"({"materials": {"f": {"type": "factored", "table": "t.binary"}},
+                                 "objects": [{"material": "f"}]})",
+                             "mem.json");
+  EXPECT_EQ(d.materials[0].factor_rank, 1);
+  EXPECT_FALSE(d.materials[0].factor_diffuse);
+  ExpectError(R"({"materials": {"f": {"type": "factored", "table": "t.binary", "rank": 5}},
+                  "objects": [{"material": "f"}]})",
+              "'rank' must be in [1, 4]");
+  ExpectError(R"({"materials": {"f": {"type": "factored", "table": "t.binary", "diffuse": 1}},
+                  "objects": [{"material": "f"}]})",
+              "'diffuse' must be true or false");
+}
+
 TEST(Lights, SeedSemantics) {
   Light point;
   point.type = LightType::kPoint;

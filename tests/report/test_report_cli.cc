@@ -10,9 +10,12 @@
 #include <regex>
 #include <sstream>
 
-#include "report/bench_csv.h"
+#include "factor/factor_form.h"
 #include "io/fit_report.h"
 #include "models/registry.h"
+#include "pipeline/factor_export.h"
+#include "report/bench_csv.h"
+#include "tests/factor/factor_test_util.h"
 #include "tests/report/report_fixture.h"
 
 namespace brdfit::report {
@@ -233,6 +236,38 @@ TEST_F(Cli, ReportOnAFitReportDrawsSlicesFromItsTables) {
   EXPECT_NE(html.find("data-charts-expected=\"13\""), std::string::npos);
   EXPECT_NE(html.find("plastic: θd = "), std::string::npos);
   EXPECT_NE(html.find("ggx.alpha"), std::string::npos);  // parameters listed
+}
+
+// A rank-2 factorization with a diffuse value (hand-built, saved as `brdfit factor` saves it)
+// in the report and in compare: labelled with its form, its cost listed, its slices and renders
+// drawn from every term (pipeline/factor_export.h LoadFactoredBrdf).
+TEST_F(Cli, ReportAndCompareShowRankKFactorizationsWithTheirCost) {
+  ASSERT_EQ(Brdfit("synth --model lambert+ggx --grid 16,16,32 -o " + P("gold.h5")).code, 0);
+  Factorization f;
+  f.options.resolution = 16;
+  f.brdf = testing::HandBuiltFactoredBrdf(FactorParam::kMcCool, 2, {0.02, 0.03, 0.04}, 16);
+  const nlohmann::json metrics = {
+      {"fit_metrics", {{"ok", true}, {"log_rmse", 0.05}, {"cells", 10}, {"cutoff_deg", 80}}}};
+  fs::create_directories(dir_ / "f");
+  SaveFactorization(f, dir_ / "f", "gold",
+                    {{"source", {{"file", P("gold.h5")}}}, {"metrics", metrics}});
+  const std::string cost = FactorCostText(CostOf(f.brdf));
+
+  const CliRun r = Brdfit("report " + P("f") + " -o " + P("r.html"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string html = ReadText(dir_ / "r.html");
+  EXPECT_NE(html.find("factor:mccool+d r2"), std::string::npos);
+  EXPECT_NE(html.find("<td>" + BytesText(CostOf(f.brdf).texture_bytes) + "</td><td>4</td>"),
+            std::string::npos);
+  EXPECT_NE(html.find("gold: θd = "), std::string::npos);  // slices of the factorization
+  EXPECT_EQ(html.find("No θh slices"), std::string::npos);
+  EXPECT_EQ(html.find("No renders:"), std::string::npos);  // the material's renders are drawn
+  EXPECT_NE(html.find("data:image/png;base64,"), std::string::npos);
+
+  const CliRun c = Brdfit("compare --all " + P("f") + " " + P("f"));
+  ASSERT_EQ(c.code, 0) << c.out << c.err;
+  EXPECT_NE(c.out.find("factor:mccool+d r2"), std::string::npos) << c.out;
+  EXPECT_NE(c.out.find(cost), std::string::npos) << c.out;
 }
 
 // Fits of NBRDF inputs ("nbrdf:NAME") get their slices too: the report tabulates the network.

@@ -324,6 +324,7 @@ TEST(Inputs, FactorSidecarBecomesAnEntryOfItsTablesMaterial) {
   const fs::path& dir = scratch.path();
   const nlohmann::json j = {
       {"format", "brdfit-factorization"},
+      {"format_version", 1},
       {"parameterization", "halfdiff"},
       {"solver", {{"resolution", 48}}},
       {"stats", {{"seconds", 0.25}, {"system_seconds", 0.2}, {"system_reused", false}}},
