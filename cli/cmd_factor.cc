@@ -18,6 +18,8 @@
 #include "core/error.h"
 #include "core/file_stem.h"
 #include "factor/factor.h"
+#include "core/model_choice.h"
+#include "factor/factor_choice.h"
 #include "factor/factor_form.h"
 #include "factor/factor_metrics.h"
 #include "io/factor_io.h"
@@ -40,6 +42,9 @@ namespace fs = std::filesystem;
 constexpr bool kDefaultDiffuse = false;
 constexpr int kDefaultRank = 1;
 constexpr bool kDefaultRefine = false;
+// Without an explicit form (--param, --diffuse, --rank, --refine, --refine-loss), every form
+// of factor/factor_choice.h is tried and the one the rendered metric prefers is kept.
+constexpr bool kDefaultAutoForm = true;
 constexpr int kMaxRefineIterations = 10000;
 
 struct FactorCliOptions {
@@ -55,6 +60,8 @@ struct FactorCliOptions {
   int rank = kDefaultRank;
   bool refine = kDefaultRefine;
   int refine_iterations = FactorOptions{}.refine_iterations;
+  std::string refine_loss = "rel";
+  bool auto_form = kDefaultAutoForm;  // cleared by any option that names the form
   std::string suffix;  // appended to each output stem (the demo writes both forms)
   bool quiet = false;
 };
@@ -130,6 +137,7 @@ FactorOptions CheckOptions(const FactorCliOptions& o) {
   f.rank = o.rank;
   f.refine = o.refine;
   f.refine_iterations = o.refine_iterations;
+  f.refine_loss = FromString<RefineLoss>(o.refine_loss);
   std::map<std::string, std::string> stems;
   const std::vector<std::string> inputs = pipeline::ExpandInputs(o.files);
   std::vector<PlannedOutput> outputs;
@@ -139,7 +147,8 @@ FactorOptions CheckOptions(const FactorCliOptions& o) {
     if (auto [it, fresh] = stems.emplace(stem, file); !fresh) {
       throw InputError(file, fmt::format("writes the same outputs ({}.*) as {}", stem, it->second));
     }
-    for (const fs::path& p : FactorFilePaths(o.out_dir, stem, o.rank).All()) {
+    const int rank = o.auto_form ? kMaxFactorRank : o.rank;  // auto: any form may be written
+    for (const fs::path& p : FactorFilePaths(o.out_dir, stem, rank).All()) {
       outputs.push_back({p, "-o " + o.out_dir});
     }
   }
@@ -206,19 +215,58 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
     try {
       const Table table = pipeline::LoadInput(file);
       Factorization r;
+      RenderedError re;
+      nlohmann::json choice;
       try {
-        r = Factor(table, options, &cache);
+        if (!o.auto_form) {
+          r = Factor(table, options, &cache);
+          // What the preview draws from the textures written below (docs/accuracy.md).
+          re = ScoreFactorizationRendered(table, r.brdf);
+        } else {
+          std::vector<Factorization> tried;
+          std::vector<FactorScore> scores;
+          for (const FactorCandidate& c : kAutoFactorCandidates) {
+            tried.push_back(Factor(table, CandidateOptions(options, c), &cache));
+            scores.push_back({ScoreFactorizationRendered(table, tried.back().brdf),
+                              CostOf(tried.back().brdf)});
+          }
+          const auto pick = ChooseFactorization(scores);
+          const std::size_t i = pick ? pick->index : 0;
+          choice = {{"rule", "S = psnr_db - 20 median_rel_error; least texture memory within "
+                             "0.5 dB of the best (factor/factor_choice.h)"},
+                    {"chosen", kAutoFactorCandidates[i].name},
+                    {"reason", pick ? pick->reason : "no candidate has a rendered error: the first"}};
+          for (std::size_t k = 0; k < tried.size(); ++k) {
+            const RenderedError& e = scores[k].rendered;
+            choice["candidates"].push_back(nlohmann::json{
+                {"form", kAutoFactorCandidates[k].name},
+                 {"score_db", e.ok ? nlohmann::json(RenderedScoreDb(e)) : nlohmann::json()},
+                 {"psnr_db", e.ok ? nlohmann::json(e.psnr_db) : nlohmann::json()},
+                 {"median_rel_error", e.ok ? nlohmann::json(e.median_rel_error) : nlohmann::json()},
+                 {"texture_bytes", scores[k].cost.texture_bytes},
+                 {"seconds", tried[k].stats.seconds}});
+            if (!o.quiet) {
+              fmt::print("  candidate {:<16} S {:>7} dB  psnr {:>6} dB  med_lum {:>6}{}\n",
+                         kAutoFactorCandidates[k].name,
+                         e.ok ? fmt::format("{:.2f}", RenderedScoreDb(e)) : "-",
+                         e.ok ? fmt::format("{:.1f}", e.psnr_db) : "-",
+                         e.ok ? fmt::format("{:.1f}%", 100 * e.median_rel_error) : "-",
+                         k == i ? "  <- chosen" : "");
+            }
+          }
+          r = std::move(tried[i]);
+          re = scores[i].rendered;
+        }
       } catch (const InputError& e) {
         throw InputError(file, e.what());
       }
       const double ln_rmse = FactorLnRatioRmse(table, r.brdf, options.max_theta);
       const FitMetrics m = ScoreFactorization(table, r.brdf, metric_samples);
-      // What the preview draws from the textures written below (docs/accuracy.md).
-      const RenderedError re = ScoreFactorizationRendered(table, r.brdf);
       const std::string stem = OutputStem(file, o.suffix);
-      const FactorPaths paths = SaveFactorization(
-          r, o.out_dir, stem,
-          {{"source", SourceJson(file, table)}, {"metrics", MetricsJson(m, re, ln_rmse)}});
+      nlohmann::json extra = {{"source", SourceJson(file, table)},
+                              {"metrics", MetricsJson(m, re, ln_rmse)}};
+      if (!choice.is_null()) extra["choice"] = choice;
+      const FactorPaths paths = SaveFactorization(r, o.out_dir, stem, extra);
       if (written) {
         for (const fs::path& p : paths.All()) written->push_back(p);
       }
@@ -244,9 +292,11 @@ Registrar reg{
                      "NBRDF networks of ../shared/data/merl_nbrdf.zip on the MERL grid")
           ->required();
       sub.add_option("-o,--out", o->out_dir, "output folder")->required();
+      const auto explicit_form = [o](const auto&) { o->auto_form = false; };
       sub.add_option("--param", o->param,
                      "mccool: f = p(wi) q(wh) p(wo); halfdiff: f = p(wh) q(theta_d, phi_d)")
-          ->capture_default_str();
+          ->capture_default_str()
+          ->each(explicit_form);
       sub.add_option("--res", o->resolution, "texture side N (N x N texels per factor)")
           ->capture_default_str();
       sub.add_option("--lambda", o->lambda, "smoothness weight (> 0)")->capture_default_str();
@@ -261,14 +311,26 @@ Registrar reg{
           ->capture_default_str();
       sub.add_flag("--diffuse,!--no-diffuse", o->diffuse,
                    "add a diffuse value d = kd/pi to the products, solved with them")
-          ->capture_default_str();
+          ->capture_default_str()
+          ->each(explicit_form);
       sub.add_option(
              "--rank", o->rank,
              fmt::format("products in the sum, 1 to {} (two textures each)", kMaxFactorRank))
-          ->capture_default_str();
+          ->capture_default_str()
+          ->each(explicit_form);
       sub.add_flag("--refine,!--no-refine", o->refine,
                    "refine the log-space solution under the relative loss of the analytic fits "
                    "(implied by --diffuse and --rank > 1)")
+          ->capture_default_str()
+          ->each(explicit_form);
+      sub.add_option("--refine-loss", o->refine_loss,
+                     "loss of the refinement: rel ((f - m) / (m + eps)) or logratio "
+                     "(ln((f + eps) / (m + eps)))")
+          ->capture_default_str()
+          ->each(explicit_form);
+      sub.add_flag("--auto,!--no-auto", o->auto_form,
+                   "try the forms of docs/factorization.md \"Choosing the form\" and keep the one "
+                   "the rendered metric prefers (the default unless an option names the form)")
           ->capture_default_str();
       sub.add_option("--refine-iterations", o->refine_iterations,
                      "Levenberg-Marquardt iterations of the refinement, at most")
@@ -301,6 +363,7 @@ DemoStepRegistrar demo_step{30, "factor", [](DemoContext& ctx) {
                                 o.param = param;
                                 o.resolution = ctx.quick ? 32 : 64;
                                 o.suffix = std::string(".") + param;
+                                o.auto_form = false;
                                 const int c = RunFactor(o, &ctx.outputs);
                                 if (c != kExitOk) code = c;
                               }

@@ -1,0 +1,51 @@
+// Which factored form to keep: `brdfit factor`'s default tries a few forms of one table and
+// keeps the one the rendered-image metric prefers, by the rule `brdfit fit --model auto` uses
+// (core/model_choice.h, docs/accuracy.md "Choosing the model"):
+//   S = psnr_db - 20 * median_rel_error;
+// among the candidates whose S is within `tolerance_db` of the best, the one with the least
+// texture memory (then the fewest fetches per light, then the higher S): more textures must
+// buy a visible improvement. The candidates and the study that chose them:
+// docs/factorization.md, "Choosing the form".
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/factor_form.h"
+#include "core/result.h"
+#include "factor/factor.h"
+
+namespace brdfit {
+
+struct FactorCandidate {
+  const char* name;  // as bench_factor_accuracy's forms: "mccool+d+r2+lr"
+  FactorParam param;
+  bool diffuse, refine;
+  int rank;
+  RefineLoss loss;
+};
+
+// The candidates of the default, in the order they are tried.
+extern const std::vector<FactorCandidate> kAutoFactorCandidates;
+
+// `base` (resolution, lambda, weighting, angle cut-off, iterations) with a candidate's form.
+FactorOptions CandidateOptions(const FactorOptions& base, const FactorCandidate& c);
+
+struct FactorScore {
+  RenderedError rendered;
+  FactorCost cost;
+};
+
+struct FactorChoice {
+  std::size_t index = 0;
+  double score_db = 0;
+  std::string reason;
+};
+
+// nullopt if no candidate has a rendered error.
+std::optional<FactorChoice> ChooseFactorization(const std::vector<FactorScore>& scores,
+                                                double tolerance_db = 0.5);
+
+}  // namespace brdfit
