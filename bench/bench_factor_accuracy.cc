@@ -6,7 +6,7 @@
 //
 //   bench_factor_accuracy --csv FILE [--params mccool,halfdiff,mccool+d+r2,...] [--res 64]
 //                         [--lambda 1e-8]
-//                         [--nbrdf all|m1,m2] [--jobs 2]
+//                         [--nbrdf all|m1,m2] [--jobs 2] [--rendered-only 1]
 //
 // Each material is scored exactly as `brdfit factor` scores it (factor/factor_metrics.h: the
 // float32 textures through FactoredBrdf::Eval, what the preview draws; the default scene). One
@@ -97,6 +97,7 @@ int main(int argc, char** argv) {
   std::vector<int> resolutions = {64};
   double lambda = FactorOptions{}.lambda;
   int jobs = 2;
+  bool rendered_only = false;  // --rendered-only 1: skip ln-ratio RMSE and E2 (the slow part)
   for (int i = 1; i < argc; i += 2) {
     const std::string a = argv[i];
     if (i + 1 >= argc) {
@@ -115,6 +116,8 @@ int main(int argc, char** argv) {
       lambda = std::atof(v.c_str());
     } else if (a == "--nbrdf") {
       nbrdf = bench::SplitList(v);
+    } else if (a == "--rendered-only") {
+      rendered_only = v == "1";
     } else if (a == "--jobs") {
       jobs = std::max(1, std::atoi(v.c_str()));
     } else {
@@ -159,8 +162,10 @@ int main(int argc, char** argv) {
           row.factor_ms = 1e3 * r.stats.seconds;
           row.stats = r.stats;
           row.diffuse = r.brdf.diffuse();
-          row.ln_ratio_rmse = FactorLnRatioRmse(table, r.brdf, o.max_theta);
-          row.fit = ScoreFactorization(table, r.brdf);
+          if (!rendered_only) {
+            row.ln_ratio_rmse = FactorLnRatioRmse(table, r.brdf, o.max_theta);
+            row.fit = ScoreFactorization(table, r.brdf);
+          }
           row.rendered = ScoreFactorizationRendered(table, r.brdf);
         } catch (const std::exception& e) {
           row.error = e.what();

@@ -1,5 +1,7 @@
-// Rank-1 homomorphic factorization of a tabulated isotropic BRDF into two textures
-// (McCool, Ang, Ahmad 2001; Kautz & McCool 1999). Derivation: docs/factorization.md.
+// Homomorphic factorization of a tabulated isotropic BRDF into textures (McCool, Ang, Ahmad
+// 2001; Kautz & McCool 1999): rank 1 by the log-linear solve, optionally refined, with a
+// diffuse value and a sum of K products (factor/factor_refine.h). Derivation:
+// docs/factorization.md.
 //
 //   FactorSystemCache cache;                       // share across materials on one grid
 //   Factorization r = Factor(table, options, &cache);
@@ -26,9 +28,9 @@ namespace brdfit {
 //   rank:    number of products K in [1, kMaxFactorRank] (greedy: each new term starts from
 //            what the previous ones leave, then all are refined together);
 //   refine:  after the log-linear solve, Levenberg-Marquardt on the log-texel values (and kd)
-//            under the relative loss of the analytic fits, (f - m) / (m + eps) with the
-//            solid-angle cell weights (fit/loss.h: the loss shown to track rendered error,
-//            docs/accuracy.md). diffuse or rank > 1 imply it: they have no log-linear solve.
+//            under refine_loss, the relative or the log-ratio loss of the analytic fits
+//            (fit/loss.h) with the solid-angle cell weights. diffuse or rank > 1 imply it:
+//            they have no log-linear solve.
 inline constexpr int kMaxFactorRank = 4;
 struct FactorOptions : FactorSystemOptions {
   RefineLoss refine_loss = RefineLoss::kRel;
@@ -55,7 +57,7 @@ struct FactorStats {
   double solve_log_rms = 0;           // weighted RMS log residual of the solution, pre-bake
   // Refinement (FactorOptions::NeedsRefinement), channels pooled, over the rows it used:
   std::size_t refine_rows = 0;        // rows used (a deterministic subset of the used cells)
-  int refine_iterations = 30;          // LM iterations, summed over channels and terms
+  int refine_iterations = 0;           // LM iterations, summed over channels and terms
   double refine_rel_rms_start = 0;    // sqrt(weighted mean rel^2) of the log-linear start
   double refine_rel_rms = 0;          // ... and of the refined solution
   double refine_seconds = 0;

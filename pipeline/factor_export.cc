@@ -107,8 +107,11 @@ nlohmann::json DescribeFactorization(const Factorization& r) {
       "(docs/factorization.md)";
   if (Refined(s)) {
     method +=
-        "; then Levenberg-Marquardt on the log-texel values (and the diffuse value) under the "
-        "relative loss (f - m) / (m + eps) with solid-angle weights";
+        "; then Levenberg-Marquardt on the log-texel values (and the diffuse value) under the " +
+        std::string(o.refine_loss == RefineLoss::kRel
+                        ? "relative loss (f - m) / (|m| + eps)"
+                        : "log-ratio loss ln((f + eps) / (m + eps))") +
+        ", eps = 1e-3 1/sr, with solid-angle weights (factor/factor_refine.h)";
   }
   j["solver"] = {{"method", method},
                  {"resolution", o.resolution},
@@ -119,6 +122,7 @@ nlohmann::json DescribeFactorization(const Factorization& r) {
                  {"diffuse", o.diffuse},
                  {"rank", o.rank},
                  {"refine", o.refine},
+                 {"refine_loss", ToString(o.refine_loss)},
                  {"refine_iterations", o.refine_iterations},
                  {"refine_rows", o.refine_rows}};
   j["stats"] = {{"grid_cells", s.grid_cells},

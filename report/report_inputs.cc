@@ -152,8 +152,14 @@ Entry FactorEntry(const fs::path& sidecar, std::string* material, std::string* t
     }
   }
   const json stats = j.value("stats", json::object());
-  e.loss = stats.value("refined", false) ? "log (linear) + rel (refined)" : "log (linear)";
   const json solver = j.value("solver", json::object());
+  // Sidecars before refine_loss existed were refined under the relative loss.
+  const std::string refine_loss =
+      solver.contains("refine_loss") && solver["refine_loss"].is_string()
+          ? solver["refine_loss"].get<std::string>()
+          : "rel";
+  e.loss = stats.value("refined", false) ? "log (linear) + " + refine_loss + " (refined)"
+                                         : "log (linear)";
   e.budget = fmt::format("res {}", solver.value("resolution", 0));
   e.status = "converged";
   const double seconds = Get(stats, "seconds"), system = Get(stats, "system_seconds");

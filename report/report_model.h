@@ -23,7 +23,7 @@ struct Entry {
   // (core/factor_form.h): "factor:mccool", "factor:mccool+d r2".
   std::string name;
   std::string loss;    // fits: loss name ("log"); factorizations: "log (linear)", with
-                       // " + rel (refined)" when the relative-loss refinement ran
+                       // " + rel (refined)" / " + logratio (refined)" when the refinement ran
   std::string budget;  // fits: "full", "stride:8", "random:N"; factorizations: "res 64"
   std::string status;  // "converged", "no_convergence", "failed" (core/result.h)
   std::string message;
