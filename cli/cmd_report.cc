@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -42,28 +43,50 @@ struct ReportCliOptions {
   bool quiet = false;
 };
 
-// Slices of one material: its table against every fit (model + parameters) and factorization.
+// Slices of one material: its table against its best results (the pick, then by
+// report::RankEntries), at most kMaxSliceResults of them: a material with thousands of fits
+// would otherwise draw thousands of lines per slice (issue 14 item 8).
+constexpr std::size_t kMaxSliceResults = 8;
+
 void AddSlices(const report::ReportSources& src, const ReportCliOptions& o, const Table& table,
                report::Material* m) {
+  std::map<std::string, int> uses;  // entries per name: a shared name gets budget and loss
+  for (const Entry& e : m->entries) ++uses[e.name];
+  std::vector<std::size_t> order = report::RankEntries(m->entries);
+  const int best = report::BestEntry(m->entries);
+  if (best >= 0) {
+    std::stable_partition(order.begin(), order.end(),
+                          [&](std::size_t i) { return static_cast<int>(i) == best; });
+  }
   std::vector<report::NamedPredictor> predictors;
-  for (const Entry& e : m->entries) {
-    if (e.kind != Entry::Kind::kFit || e.Failed() || e.params.empty()) continue;
+  std::size_t drawable = 0;
+  for (const std::size_t i : order) {
+    const Entry& e = m->entries[i];
+    if (e.Failed() || (e.kind == Entry::Kind::kFit && e.params.empty())) continue;
+    if (++drawable > kMaxSliceResults) continue;  // counted for the note, not drawn
     try {
-      std::string label = e.name;
-      if (std::count_if(m->entries.begin(), m->entries.end(),
-                        [&](const Entry& x) { return x.name == e.name; }) > 1) {
-        label += " (" + e.budget + ", " + e.loss + ")";
+      if (e.kind == Entry::Kind::kFit) {
+        const std::string label =
+            uses[e.name] > 1 ? e.name + " (" + e.budget + ", " + e.loss + ")" : e.name;
+        predictors.push_back({label, "fitted", report::ModelPredictor(e.Model(), e.params)});
+        continue;
       }
-      predictors.push_back({label, "fitted", report::ModelPredictor(e.name, e.params)});
+      const auto f = std::find_if(src.factors.begin(), src.factors.end(), [&](const auto& r) {
+        return r.material == m->name && r.label == e.name;
+      });
+      if (f == src.factors.end()) continue;
+      auto brdf = std::make_shared<FactoredBrdf>(LoadFactoredBrdf(f->sidecar));
+      predictors.push_back(
+          {f->label, "factored", [brdf](const HalfDiffAngles& a) { return brdf->Eval(a); }});
     } catch (const InputError& err) {
       m->notes.push_back(fmt::format("{}: not drawn in the slices: {}", e.name, err.what()));
     }
   }
-  for (const auto& f : src.factors) {
-    if (f.material != m->name) continue;
-    auto brdf = std::make_shared<FactoredBrdf>(LoadFactoredBrdf(f.sidecar));
-    predictors.push_back(
-        {f.label, "factored", [brdf](const HalfDiffAngles& a) { return brdf->Eval(a); }});
+  if (drawable > kMaxSliceResults) {
+    m->notes.push_back(fmt::format(
+        "The θh slices draw the best {} of this material's {} results (the ★ one first, then "
+        "in the table's order).",
+        kMaxSliceResults, drawable));
   }
   m->slices = report::ComputeThetaHSlices(table, o.theta_d, o.phi_d, predictors);
 }

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "core/error.h"
 #include "io/fit_report.h"
@@ -150,17 +152,68 @@ std::string LossLabel(const json& options) {
   return loss;
 }
 
-// Adds an entry to its material; a second entry with the same key is told apart by a suffix.
-void AddEntry(Report& r, const std::string& material, const std::string& source, Entry e) {
-  Material& m = r.GetOrAddMaterial(material);
-  if (m.source.empty()) m.source = source;
-  const std::string base = e.name;
-  for (int k = 2; std::any_of(m.entries.begin(), m.entries.end(),
-                              [&](const Entry& x) { return x.Key() == e.Key(); });
-       ++k) {
-    e.name = fmt::format("{} #{}", base, k);
+// Materials by name and the keys their entries use, so that adding n entries costs O(n log n)
+// however many share a key (each duplicate scanned all entries for every suffix it tried:
+// cubic in the fits of one material, issue 14 item 8).
+class EntryIndex {
+ public:
+  explicit EntryIndex(Report* r) : report_(r) {
+    for (std::size_t i = 0; i < r->materials.size(); ++i) {
+      materials_.emplace(r->materials[i].name, i);
+      for (const Entry& e : r->materials[i].entries) keys_[r->materials[i].name].insert(e.Key());
+    }
   }
-  m.entries.push_back(std::move(e));
+
+  Material& GetOrAddMaterial(const std::string& name) {
+    const auto [it, added] = materials_.emplace(name, report_->materials.size());
+    if (added) {
+      report_->materials.emplace_back();
+      report_->materials.back().name = name;
+    }
+    return report_->materials[it->second];
+  }
+
+  // Adds e to its material; a second entry with the same key is told apart by a suffix in its
+  // name, base_name keeping the name: " (FILE)" when file_suffix is given (factorizations),
+  // then "#2", "#3", ... while the key is still taken.
+  const Entry& Add(const std::string& material, Entry e, const std::string& file_suffix = "") {
+    Material& m = GetOrAddMaterial(material);
+    auto& used = keys_[material];
+    if (used.count(e.Key())) {
+      e.base_name = e.name;
+      if (!file_suffix.empty()) e.name += " (" + file_suffix + ")";
+      if (used.count(e.Key())) {
+        const std::string stem = e.name;
+        int& k = next_[material + '\n' + e.Key()];
+        for (k = std::max(k, 2); used.count((e.name = fmt::format("{} #{}", stem, k), e.Key()));
+             ++k) {
+        }
+        ++k;
+      }
+    }
+    used.insert(e.Key());
+    m.entries.push_back(std::move(e));
+    return m.entries.back();
+  }
+
+ private:
+  Report* report_;
+  std::unordered_map<std::string, std::size_t> materials_;
+  std::unordered_map<std::string, std::unordered_set<std::string>> keys_;
+  std::unordered_map<std::string, int> next_;  // material + key -> next suffix to try
+};
+
+// What the inputs read so far add up to.
+struct Builder {
+  ReportSources out;
+  EntryIndex index{&out.report};
+};
+
+// Adds an entry to its material (recording the material's table source if it has none).
+void AddEntry(Builder* b, const std::string& material, const std::string& source, Entry e) {
+  Material& m = b->index.GetOrAddMaterial(material);
+  if (m.source.empty()) m.source = source;
+  b->index.Add(material, std::move(e));
 }
 
 Entry FitEntry(const FitReportEntry& f) {
@@ -189,10 +242,11 @@ Entry FitEntry(const FitReportEntry& f) {
 }
 
 // A fit report (HDF5, io/fit_report.h): every fit of every material, and its tables.
-void AddFitReport(const std::vector<FitReportEntry>& entries, ReportSources* out) {
+void AddFitReport(const std::vector<FitReportEntry>& entries, Builder* b) {
+  ReportSources* out = &b->out;
   for (const FitReportEntry& f : entries) {
     const std::string material = f.material.empty() ? MaterialName(f.source) : f.material;
-    AddEntry(out->report, material, f.source, FitEntry(f));
+    AddEntry(b, material, f.source, FitEntry(f));
     if (!f.source.empty() && !out->tables.count(material) && LoadableTable(f.source)) {
       out->tables[material] = f.source;
     }
@@ -200,7 +254,8 @@ void AddFitReport(const std::vector<FitReportEntry>& entries, ReportSources* out
 }
 
 // The parameters JSON of `brdfit fit` (FitParamsJson): fits without timings.
-bool AddFitParamsJson(const fs::path& p, ReportSources* out) {
+bool AddFitParamsJson(const fs::path& p, Builder* b) {
+  ReportSources* out = &b->out;
   // Ordered: the parameters must keep the model's order.
   std::ifstream in(p, std::ios::binary);
   if (!in) throw InputError(p, "cannot open");
@@ -231,7 +286,7 @@ bool AddFitParamsJson(const fs::path& p, ReportSources* out) {
     e.choice = f.value("choice", std::string());
     const std::string source = f.value("source", std::string());
     const std::string material = f.value("material", MaterialName(source));
-    AddEntry(out->report, material, source, std::move(e));
+    AddEntry(b, material, source, std::move(e));
     if (!source.empty() && !out->tables.count(material) && LoadableTable(source)) {
       out->tables[material] = source;
     }
@@ -239,24 +294,22 @@ bool AddFitParamsJson(const fs::path& p, ReportSources* out) {
   return true;
 }
 
-void AddInput(const fs::path& p, bool explicit_input, ReportSources* out) {
+void AddInput(const fs::path& p, bool explicit_input, Builder* b) {
   const Kind kind = Classify(p);
+  ReportSources* out = &b->out;
   Report& r = out->report;
   switch (kind) {
     case Kind::kFactor: {
       std::string material, table;
       Entry e = FactorEntry(p, &material, &table);
-      Material& m = r.GetOrAddMaterial(material);
+      Material& m = b->index.GetOrAddMaterial(material);
       if (m.source.empty()) m.source = table;
       if (!table.empty() && !out->tables.count(material) && LoadableTable(table)) {
         out->tables[material] = table;
       }
       // Two factorizations with the same name and budget (e.g. --suffix runs): keep both apart.
-      for (const Entry& other : m.entries) {
-        if (other.Key() == e.Key()) e.name += " (" + p.filename().string() + ")";
-      }
-      out->factors.push_back({material, e.name, p});
-      m.entries.push_back(std::move(e));
+      const Entry& added = b->index.Add(material, std::move(e), p.filename().string());
+      out->factors.push_back({material, added.name, p});
       break;
     }
     case Kind::kBench: {
@@ -270,7 +323,7 @@ void AddInput(const fs::path& p, bool explicit_input, ReportSources* out) {
     case Kind::kParamsJson:
       // In a folder the fit report beside it holds the same fits (and their times).
       if (!explicit_input) break;
-      if (!AddFitParamsJson(p, out)) {
+      if (!AddFitParamsJson(p, b)) {
         throw InputError(p, "not a brdfit fit parameters file (format \"brdfit-fit-params\")");
       }
       break;
@@ -300,12 +353,12 @@ void AddInput(const fs::path& p, bool explicit_input, ReportSources* out) {
           }
         }
         if (is_report) {
-          AddFitReport(fits, out);
+          AddFitReport(fits, b);
           break;
         }
       }
       out->tables[MaterialName(p)] = p;
-      Material& m = r.GetOrAddMaterial(MaterialName(p));
+      Material& m = b->index.GetOrAddMaterial(MaterialName(p));
       if (m.source.empty()) m.source = p.string();
       break;
     }
@@ -322,6 +375,7 @@ void AddInput(const fs::path& p, bool explicit_input, ReportSources* out) {
 }  // namespace
 
 void AddBenchEntries(Report* report) {
+  EntryIndex index(report);
   for (const BenchPoint& b : report->bench) {
     Entry e;
     e.kind = Entry::Kind::kFit;
@@ -334,12 +388,14 @@ void AddBenchEntries(Report* report) {
     e.metrics = b.metrics;
     e.time_ms = b.time_ms;
     e.times_ms = {{"prepare", b.prepare_ms}, {"init", b.init_ms}, {"solve", b.solve_ms}};
-    report->GetOrAddMaterial(b.material).entries.push_back(std::move(e));
+    // Not renamed: a repeated bench point stays a repeat of its key.
+    index.GetOrAddMaterial(b.material).entries.push_back(std::move(e));
   }
 }
 
 ReportSources ReadReportInputs(const std::vector<fs::path>& inputs) {
-  ReportSources out;
+  Builder b;
+  ReportSources& out = b.out;
   for (const fs::path& p : inputs) {
     std::error_code ec;
     if (fs::is_directory(p, ec)) {
@@ -348,15 +404,15 @@ ReportSources ReadReportInputs(const std::vector<fs::path>& inputs) {
         if (e.is_regular_file()) files.push_back(e.path());
       }
       std::sort(files.begin(), files.end());
-      for (const auto& f : files) AddInput(f, false, &out);
+      for (const auto& f : files) AddInput(f, false, &b);
     } else if (fs::is_regular_file(p, ec)) {
-      AddInput(p, true, &out);
+      AddInput(p, true, &b);
     } else {
       throw InputError(p, "no such file or folder");
     }
     out.report.inputs.push_back(p.string());
   }
-  return out;
+  return std::move(out);
 }
 
 }  // namespace brdfit::report
