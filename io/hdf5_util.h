@@ -79,9 +79,13 @@ class Reader {
   // Fails unless ds's storage is allocated: a declared shape with nothing stored reads back as
   // fill values, so a few bytes of file could make the caller allocate a huge array
   // (fuzz/regressions/hdf5_table/crafted-unwritten-values.h5). Check before allocating.
+  // Chunked storage (compressed or not): every chunk the shape spans stored, every filter
+  // decodable.
   void RequireAllocated(const H5::DataSet& ds, const std::string& what) const;
 
  private:
+  void RequireAllChunks(const H5::DataSet& ds, const H5::DSetCreatPropList& plist,
+                        const std::string& what) const;
   H5::Attribute Attr(const H5::H5Object& obj, const std::string& where, const char* name,
                      H5T_class_t cls, const char* class_name) const;
   template <class T>
