@@ -125,7 +125,9 @@ FactorOptions CheckOptions(const FactorCliOptions& o) {
 
 int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullptr) {
   const FactorOptions options = CheckOptions(o);
-  fs::create_directories(o.out_dir);
+  if (std::error_code ec; !fs::create_directories(o.out_dir, ec) && ec) {
+    throw OutputError(o.out_dir, "cannot create the output folder: " + ec.message());
+  }
   SampleOptions metric_samples;
   metric_samples.cutoff_deg = o.metric_cutoff_deg;
   FactorSystemCache cache;
@@ -172,6 +174,12 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
     } catch (const InputError& e) {
       fmt::print(stderr, "brdfit: error: {}\n", e.what());
       code = kExitBadInput;
+    } catch (const OutputError& e) {
+      // A read-only or full output folder is an output error (exit 2), not a failed solve, and
+      // the next table would meet it too (issue 14 item 15).
+      fmt::print(stderr, "brdfit: error: {}\n", e.what());
+      code = kExitBadInput;
+      break;
     } catch (const std::runtime_error& e) {
       fmt::print(stderr, "brdfit: error: {}: {}\n", file, e.what());
       if (code == kExitOk) code = kExitFitFailed;
@@ -207,7 +215,8 @@ Registrar reg{
           ->capture_default_str();
       sub.add_flag("-q,--quiet", o->quiet, "no table on stdout");
       sub.footer(
-          "Exit codes: 0 ok, 2 bad input (named, the other tables are still factored).\n"
+          "Exit codes: 0 ok, 1 a solve failed, 2 bad input (named, the other tables are still "
+          "factored) or an output error (the run stops).\n"
           "Writes DIR/<stem>.p.exr, DIR/<stem>.q.exr (float32 RGB OpenEXR) and "
           "DIR/<stem>.factor.json per table\n(docs/formats.md, docs/factorization.md).\n"
           "Examples:\n"

@@ -167,6 +167,9 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
   auto write_report = [&](bool final) {
     std::vector<FitReportEntry> all = kept;
     all.insert(all.end(), result.fresh.begin(), result.fresh.end());
+    // Nothing fitted (every input unreadable) and no report before: none is written.
+    std::error_code ec;
+    if (final && all.empty() && !fs::exists(req.report, ec)) return;
     MarkChosenFits(all);
     const std::size_t entries = all.size();
     WriteFitReport(std::move(all), req.report, req.timings);

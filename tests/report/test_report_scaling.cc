@@ -85,7 +85,9 @@ TEST(ReportScaling, FitsSharingAKeyAreNumberedAndCompareMatchesThemOneToOne) {
   const Comparison w = Compare(s.report, worse);
   ASSERT_EQ(w.Regressions(), 1);
   for (const EntryDelta& d : w.deltas) {
-    if (d.regression) EXPECT_EQ(d.name, entries[437].name);
+    if (d.regression) {
+      EXPECT_EQ(d.name, entries[437].name);
+    }
   }
 }
 
