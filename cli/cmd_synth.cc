@@ -179,7 +179,10 @@ void PrintSummary(const fs::path& out, TableFormat f, const SynthResult& r) {
 
 int RunSynth(const SynthCliOptions& o) {
   if (o.list_nbrdf) {
-    for (const auto& m : ListNbrdfMaterials(pipeline::NbrdfArchive(o.nbrdf_zip))) fmt::print("{}\n", m);
+    const fs::path zip = pipeline::NbrdfArchive(o.nbrdf_zip);
+    const std::vector<std::string> materials = ListNbrdfMaterials(zip);
+    if (materials.empty()) throw InputError(zip, kNoNbrdfMaterials);  // not an empty list, exit 0
+    for (const auto& m : materials) fmt::print("{}\n", m);
     return kExitOk;
   }
   if (o.model.empty() == o.nbrdf.empty()) {

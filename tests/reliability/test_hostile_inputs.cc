@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -14,12 +15,15 @@
 
 #include <H5Cpp.h>
 #include <sys/types.h>
+#include <zip.h>
 
 #include <nlohmann/json.hpp>
 
 #include "cli_process.h"
 #include "tmpfs_mount.h"
 #include "core/synth.h"
+#include "core/error.h"
+#include "io/exr_texture.h"
 #include "io/fit_report.h"
 #include "io/hdf5_table.h"
 #include "io/hdf5_util.h"
@@ -335,6 +339,149 @@ TEST(HostileFit, AMissingInputExitsTwoAndWritesNoReport) {
                              (dir / "fits.h5").string()});
   EXPECT_EQ(d.code, 2) << d.log;
   EXPECT_FALSE(fs::exists(dir / "fits.h5"));
+}
+
+// ---- item 16: messages ----------------------------------------------------------------
+
+// Every character of a message is printable (or a line break): no raw bytes of a file.
+void ExpectPrintable(const std::string& log) {
+  for (const char c : log) {
+    const auto u = static_cast<unsigned char>(c);
+    // UTF-8 of brdfit's own messages (θ, ×) is fine; control characters are not.
+    ASSERT_TRUE(u == '\n' || u >= 0x20) << "byte " << int(u) << " in: " << log;
+    ASSERT_NE(u, 0x7f) << log;
+  }
+}
+
+TEST_F(BrokenInputs, AGarbageExrIsNamedWithoutItsRawBytes) {
+  Factor();
+  std::string garbage = "v/1\x01\x02";  // OpenEXR's magic and version, then noise
+  garbage.append(3, '\0');
+  for (int k = 0; k < 40; ++k) {
+    for (int b = 0; b < 256; ++b) garbage += static_cast<char>(b);
+  }
+  std::ofstream(dir_ / "fac/t.p.exr", std::ios::binary) << garbage;
+  const CliRun r = RunCli(dir_, {"report", P("fac/t.factor.json"), "-q", "-o", html_.string()});
+  EXPECT_EQ(r.code, 2) << r.log;
+  EXPECT_THAT(r.log, HasSubstr("brdfit: error: " + P("fac/t.p.exr") + ": "));
+  ExpectPrintable(r.log);
+  EXPECT_LT(r.log.size(), 600u) << r.log;
+}
+
+// The reader's message itself: a damaged header quotes the attribute name it found, which is
+// whatever bytes the file holds there.
+TEST(HostileMessages, AGarbageExrMessageHasNoRawBytes) {
+  ScratchDir dir;
+  std::string header = "v/1\x01\x02";
+  header.append(3, '\0');
+  header += "\x1b[31m\x07\xff garbage" + std::string(1, '\0') + "int" + std::string(1, '\0');
+  header += std::string("\xff\xff\xff\x7f", 4);  // declares 2 GB
+  header += std::string(64, '\x9b');
+  std::ofstream(dir / "g.exr", std::ios::binary) << header;
+  try {
+    ReadRgbExr(dir / "g.exr");
+    FAIL() << "read";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind((dir / "g.exr").string() + ": damaged OpenEXR header: attribute '", 0),
+              0u)
+        << msg;
+    EXPECT_THAT(msg, HasSubstr("\\x1b[31m\\x07\\xff garbage"));
+    ExpectPrintable(msg);
+  }
+}
+
+TEST(HostileMessages, UsageErrorsHaveTheBrdfitPrefixAndNoHugeNumbers) {
+  ScratchDir dir;
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"fit", "--jobs", "x", "t.h5"}, {}, {"report"},
+        {"render", "--frames", "-1", "scene.json"}}) {
+    const CliRun r = RunCli(dir, args);
+    EXPECT_EQ(r.code, 2) << r.log;
+    EXPECT_EQ(r.log.rfind("brdfit: error: ", 0), 0u) << r.log;
+    EXPECT_LT(r.log.size(), 200u) << r.log;  // --frames -1 printed a 300-digit bound
+  }
+  const CliRun frames = RunCli(dir, {"render", "--frames", "-1", "scene.json"});
+  EXPECT_THAT(frames.log, HasSubstr("--frames: Value -1 not in range 0 to 2147483647"));
+  EXPECT_EQ(RunCli(dir, {"--help"}).code, 0);
+}
+
+TEST(HostileMessages, ASceneThatIsAFolderIsNamedAsOne) {
+  ScratchDir dir;
+  fs::create_directories(dir / "scene.json");
+  const CliRun r = RunCli(dir, {"render", (dir / "scene.json").string(), "-o",
+                                (dir / "x.png").string()});
+  EXPECT_EQ(r.code, 2) << r.log;
+  EXPECT_THAT(r.log, HasSubstr((dir / "scene.json").string() + ": is a directory"));
+  EXPECT_THAT(r.log, Not(HasSubstr("JSON")));
+}
+
+// A zip archive of `members` (name -> bytes).
+void WriteZip(const fs::path& path, const std::vector<std::pair<std::string, std::string>>& members) {
+  int err = 0;
+  zip_t* z = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
+  ASSERT_NE(z, nullptr);
+  for (const auto& [name, bytes] : members) {
+    zip_source_t* src = zip_source_buffer(z, bytes.data(), bytes.size(), 0);
+    ASSERT_GE(zip_file_add(z, name.c_str(), src, ZIP_FL_OVERWRITE), 0);
+  }
+  ASSERT_EQ(zip_close(z), 0);  // copies the buffers, which outlive it
+}
+
+TEST(HostileMessages, ArchivesWithoutNetworksOrWithoutMaterialsSaySo) {
+  ScratchDir dir;
+  WriteHdf5Table(Table::Empty(Grid{2, 2, 4, ThetaHMapping::kLinear}), dir / "table.h5");
+  const std::string table = ReadAll(dir / "table.h5");
+  WriteZip(dir / "nonet.zip", {{"merl_nbrdf/x.h5", table}});
+  WriteZip(dir / "empty.zip", {{"readme.txt", "no networks here"}});
+  const std::string out = (dir / "t.h5").string();
+  const CliRun member = RunCli(dir, {"synth", "--nbrdf", "x", "--nbrdf-zip",
+                                     (dir / "nonet.zip").string(), "-o", out});
+  EXPECT_EQ(member.code, 2) << member.log;
+  EXPECT_THAT(member.log, HasSubstr("merl_nbrdf/x.h5: not an NBRDF network"));
+  EXPECT_THAT(member.log, Not(HasSubstr("H5Lexists")));
+  const CliRun list =
+      RunCli(dir, {"synth", "--list-nbrdf", "--nbrdf-zip", (dir / "empty.zip").string()});
+  EXPECT_EQ(list.code, 2) << list.log;
+  EXPECT_THAT(list.log, HasSubstr("empty.zip: holds no NBRDF materials"));
+  setenv("BRDFIT_NBRDF_ZIP", (dir / "empty.zip").c_str(), 1);
+  const CliRun all = RunCli(dir, {"fit", "nbrdf:all", "--model", "lambert", "-o",
+                                  (dir / "f.h5").string()});
+  unsetenv("BRDFIT_NBRDF_ZIP");
+  EXPECT_EQ(all.code, 2) << all.log;
+  EXPECT_THAT(all.log, HasSubstr("empty.zip: holds no NBRDF materials"));
+  EXPECT_FALSE(fs::exists(dir / "f.h5"));
+}
+
+// A 32 x 32 scene of one lambert sphere under n directional lights.
+void WriteLightsScene(const fs::path& path, int n) {
+  nlohmann::json lights = nlohmann::json::array();
+  for (int i = 0; i < n; ++i) {
+    lights.push_back({{"name", "l" + std::to_string(i)}, {"type", "directional"},
+                      {"direction", {1, 1, 1}}});
+  }
+  const nlohmann::json scene = {
+      {"image", {{"width", 32}, {"height", 32}}},
+      {"lights", lights},
+      {"materials", {{"m", {{"type", "analytic"}, {"model", "lambert"}}}}},
+      {"objects", {{{"name", "ball"}, {"shape", "sphere"}, {"centre", {0, 0, 0}}, {"radius", 1},
+                    {"material", "m"}}}}};
+  std::ofstream(path) << scene.dump();
+}
+
+TEST(HostileMessages, MoreLightsThanTheShaderHoldsAreRefusedWithTheLimit) {
+  ScratchDir dir;
+  WriteLightsScene(dir / "one.json", 1);
+  const CliRun one = RunCli(dir, {"render", (dir / "one.json").string(), "-o",
+                                  (dir / "one.png").string()});
+  if (one.code != 0) GTEST_SKIP() << "no headless OpenGL here: " << one.log;
+  WriteLightsScene(dir / "many.json", 5000);
+  const CliRun r = RunCli(dir, {"render", (dir / "many.json").string(), "-o",
+                                (dir / "many.png").string()});
+  EXPECT_EQ(r.code, 2) << r.log;
+  EXPECT_THAT(r.log, HasSubstr("object 'ball': 5000 lights reach it"));
+  EXPECT_THAT(r.log, HasSubstr("GL_MAX_FRAGMENT_UNIFORM_COMPONENTS"));
+  EXPECT_FALSE(fs::exists(dir / "many.png"));
 }
 
 }  // namespace
