@@ -116,7 +116,7 @@ bool PathExists(const H5::H5File& f, const std::string& path) {
 }
 
 hsize_t Columns(const H5::H5File& f, const std::string& name) {
-  if (!PathExists(f, name)) return 0;
+  if (!f.nameExists(name)) return 0;
   const H5::DataSpace space = f.openDataSet(name).getSpace();
   if (space.getSimpleExtentNdims() != 2) return 0;
   hsize_t dims[2];
@@ -157,12 +157,11 @@ NbrdfNetwork ReadNbrdf(const fs::path& zip, const std::string& material) {
     // is a file, not a folder).
     H5::H5File f((zip / member).string(), H5F_ACC_RDONLY, H5::FileCreatPropList::DEFAULT, fapl);
     const std::string l1 = "dense_1/dense_1/", l2 = "dense_2/dense_2/", l3 = "dense_3/dense_3/";
-    for (const std::string& layer : {l1, l2, l3}) {
-      if (!PathExists(f, layer + "kernel:0")) {
-        throw InputError(zip, fmt::format("{}: not an NBRDF network (no dataset /{}kernel:0; "
-                                          "expected the Keras weights dense_1 to dense_3)",
-                                          member, layer));
-      }
+    // Another HDF5 file (a table, say) stored as a member: no first layer at all.
+    if (!PathExists(f, l1 + "kernel:0")) {
+      throw InputError(zip, fmt::format("{}: not an NBRDF network (no dataset /{}kernel:0; "
+                                        "expected the Keras weights dense_1 to dense_3)",
+                                        member, l1));
     }
     const hsize_t h1 = Columns(f, l1 + "kernel:0"), h2 = Columns(f, l2 + "kernel:0");
     if (h1 > kMaxHiddenUnits || h2 > kMaxHiddenUnits) {
