@@ -4,12 +4,14 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <limits>
 #include <type_traits>
 
 #include "core/error.h"
+#include "io/atomic_file.h"
 #include "io/input_file.h"
 
 namespace brdfit::hdf5 {
@@ -35,11 +37,37 @@ void WriteScalarAttr(const H5::H5Object& obj, const char* name, const H5::PredTy
 }  // namespace
 
 void Quiet() {
-  static const bool once = [] {
+  thread_local const bool once = [] {
     H5::Exception::dontPrint();
     return true;
   }();
   (void)once;
+}
+
+void WriteFileImageAtomically(const fs::path& dest, const std::function<void(H5::H5File&)>& fill,
+                              const H5::FileCreatPropList& fcpl) {
+  Quiet();
+  std::vector<char> image;
+  try {
+    H5::FileAccPropList fapl;
+    H5Pset_fapl_core(fapl.getId(), std::size_t{1} << 20, /*backing_store=*/0);
+    // A name no other open file has (libhdf5 refuses to create an open file's name twice).
+    static std::atomic<unsigned> serial{0};
+    const std::string name = fmt::format("{}.in-memory-{}", dest.string(), serial++);
+    H5::H5File f(name, H5F_ACC_TRUNC, fcpl, fapl);
+    fill(f);
+    f.flush(H5F_SCOPE_LOCAL);
+    const ssize_t size = H5Fget_file_image(f.getId(), nullptr, 0);
+    if (size < 0) throw OutputError(dest, "HDF5: cannot take the file's image");
+    image.resize(static_cast<std::size_t>(size));
+    if (H5Fget_file_image(f.getId(), image.data(), image.size()) != size) {
+      throw OutputError(dest, "HDF5: cannot take the file's image");
+    }
+    f.close();
+  } catch (const H5::Exception& e) {
+    throw OutputError(dest, Describe(e));
+  }
+  WriteBytesAtomically(dest, image.data(), image.size());
 }
 
 std::string Describe(const H5::Exception& e) {

@@ -341,6 +341,54 @@ TEST(HostileFit, AMissingInputExitsTwoAndWritesNoReport) {
   EXPECT_FALSE(fs::exists(dir / "fits.h5"));
 }
 
+// ---- item 4: a full disk ---------------------------------------------------------------
+
+TEST_F(BrokenInputs, FitOntoAFullDiskExitsTwoAndLeavesNoDamagedOrTemporaryFile) {
+  testing_cli::TmpfsMount disk(dir_ / "disk", 8);  // less than a report of two fits
+  if (!disk.mounted()) GTEST_SKIP() << disk.why();
+  const fs::path report = disk.path() / "fits.h5";
+  const CliRun r = RunCli(dir_, {"fit", table_.string(), "--model", "lambert,lambert+ggx",
+                                 "--budget", "stride:4", "--no-progress", "-q", "-o",
+                                 report.string(), "--json", (disk.path() / "fits.json").string()});
+  EXPECT_EQ(r.code, 2) << r.log;  // was a SIGSEGV (139) after "H5Fclose failed"
+  EXPECT_THAT(r.log, HasSubstr("brdfit: error: " + report.string() +
+                               ": write failed: No space left on device"));
+  EXPECT_THAT(r.log, Not(HasSubstr("HDF5")));
+  EXPECT_EQ(Files(disk.path()), std::vector<std::string>{});  // no report, temporary or lock
+  // synth's HDF5 table and report's HTML: the same.
+  const CliRun t = RunCli(dir_, {"synth", "--model", "lambert", "--grid", "16,16,32", "-o",
+                                 (disk.path() / "t.h5").string()});
+  EXPECT_EQ(t.code, 2) << t.log;
+  EXPECT_THAT(t.log, HasSubstr((disk.path() / "t.h5").string() + ": write failed"));
+  const CliRun h = RunCli(dir_, {"report", fits_.string(), "-q", "-o",
+                                 (disk.path() / "r.html").string()});
+  EXPECT_EQ(h.code, 2) << h.log;
+  EXPECT_THAT(h.log, HasSubstr((disk.path() / "r.html").string() + ": write failed"));
+  EXPECT_EQ(Files(disk.path()), std::vector<std::string>{});
+}
+
+TEST_F(BrokenInputs, AFullDiskLeavesThePreviousReportAsItWas) {
+  testing_cli::TmpfsMount disk(dir_ / "disk", 32);  // one report, not it and a bigger one
+  if (!disk.mounted()) GTEST_SKIP() << disk.why();
+  const fs::path report = disk.path() / "fits.h5";
+  const std::vector<std::string> common = {"--budget", "stride:4", "--no-progress", "-q", "-o",
+                                           report.string()};
+  std::vector<std::string> first = {"fit", table_.string(), "--model", "lambert"};
+  first.insert(first.end(), common.begin(), common.end());
+  const CliRun one = RunCli(dir_, first);
+  ASSERT_EQ(one.code, 0) << one.log;
+  const std::string before = ReadAll(report);
+  std::vector<std::string> more = {"fit", table_.string(), "--model",
+                                   "lambert,lambert+ggx,lambert+beckmann"};
+  more.insert(more.end(), common.begin(), common.end());
+  const CliRun r = RunCli(dir_, more);
+  EXPECT_EQ(r.code, 2) << r.log;
+  EXPECT_THAT(r.log, HasSubstr(report.string() + ": write failed: No space left on device"));
+  EXPECT_EQ(ReadAll(report), before);
+  EXPECT_EQ(ReadFitReport(report).size(), 1u);
+  EXPECT_EQ(Files(disk.path()), std::vector<std::string>{"fits.h5"});
+}
+
 // ---- item 16: messages ----------------------------------------------------------------
 
 // Every character of a message is printable (or a line break): no raw bytes of a file.
