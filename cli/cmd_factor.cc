@@ -125,9 +125,7 @@ FactorOptions CheckOptions(const FactorCliOptions& o) {
 
 int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullptr) {
   const FactorOptions options = CheckOptions(o);
-  if (std::error_code ec; !fs::create_directories(o.out_dir, ec) && ec) {
-    throw OutputError(o.out_dir, "cannot create the output folder: " + ec.message());
-  }
+  MakeOutputFolder(o.out_dir);
   SampleOptions metric_samples;
   metric_samples.cutoff_deg = o.metric_cutoff_deg;
   FactorSystemCache cache;

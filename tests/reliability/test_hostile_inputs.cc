@@ -326,6 +326,21 @@ TEST_F(BrokenInputs, FactorIntoAReadOnlyOrFullFolderIsAnOutputErrorExitTwo) {
   }
 }
 
+TEST_F(BrokenInputs, AnOutputFolderThatCannotBeCreatedIsNamed) {
+  testing_cli::TmpfsMount disk(dir_ / "ro", 16, /*read_only=*/true);
+  if (!disk.mounted()) GTEST_SKIP() << disk.why();
+  const fs::path out = disk.path() / "sub" / "dir";
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"factor", table_.string(), "--res", "8", "-q", "-o", out.string()},
+        {"demo", "-o", out.string()}}) {
+    const CliRun r = RunCli(dir_, args);
+    EXPECT_EQ(r.code, 2) << r.log;
+    EXPECT_THAT(r.log, HasSubstr("brdfit: error: " + out.string() +
+                                 ": cannot create the folder: Read-only file system"));
+    EXPECT_THAT(r.log, Not(HasSubstr("filesystem error")));
+  }
+}
+
 TEST(HostileFit, AMissingInputExitsTwoAndWritesNoReport) {
   ScratchDir dir;
   const CliRun r = RunCli(dir, {"fit", (dir / "none.binary").string(), "--model", "lambert", "-o",
