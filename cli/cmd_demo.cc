@@ -21,7 +21,7 @@ int RunDemo(const DemoOptions& opts) {
   ctx.out_dir = opts.out_dir;
   ctx.quick = opts.quick;
   CheckOutputFolder(ctx.out_dir, "-o");
-  std::filesystem::create_directories(ctx.out_dir);
+  MakeOutputFolder(ctx.out_dir);
   auto steps = DemoSteps();
   std::stable_sort(steps.begin(), steps.end(),
                    [](const DemoStep& a, const DemoStep& b) { return a.order < b.order; });

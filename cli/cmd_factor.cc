@@ -199,7 +199,7 @@ void PrintSummary(const std::string& stem, const Factorization& r, double ln_rms
 
 int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullptr) {
   const FactorOptions options = CheckOptions(o);
-  fs::create_directories(o.out_dir);
+  MakeOutputFolder(o.out_dir);
   SampleOptions metric_samples;
   metric_samples.cutoff_deg = o.metric_cutoff_deg;
   FactorSystemCache cache;
@@ -274,6 +274,12 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
     } catch (const InputError& e) {
       fmt::print(stderr, "brdfit: error: {}\n", e.what());
       code = kExitBadInput;
+    } catch (const OutputError& e) {
+      // A read-only or full output folder is an output error (exit 2), not a failed solve, and
+      // the next table would meet it too (issue 14 item 15).
+      fmt::print(stderr, "brdfit: error: {}\n", e.what());
+      code = kExitBadInput;
+      break;
     } catch (const std::runtime_error& e) {
       fmt::print(stderr, "brdfit: error: {}: {}\n", file, e.what());
       if (code == kExitOk) code = kExitFitFailed;
@@ -337,11 +343,14 @@ Registrar reg{
           ->capture_default_str();
       sub.add_flag("-q,--quiet", o->quiet, "no table on stdout");
       sub.footer(
-          "Exit codes: 0 ok, 2 bad input (named, the other tables are still factored).\n"
+          "Exit codes: 0 ok, 1 a solve failed, 2 bad input (named, the other tables are still "
+          "factored) or an output error (the run stops).\n"
           "Writes DIR/<stem>.p.exr, DIR/<stem>.q.exr (float32 RGB OpenEXR; with --rank K also\n"
           "<stem>.p2.exr, <stem>.q2.exr, ... up to K) and DIR/<stem>.factor.json per table\n"
           "(docs/formats.md, docs/factorization.md). The table: form (parameterization, +d with a\n"
           "diffuse value, rK for rank K), texture memory and fetches per light (+ per fragment).\n"
+          "Without an option naming the form, the forms of docs/factorization.md \"Choosing the\n"
+          "form\" are tried and the one with the best rendered score is kept (--no-auto: mccool).\n"
           "Examples:\n"
           "  brdfit factor gold-paint.binary -o out\n"
           "  brdfit factor gold-paint.binary --diffuse --rank 2 -o out\n"

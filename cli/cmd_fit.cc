@@ -26,6 +26,8 @@
 #include "io/atomic_file.h"
 #include "io/file_lock.h"
 #include "io/fit_report.h"
+#include "io/input_file.h"
+#include "io/nbrdf.h"
 #include "io/output_policy.h"
 #include "pipeline/batch_fit.h"
 #include "pipeline/inputs.h"
@@ -199,7 +201,11 @@ int RunFit(const FitCliOptions& o) {
   req.jobs = o.jobs;
   const std::size_t num_inputs = req.inputs.size();
 
-  // Before any work: the outputs pass the output policy, and the report is ours for the run.
+  // Before any work: every input file is there (a missing one is exit 2 with no report
+  // written, issue 14 item 15), the outputs pass the output policy, and the report is ours.
+  for (const std::string& f : req.inputs) {
+    if (!IsNbrdfInput(f)) CheckInputFile(f);
+  }
   CheckOutputs(pipeline::InputFiles(req.inputs), {{o.out, "-o"}, {o.json, "--json"}});
   // The hook first: a signal that arrives while the lock is being taken still gets the fit's
   // message (make test-asan: SIGINT right after the lock file appeared found no hook).
@@ -231,7 +237,7 @@ int RunFit(const FitCliOptions& o) {
   const bool json_to_stdout = o.json == "-";
   if (json_to_stdout) {
     fmt::print("{}", FitParamsJson(run.all));
-  } else if (!o.json.empty()) {
+  } else if (!o.json.empty() && !(run.all.empty() && !run.input_errors.empty())) {
     WriteTextAtomically(o.json, FitParamsJson(run.all));
   }
 

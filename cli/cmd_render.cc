@@ -5,6 +5,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -170,7 +171,7 @@ Registrar reg{
                    "zooms, R resets, Esc closes; with -o the last frame shown is written");
       sub.add_option("--frames", opts->frames,
                      "with --window: close after N frames (scripts, tests)")
-          ->check(CLI::NonNegativeNumber);
+          ->check(CLI::Range(0, std::numeric_limits<int>::max()));  // not a 300-digit bound
       sub.add_flag("--compare", opts->compare,
                    "measured | fitted | factored | error panels (scene 'comparison')");
       sub.footer(

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -39,31 +40,74 @@ struct ReportCliOptions {
   std::vector<double> render_lights = pipeline::DefaultViewLights();
   bool no_renders = false;
   std::string chart_js;
+  bool keep_going = false;
   bool quiet = false;
 };
 
-// Slices of one material: its table against every fit (model + parameters) and factorization.
+// What could not be read. Without --keep-going the first problem ends the run (exit 2, nothing
+// written); with it, each becomes a note on the page and an error on stderr, and the run exits
+// 2 after writing the page.
+class Problems {
+ public:
+  explicit Problems(bool keep_going) : keep_going_(keep_going) {}
+  // Throws e unless keep-going; else records it and returns its text for a note.
+  std::string Add(const InputError& e) {
+    if (!keep_going_) throw e;
+    all_.push_back(e.what());
+    return e.what();
+  }
+  std::vector<std::string>* Sink() { return keep_going_ ? &all_ : nullptr; }
+  const std::vector<std::string>& All() const { return all_; }
+
+ private:
+  bool keep_going_;
+  std::vector<std::string> all_;
+};
+
+// Slices of one material: its table against its best results (the pick, then by
+// report::RankEntries), at most kMaxSliceResults of them: a material with thousands of fits
+// would otherwise draw thousands of lines per slice (issue 14 item 8).
+constexpr std::size_t kMaxSliceResults = 8;
+
 void AddSlices(const report::ReportSources& src, const ReportCliOptions& o, const Table& table,
                report::Material* m) {
+  std::map<std::string, int> uses;  // entries per name: a shared name gets budget and loss
+  for (const Entry& e : m->entries) ++uses[e.name];
+  std::vector<std::size_t> order = report::RankEntries(m->entries);
+  const int best = report::BestEntry(m->entries);
+  if (best >= 0) {
+    std::stable_partition(order.begin(), order.end(),
+                          [&](std::size_t i) { return static_cast<int>(i) == best; });
+  }
   std::vector<report::NamedPredictor> predictors;
-  for (const Entry& e : m->entries) {
-    if (e.kind != Entry::Kind::kFit || e.Failed() || e.params.empty()) continue;
+  std::size_t drawable = 0;
+  for (const std::size_t i : order) {
+    const Entry& e = m->entries[i];
+    if (e.Failed() || (e.kind == Entry::Kind::kFit && e.params.empty())) continue;
+    if (++drawable > kMaxSliceResults) continue;  // counted for the note, not drawn
     try {
-      std::string label = e.name;
-      if (std::count_if(m->entries.begin(), m->entries.end(),
-                        [&](const Entry& x) { return x.name == e.name; }) > 1) {
-        label += " (" + e.budget + ", " + e.loss + ")";
+      if (e.kind == Entry::Kind::kFit) {
+        const std::string label =
+            uses[e.name] > 1 ? e.name + " (" + e.budget + ", " + e.loss + ")" : e.name;
+        predictors.push_back({label, "fitted", report::ModelPredictor(e.Model(), e.params)});
+        continue;
       }
-      predictors.push_back({label, "fitted", report::ModelPredictor(e.name, e.params)});
+      const auto f = std::find_if(src.factors.begin(), src.factors.end(), [&](const auto& r) {
+        return r.material == m->name && r.label == e.name;
+      });
+      if (f == src.factors.end()) continue;
+      auto brdf = std::make_shared<FactoredBrdf>(LoadFactoredBrdf(f->sidecar));
+      predictors.push_back(
+          {f->label, "factored", [brdf](const HalfDiffAngles& a) { return brdf->Eval(a); }});
     } catch (const InputError& err) {
       m->notes.push_back(fmt::format("{}: not drawn in the slices: {}", e.name, err.what()));
     }
   }
-  for (const auto& f : src.factors) {
-    if (f.material != m->name) continue;
-    auto brdf = std::make_shared<FactoredBrdf>(LoadFactoredBrdf(f.sidecar));
-    predictors.push_back(
-        {f.label, "factored", [brdf](const HalfDiffAngles& a) { return brdf->Eval(a); }});
+  if (drawable > kMaxSliceResults) {
+    m->notes.push_back(fmt::format(
+        "The θh slices draw the best {} of this material's {} results (the ★ one first, then "
+        "in the table's order).",
+        kMaxSliceResults, drawable));
   }
   m->slices = report::ComputeThetaHSlices(table, o.theta_d, o.phi_d, predictors);
 }
@@ -87,8 +131,10 @@ int RunReport(const ReportCliOptions& o) {
   CheckOutputs(read, {{o.out, "-o"}});
   const std::string js = report::ReadChartJs(chart_js);  // fail before any work
   std::vector<fs::path> inputs(o.inputs.begin(), o.inputs.end());
-  report::ReportSources src = report::ReadReportInputs(inputs);
+  Problems problems(o.keep_going);
+  report::ReportSources src = report::ReadReportInputs(inputs, problems.Sink());
   report::Report& r = src.report;
+  for (const std::string& p : problems.All()) r.notes.push_back("Left out (unreadable): " + p);
   if (!o.title.empty()) r.title = o.title;
   r.metric_definition = MetricsDefinition();
   if (r.materials.empty() && r.bench.empty() && r.renders.empty()) {
@@ -108,26 +154,28 @@ int RunReport(const ReportCliOptions& o) {
         if (!o.no_renders) m.views.missing = fmt::format("No renders: {}.", why);
         continue;
       }
+      // A table that is there but cannot be read is an error, not a note (issue 14 item 10).
       Table table;
       try {
         table = pipeline::LoadInput(t->second);
       } catch (const InputError& e) {
-        if (!o.no_slices) m.notes.push_back(fmt::format("No θh slices: {}", e.what()));
-        if (!o.no_renders) m.views.missing = fmt::format("No renders: {}", e.what());
+        const std::string why = problems.Add(e);
+        if (!o.no_slices) m.notes.push_back(fmt::format("No θh slices: {}", why));
+        if (!o.no_renders) m.views.missing = fmt::format("No renders: {}", why);
         continue;
       }
       if (!o.no_slices) {
         try {
           AddSlices(src, o, table, &m);
         } catch (const InputError& e) {
-          m.notes.push_back(fmt::format("No θh slices: {}", e.what()));
+          m.notes.push_back(fmt::format("No θh slices: {}", problems.Add(e)));
         }
       }
       if (!o.no_renders) {
         try {
           m.views = pipeline::RenderMaterialViews(table, m, src.factors, o.render_lights);
         } catch (const InputError& e) {
-          m.views.missing = fmt::format("No renders: {}", e.what());
+          m.views.missing = fmt::format("No renders: {}", problems.Add(e));
         }
       }
     }
@@ -140,6 +188,12 @@ int RunReport(const ReportCliOptions& o) {
     fmt::print("wrote {} ({} materials, {} results, {} bench points, {} renders)\n",
                fs::absolute(o.out).string(), r.materials.size(), entries, r.bench.size(),
                r.renders.size());
+  }
+  if (!problems.All().empty()) {
+    for (const std::string& p : problems.All()) fmt::print(stderr, "brdfit: error: {}\n", p);
+    fmt::print(stderr, "brdfit: {} problem{} noted in {} (--keep-going)\n", problems.All().size(),
+               problems.All().size() == 1 ? "" : "s", o.out);
+    return kExitBadInput;
   }
   return kExitOk;
 }
@@ -170,13 +224,17 @@ Registrar reg{
       sub.add_option("--chart-js", o->chart_js,
                      "Chart.js to inline (default $BRDFIT_CHART_JS or "
                      "/usr/share/javascript/chart.js/chart.min.js)");
+      sub.add_flag("--keep-going", o->keep_going,
+                   "write the page despite unreadable inputs or tables (each noted on it and "
+                   "printed), then exit 2");
       sub.add_flag("-q,--quiet", o->quiet, "no summary line, no progress bar");
       sub.footer(
           "The page needs no network: Chart.js (Debian's libjs-chart.js) and the renders are "
           "inlined.\nSlices and renders need each material's table: the one a result names, or give "
           "it.\nBest result per material: highest PSNR - 20 x median luminance error of the "
           "rendered-image\nmetric; lowest log_rmse when no result has it (docs/accuracy.md).\n"
-          "Exit codes: 0 written, 2 bad input (a file missing, unreadable or of no known kind).\n"
+          "Exit codes: 0 written, 2 bad input (a file missing, unreadable, damaged or of no known "
+          "kind: nothing written; with --keep-going the page is written, then exit 2).\n"
           "Examples:\n"
           "  brdfit report fits.h5 -o report.html\n"
           "  brdfit report fits.h5 factor/*.factor.json bench.csv compare.png -o report.html\n"

@@ -4,7 +4,10 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <filesystem>
 #include <optional>
 #include <sstream>
@@ -40,7 +43,7 @@ struct SynthCliOptions {
   std::string mapping = "sqrt";
   double noise = 0;
   double missing = 0;
-  std::uint64_t seed = 0;
+  std::string seed = "0";  // parsed by ParseSeed: CLI11 saturated -1 and 1e20 to 2^64 - 1
   std::string format;
   std::string out;
 };
@@ -70,6 +73,39 @@ Grid ParseGrid(const std::string& text, const std::string& mapping) {
   g.n_phi_d = static_cast<int>(n[2]);
   g.theta_h_mapping = FromString<ThetaHMapping>(mapping);
   return g;
+}
+
+// Largest --noise: a log-normal factor of e^10 per standard deviation is already far beyond
+// any measurement's noise, and with it no finite value overflows (z stays below ~9).
+constexpr double kMaxNoise = 10;
+
+// A seed is a decimal integer in [0, 2^64 - 1]; anything else (a sign, an exponent, overflow)
+// is refused rather than saturated.
+std::uint64_t ParseSeed(const std::string& text) {
+  std::uint64_t v = 0;
+  const char* end = text.data() + text.size();
+  const auto [at, ec] = std::from_chars(text.data(), end, v);
+  if (text.empty() || ec != std::errc() || at != end) {
+    throw InputError(fmt::format("--seed '{}': expected an integer in [0, {}]", text,
+                                 std::numeric_limits<std::uint64_t>::max()));
+  }
+  return v;
+}
+
+// Every valid value written must be finite (the noise multiplies values; a model can return
+// huge ones): a non-finite one is refused before anything is written.
+void CheckFinite(const Table& t, double noise) {
+  std::size_t bad = 0;
+  for (std::size_t i = 0; i < t.valid.size(); ++i) {
+    if (!t.valid[i]) continue;
+    const double* v = t.Value(i);
+    bad += !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]);
+  }
+  if (bad > 0) {
+    throw InputError(fmt::format("{} cells would hold non-finite values (noise sigma {}); "
+                                 "nothing written",
+                                 bad, noise));
+  }
 }
 
 std::string Grouped(std::size_t n) {
@@ -143,7 +179,10 @@ void PrintSummary(const fs::path& out, TableFormat f, const SynthResult& r) {
 
 int RunSynth(const SynthCliOptions& o) {
   if (o.list_nbrdf) {
-    for (const auto& m : ListNbrdfMaterials(pipeline::NbrdfArchive(o.nbrdf_zip))) fmt::print("{}\n", m);
+    const fs::path zip = pipeline::NbrdfArchive(o.nbrdf_zip);
+    const std::vector<std::string> materials = ListNbrdfMaterials(zip);
+    if (materials.empty()) throw InputError(zip, kNoNbrdfMaterials);  // not an empty list, exit 0
+    for (const auto& m : materials) fmt::print("{}\n", m);
     return kExitOk;
   }
   if (o.model.empty() == o.nbrdf.empty()) {
@@ -167,13 +206,14 @@ int RunSynth(const SynthCliOptions& o) {
   }
   const Grid grid = ParseGrid(o.grid, o.mapping);
   CheckFormatFitsGrid(*format, grid, out);
-  if (!(o.noise >= 0) || !std::isfinite(o.noise)) {
-    throw InputError(fmt::format("--noise {}: expected a finite sigma >= 0", o.noise));
+  if (!(o.noise >= 0 && o.noise <= kMaxNoise)) {
+    throw InputError(fmt::format("--noise {}: expected a sigma in [0, {}] (log-normal)", o.noise,
+                                 kMaxNoise));
   }
   if (!(o.missing >= 0 && o.missing <= 1)) {
     throw InputError(fmt::format("--missing {}: expected a fraction in [0, 1]", o.missing));
   }
-  const SynthOptions so{o.noise, o.missing, o.seed};
+  const SynthOptions so{o.noise, o.missing, ParseSeed(o.seed)};
 
   SynthResult r;
   if (!o.model.empty()) {
@@ -183,6 +223,7 @@ int RunSynth(const SynthCliOptions& o) {
   } else {
     r = SynthesizeFromNbrdf(pipeline::NbrdfArchive(o.nbrdf_zip), o.nbrdf, grid, so);
   }
+  CheckFinite(r.table, o.noise);
   SaveTable(r.table, out, *format);
   PrintSummary(out, *format, r);
   return kExitOk;
@@ -208,7 +249,8 @@ Registrar reg{
           ->capture_default_str();
       sub.add_option("--missing", o->missing, "fraction of valid cells removed (holes)")
           ->capture_default_str();
-      sub.add_option("--seed", o->seed, "seed for noise and holes")->capture_default_str();
+      sub.add_option("--seed", o->seed, "seed for noise and holes, an integer in [0, 2^64 - 1]")
+          ->capture_default_str();
       sub.add_option("--format", o->format, "merl or h5 (default: from the extension)");
       sub.add_option("-o,--out", o->out, "output file (.binary = MERL, .h5 = HDF5)");
       sub.footer(

@@ -57,8 +57,13 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? kExitOk : kExitBadInput;
+    // --help and --version print as CLI11 does; a usage error gets brdfit's prefix like every
+    // other error (issue 14 item 16).
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+    fmt::print(stderr, "brdfit: error: {}\nRun 'brdfit --help' or 'brdfit <command> --help' for "
+                       "the options.\n",
+               e.what());
+    return kExitBadInput;
   }
   try {
     for (auto& [sub, run] : runs) {

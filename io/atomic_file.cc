@@ -1,9 +1,13 @@
 #include "io/atomic_file.h"
 
+#include <fcntl.h>
+#include <fmt/core.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
-#include <fstream>
+#include <cstring>
 #include <system_error>
 
 #include "core/error.h"
@@ -40,14 +44,34 @@ void WriteFileAtomically(const fs::path& dest,
   EndTemporary(tmp);
 }
 
-void WriteTextAtomically(const fs::path& dest, const std::string& contents) {
+void WriteBytesAtomically(const fs::path& dest, const void* data, std::size_t size) {
   WriteFileAtomically(dest, [&](const fs::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw OutputError(dest, "cannot create temporary file " + tmp.string());
-    out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
-    out.flush();
-    if (!out) throw OutputError(dest, "write failed (disk full?)");
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) {
+      throw OutputError(dest, fmt::format("cannot create temporary file {}: {}", tmp.string(),
+                                          std::strerror(errno)));
+    }
+    const char* p = static_cast<const char*>(data);
+    for (std::size_t left = size; left > 0;) {
+      const ssize_t n = ::write(fd, p, left);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        const int err = n < 0 ? errno : ENOSPC;
+        ::close(fd);
+        throw OutputError(dest, fmt::format("write failed: {}", std::strerror(err)));
+      }
+      p += n;
+      left -= static_cast<std::size_t>(n);
+    }
+    // Some file systems report a full disk or an I/O error only when the file is closed.
+    if (::close(fd) != 0) {
+      throw OutputError(dest, fmt::format("write failed at close: {}", std::strerror(errno)));
+    }
   });
+}
+
+void WriteTextAtomically(const fs::path& dest, const std::string& contents) {
+  WriteBytesAtomically(dest, contents.data(), contents.size());
 }
 
 }  // namespace brdfit

@@ -3,6 +3,7 @@
 // never leaves a half-written result under the final name.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -15,7 +16,9 @@ namespace brdfit {
 void WriteFileAtomically(const std::filesystem::path& dest,
                          const std::function<void(const std::filesystem::path& tmp)>& write);
 
-// Convenience: writes bytes atomically.
+// Writes bytes atomically: every write and the close checked (a full disk or an I/O error is
+// an OutputError naming dest, with the system's reason), then renamed into place.
+void WriteBytesAtomically(const std::filesystem::path& dest, const void* data, std::size_t size);
 void WriteTextAtomically(const std::filesystem::path& dest, const std::string& contents);
 
 }  // namespace brdfit

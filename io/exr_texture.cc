@@ -62,7 +62,7 @@ void CheckAttributeSizes(const std::filesystem::path& path, std::uintmax_t file_
     if (size < 0 || static_cast<std::uintmax_t>(size) > file_size - pos) {
       throw InputError(path, fmt::format("damaged OpenEXR header: attribute '{}' declares {} bytes, "
                                          "the file has {} left",
-                                         name, size, file_size - pos));
+                                         PrintableExcerpt(name), size, file_size - pos));
     }
     pos += static_cast<std::size_t>(size);
   }
@@ -144,7 +144,7 @@ RgbImage ReadRgbExr(const std::filesystem::path& path, ExrAttributes* attributes
   } catch (const InputError&) {
     throw;
   } catch (const std::exception& e) {
-    throw InputError(path, std::string("damaged or unreadable OpenEXR file: ") + e.what());
+    throw InputError(path, "damaged or unreadable OpenEXR file: " + PrintableExcerpt(e.what()));
   }
 }
 

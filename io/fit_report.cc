@@ -13,7 +13,6 @@
 
 #include "core/error.h"
 #include "core/metrics.h"
-#include "io/atomic_file.h"
 #include "io/hdf5_util.h"
 #include "io/metrics_json.h"
 
@@ -353,23 +352,23 @@ void WriteFitReport(std::vector<FitReportEntry> entries, const fs::path& path,
                     bool include_timings) {
   hdf5::Quiet();
   SortEntries(entries);
-  WriteFileAtomically(path, [&](const fs::path& tmp) {
-    try {
-      H5::FileCreatPropList fcpl;
-      H5Pset_obj_track_times(fcpl.getId(), 0);  // the root group too
-      H5::H5File f(tmp.string(), H5F_ACC_TRUNC, fcpl);
-      WriteStringAttr(f, "format", kFitReportFormat);
-      WriteIntAttr(f, "format_version", kFitReportVersion);
-      WriteStringAttr(f, "metrics_definition", MetricsDefinition());
-      H5::Group root = f.openGroup("/");
-      H5::Group g = MakeGroup(root, "entries");
-      for (std::size_t i = 0; i < entries.size(); ++i) {
-        WriteEntry(MakeGroup(g, fmt::format("{:05d}", i)), entries[i], include_timings);
-      }
-    } catch (const H5::Exception& e) {
-      throw OutputError(path, hdf5::Describe(e));
-    }
-  });
+  H5::FileCreatPropList fcpl;
+  H5Pset_obj_track_times(fcpl.getId(), 0);  // the root group too
+  // Built in memory, written with every write checked (a full disk: OutputError, the previous
+  // report left as it was).
+  hdf5::WriteFileImageAtomically(
+      path,
+      [&](H5::H5File& f) {
+        WriteStringAttr(f, "format", kFitReportFormat);
+        WriteIntAttr(f, "format_version", kFitReportVersion);
+        WriteStringAttr(f, "metrics_definition", MetricsDefinition());
+        H5::Group root = f.openGroup("/");
+        H5::Group g = MakeGroup(root, "entries");
+        for (std::size_t i = 0; i < entries.size(); ++i) {
+          WriteEntry(MakeGroup(g, fmt::format("{:05d}", i)), entries[i], include_timings);
+        }
+      },
+      fcpl);
 }
 
 std::vector<FitReportEntry> ReadFitReport(const fs::path& path) {

@@ -5,12 +5,10 @@
 #include <hdf5.h>
 
 #include <cmath>
-#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
-#include "io/atomic_file.h"
 #include "io/hdf5_util.h"
 
 namespace brdfit {
@@ -46,16 +44,8 @@ void WriteAxis(const H5::Group& axes, const char* name, const std::vector<double
   WriteStringAttr(ds, "definition", definition);
 }
 
-void WriteFile(const Table& t, const fs::path& file, const fs::path& dest) {
+void WriteFile(const Table& t, H5::H5File& f) {
   const Grid& g = t.grid;
-  std::unique_ptr<H5::H5File> created;
-  try {
-    created = std::make_unique<H5::H5File>(file.string(), H5F_ACC_TRUNC);
-  } catch (const H5::Exception& e) {
-    throw OutputError(dest, "cannot create temporary file " + file.string() +
-                                " (HDF5: " + e.getDetailMsg() + ")");
-  }
-  H5::H5File& f = *created;
   WriteStringAttr(f, "format", kHdf5TableFormat);
   hdf5::WriteInt32Attr(f, "format_version", kHdf5TableVersion);
 
@@ -231,16 +221,8 @@ void WriteHdf5Table(const Table& t, const fs::path& path) {
   if (t.rgb.size() != 3 * t.grid.NumCells() || t.valid.size() != t.grid.NumCells()) {
     throw std::invalid_argument("WriteHdf5Table: table arrays do not match its grid");
   }
-  WriteFileAtomically(path, [&](const fs::path& tmp) {
-    try {
-      WriteFile(t, tmp, path);
-    } catch (const H5::FileIException& e) {
-      throw OutputError(path, "cannot create temporary file " + tmp.string() +
-                                  " (HDF5: " + e.getDetailMsg() + ")");
-    } catch (const H5::Exception& e) {
-      throw OutputError(path, hdf5::Describe(e));
-    }
-  });
+  // Built in memory, written with every write checked (io/hdf5_util.h).
+  hdf5::WriteFileImageAtomically(path, [&](H5::H5File& f) { WriteFile(t, f); });
 }
 
 }  // namespace brdfit

@@ -3,10 +3,15 @@
 #include <fmt/core.h>
 #include <hdf5.h>
 
+#include <algorithm>
+#include <atomic>
+#include <cctype>
 #include <cmath>
+#include <limits>
 #include <type_traits>
 
 #include "core/error.h"
+#include "io/atomic_file.h"
 #include "io/input_file.h"
 
 namespace brdfit::hdf5 {
@@ -32,11 +37,37 @@ void WriteScalarAttr(const H5::H5Object& obj, const char* name, const H5::PredTy
 }  // namespace
 
 void Quiet() {
-  static const bool once = [] {
+  thread_local const bool once = [] {
     H5::Exception::dontPrint();
     return true;
   }();
   (void)once;
+}
+
+void WriteFileImageAtomically(const fs::path& dest, const std::function<void(H5::H5File&)>& fill,
+                              const H5::FileCreatPropList& fcpl) {
+  Quiet();
+  std::vector<char> image;
+  try {
+    H5::FileAccPropList fapl;
+    H5Pset_fapl_core(fapl.getId(), std::size_t{1} << 20, /*backing_store=*/0);
+    // A name no other open file has (libhdf5 refuses to create an open file's name twice).
+    static std::atomic<unsigned> serial{0};
+    const std::string name = fmt::format("{}.in-memory-{}", dest.string(), serial++);
+    H5::H5File f(name, H5F_ACC_TRUNC, fcpl, fapl);
+    fill(f);
+    f.flush(H5F_SCOPE_LOCAL);
+    const ssize_t size = H5Fget_file_image(f.getId(), nullptr, 0);
+    if (size < 0) throw OutputError(dest, "HDF5: cannot take the file's image");
+    image.resize(static_cast<std::size_t>(size));
+    if (H5Fget_file_image(f.getId(), image.data(), image.size()) != size) {
+      throw OutputError(dest, "HDF5: cannot take the file's image");
+    }
+    f.close();
+  } catch (const H5::Exception& e) {
+    throw OutputError(dest, Describe(e));
+  }
+  WriteBytesAtomically(dest, image.data(), image.size());
 }
 
 std::string Describe(const H5::Exception& e) {
@@ -220,9 +251,64 @@ std::vector<double> Reader::ReadFinite(const H5::DataSet& ds, const std::string&
 }
 
 void Reader::RequireAllocated(const H5::DataSet& ds, const std::string& what) const {
+  const H5::DSetCreatPropList plist = ds.getCreatePlist();
+  if (plist.getLayout() == H5D_CHUNKED) {
+    RequireAllChunks(ds, plist, what);
+    return;
+  }
   H5D_space_status_t status;
   if (H5Dget_space_status(ds.getId(), &status) < 0 || status != H5D_SPACE_STATUS_ALLOCATED) {
     Fail(what + " declares data that the file does not store");
+  }
+}
+
+// Chunked storage: libhdf5 calls a compressed dataset "partly allocated" (its stored bytes are
+// fewer than its elements'), so count the chunks instead: every chunk the shape spans must be
+// stored, and every filter must be one this libhdf5 can decode.
+void Reader::RequireAllChunks(const H5::DataSet& ds, const H5::DSetCreatPropList& plist,
+                              const std::string& what) const {
+  const hid_t pl = plist.getId();
+  const int nfilters = H5Pget_nfilters(pl);
+  for (int i = 0; i < nfilters; ++i) {
+    unsigned flags = 0, config = 0;
+    std::size_t nvalues = 0;
+    char name[64] = {};
+    const H5Z_filter_t id = H5Pget_filter2(pl, static_cast<unsigned>(i), &flags, &nvalues,
+                                           nullptr, sizeof name, name, &config);
+    if (id < 0 || H5Zfilter_avail(id) <= 0) {
+      std::string shown;
+      for (const char* c = name; *c && shown.size() < 40; ++c) {
+        shown += std::isprint(static_cast<unsigned char>(*c)) ? *c : '?';
+      }
+      Fail(fmt::format("{} is stored through HDF5 filter {} ('{}'), which this libhdf5 cannot "
+                       "decode",
+                       what, static_cast<long>(id), shown));
+    }
+  }
+  const H5::DataSpace space = ds.getSpace();
+  const int rank = space.getSimpleExtentNdims();
+  std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(rank, 0))), chunk(dims.size());
+  space.getSimpleExtentDims(dims.data());
+  if (rank <= 0 || H5Pget_chunk(pl, rank, chunk.data()) != rank) {
+    Fail(what + " is chunked without a readable chunk shape");
+  }
+  // Chunks the shape spans; saturates (a shape that large is refused by the caller's cap).
+  hsize_t expected = 1;
+  for (int k = 0; k < rank; ++k) {
+    if (chunk[k] == 0) Fail(what + " has a chunk dimension of 0");
+    const hsize_t along = dims[k] / chunk[k] + (dims[k] % chunk[k] != 0);
+    if (along == 0) return;  // an empty axis: nothing to store
+    expected = along > std::numeric_limits<hsize_t>::max() / expected
+                   ? std::numeric_limits<hsize_t>::max()
+                   : expected * along;
+  }
+  hsize_t stored = 0;
+  if (H5Dget_num_chunks(ds.getId(), space.getId(), &stored) < 0) {
+    Fail(what + ": cannot count its stored chunks");
+  }
+  if (stored < expected) {
+    Fail(fmt::format("{} declares data that the file does not store ({} of {} chunks written)",
+                     what, stored, expected));
   }
 }
 

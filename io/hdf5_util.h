@@ -8,18 +8,29 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
 namespace brdfit::hdf5 {
 
-// libhdf5 errors become exceptions with messages, not stderr dumps (once per process).
+// libhdf5 errors become exceptions with messages, not stderr dumps (once per thread: libhdf5's
+// error printing is per thread, and batch fits read and write in worker threads).
 void Quiet();
 
 // "HDF5: <function>: <detail>", for an InputError or OutputError naming the file.
 std::string Describe(const H5::Exception& e);
 
 // ---- writing ------------------------------------------------------------------------------
+
+// Writes the HDF5 file that fill() builds to dest atomically. The file is built in memory (the
+// core driver, no backing store), then its image is written with every write and the close
+// checked (io/atomic_file.h): libhdf5 writing to a full disk fails in H5Fclose, which the C++
+// API only prints, and a damaged file was renamed into place and the process crashed at exit
+// (issue 14 item 4). Throws OutputError naming dest (H5::Exception from fill() too).
+void WriteFileImageAtomically(const std::filesystem::path& dest,
+                              const std::function<void(H5::H5File& f)>& fill,
+                              const H5::FileCreatPropList& fcpl = H5::FileCreatPropList::DEFAULT);
 
 // Dataset creation properties without timestamps: equal contents give equal bytes.
 H5::DSetCreatPropList NoTimestamps();
@@ -79,9 +90,13 @@ class Reader {
   // Fails unless ds's storage is allocated: a declared shape with nothing stored reads back as
   // fill values, so a few bytes of file could make the caller allocate a huge array
   // (fuzz/regressions/hdf5_table/crafted-unwritten-values.h5). Check before allocating.
+  // Chunked storage (compressed or not): every chunk the shape spans stored, every filter
+  // decodable.
   void RequireAllocated(const H5::DataSet& ds, const std::string& what) const;
 
  private:
+  void RequireAllChunks(const H5::DataSet& ds, const H5::DSetCreatPropList& plist,
+                        const std::string& what) const;
   H5::Attribute Attr(const H5::H5Object& obj, const std::string& where, const char* name,
                      H5T_class_t cls, const char* class_name) const;
   template <class T>

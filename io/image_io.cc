@@ -30,23 +30,13 @@ std::vector<png_byte> Quantize(const Image& display) {
 }
 }  // namespace
 
-// libpng's simplified API (png_image, libpng >= 1.6): no setjmp in C++ frames.
+// Encoded in memory, then written with every write and the close checked (io/atomic_file.h).
 void WritePng(const std::filesystem::path& path, const Image& display) {
-  const std::vector<png_byte> bytes = Quantize(display);
-  WriteFileAtomically(path, [&](const std::filesystem::path& tmp) {
-    png_image image{};
-    image.version = PNG_IMAGE_VERSION;
-    image.width = static_cast<png_uint_32>(display.width);
-    image.height = static_cast<png_uint_32>(display.height);
-    image.format = PNG_FORMAT_RGBA;  // 8-bit, sRGB-encoded
-    if (!png_image_write_to_file(&image, tmp.c_str(), 0, bytes.data(), 0, nullptr)) {
-      const std::string msg = image.message;
-      png_image_free(&image);
-      throw OutputError(path, "PNG write failed: " + msg);
-    }
-  });
+  const std::string png = EncodePng(display);
+  WriteBytesAtomically(path, png.data(), png.size());
 }
 
+// libpng's simplified API (png_image, libpng >= 1.6): no setjmp in C++ frames.
 std::string EncodePng(const Image& display) {
   const std::vector<png_byte> bytes = Quantize(display);
   png_image image{};

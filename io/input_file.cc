@@ -1,5 +1,7 @@
 #include "io/input_file.h"
 
+#include <fmt/core.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -54,6 +56,20 @@ std::vector<char> ReadWholeFile(const fs::path& path) {
   if (std::ferror(f.get())) throw InputError(path, "read error");
   buf.resize(n);
   return buf;
+}
+
+std::string PrintableExcerpt(std::string_view text, std::size_t max_bytes) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size() && i < max_bytes; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      out += fmt::format("\\x{:02x}", c);
+    }
+  }
+  if (text.size() > max_bytes) out += "...";
+  return out;
 }
 
 }  // namespace brdfit

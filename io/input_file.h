@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace brdfit {
@@ -15,6 +16,11 @@ std::uintmax_t CheckInputFile(const std::filesystem::path& path);
 
 // Reads at most max_bytes from the start of a file (after CheckInputFile).
 std::vector<char> ReadFilePrefix(const std::filesystem::path& path, std::size_t max_bytes);
+
+// Text taken from inside a file (a library's message quoting a damaged header, a name) made
+// safe for a one-line message: bytes outside printable ASCII as \xNN, at most max_bytes of it
+// (then "..."). A garbage EXR printed its raw bytes to the terminal (issue 14 item 16).
+std::string PrintableExcerpt(std::string_view text, std::size_t max_bytes = 160);
 
 // Reads a whole file into memory (after CheckInputFile).
 std::vector<char> ReadWholeFile(const std::filesystem::path& path);

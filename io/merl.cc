@@ -177,6 +177,10 @@ void WriteMerl(const Table& t, const fs::path& path) {
         std::fflush(f.get()) != 0) {
       throw OutputError(path, std::string("write failed: ") + std::strerror(errno));
     }
+    // A full disk or an I/O error may show only at the close.
+    if (std::fclose(f.release()) != 0) {
+      throw OutputError(path, std::string("write failed at close: ") + std::strerror(errno));
+    }
   });
 }
 

@@ -105,6 +105,16 @@ Eigen::MatrixXd ReadWeights(const hdf5::Reader& in, const H5::H5File& f, const s
   return m;
 }
 
+// Whether every group on `path` exists: H5Lexists fails (rather than saying no) when an
+// intermediate group is missing ("H5Lexists failed" for an archive member that is some other
+// HDF5 file).
+bool PathExists(const H5::H5File& f, const std::string& path) {
+  for (std::size_t at = path.find('/'); ; at = path.find('/', at + 1)) {
+    if (!f.nameExists(path.substr(0, at))) return false;
+    if (at == std::string::npos) return true;
+  }
+}
+
 hsize_t Columns(const H5::H5File& f, const std::string& name) {
   if (!f.nameExists(name)) return 0;
   const H5::DataSpace space = f.openDataSet(name).getSpace();
@@ -147,6 +157,12 @@ NbrdfNetwork ReadNbrdf(const fs::path& zip, const std::string& material) {
     // is a file, not a folder).
     H5::H5File f((zip / member).string(), H5F_ACC_RDONLY, H5::FileCreatPropList::DEFAULT, fapl);
     const std::string l1 = "dense_1/dense_1/", l2 = "dense_2/dense_2/", l3 = "dense_3/dense_3/";
+    // Another HDF5 file (a table, say) stored as a member: no first layer at all.
+    if (!PathExists(f, l1 + "kernel:0")) {
+      throw InputError(zip, fmt::format("{}: not an NBRDF network (no dataset /{}kernel:0; "
+                                        "expected the Keras weights dense_1 to dense_3)",
+                                        member, l1));
+    }
     const hsize_t h1 = Columns(f, l1 + "kernel:0"), h2 = Columns(f, l2 + "kernel:0");
     if (h1 > kMaxHiddenUnits || h2 > kMaxHiddenUnits) {
       throw InputError(zip, fmt::format("{}: hidden layers of {} and {} units (at most {})", member,

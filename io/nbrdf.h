@@ -35,8 +35,11 @@ struct NbrdfNetwork {
   Eigen::RowVectorXd b1, b2, b3;
 };
 
-// The materials in the archive (names of merl_nbrdf/*.h5 without extension), sorted.
+// The materials in the archive (names of merl_nbrdf/*.h5 without extension), sorted; empty for
+// an archive without such members (callers that need one say kNoNbrdfMaterials).
 // Throws InputError if the archive is missing or unreadable.
+inline constexpr const char* kNoNbrdfMaterials =
+    "holds no NBRDF materials (no member merl_nbrdf/<name>.h5)";
 std::vector<std::string> ListNbrdfMaterials(const std::filesystem::path& zip);
 
 // Reads one network: the member is decompressed into memory and opened by HDF5 from there (no

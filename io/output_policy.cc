@@ -98,4 +98,11 @@ void CheckOutputFolder(const fs::path& dir, const std::string& option) {
   throw OutputError(dir, option + " must be a folder, and this exists as something else");
 }
 
+void MakeOutputFolder(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::create_directories(dir, ec) && ec) {
+    throw OutputError(dir, "cannot create the folder: " + ec.message());
+  }
+}
+
 }  // namespace brdfit

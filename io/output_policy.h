@@ -26,4 +26,8 @@ void CheckOutputs(const std::vector<std::filesystem::path>& inputs,
 // An output folder (factor -o DIR, demo -o DIR): may be missing or a folder, nothing else.
 void CheckOutputFolder(const std::filesystem::path& dir, const std::string& option);
 
+// Creates an output folder and its parents; OutputError naming it with the system's reason
+// (was "filesystem error: cannot create directories").
+void MakeOutputFolder(const std::filesystem::path& dir);
+
 }  // namespace brdfit

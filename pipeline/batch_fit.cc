@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cctype>
 #include <chrono>
+#include <exception>
 #include <memory>
 #include <map>
 #include <mutex>
@@ -162,11 +163,15 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
     return planned_keys.count({e.source, e.result.model, e.options}) > 0;
   });
 
-  std::mutex mu;  // guards result, progress and checkpoints
+  std::mutex mu;  // guards result, progress, checkpoints and write_error
+  std::exception_ptr write_error;  // a failed checkpoint's OutputError
   auto last_write = Clock::now();
   auto write_report = [&](bool final) {
     std::vector<FitReportEntry> all = kept;
     all.insert(all.end(), result.fresh.begin(), result.fresh.end());
+    // Nothing fitted (every input unreadable) and no report before: none is written.
+    std::error_code ec;
+    if (final && all.empty() && !fs::exists(req.report, ec)) return;
     MarkChosenFits(all);
     const std::size_t entries = all.size();
     WriteFitReport(std::move(all), req.report, req.timings);
@@ -219,7 +224,16 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
         FitReportEntry e{input, report::MaterialName(input), t.options, std::move(r), false, {}};
         std::lock_guard<std::mutex> lock(mu);
         result.fresh.push_back(std::move(e));
-        if (MsSince(last_write) > 5000) write_report(false);  // checkpoint for resuming
+        if (!write_error && MsSince(last_write) > 5000) {
+          // A checkpoint that cannot be written (a full disk) ends the run: no fit after it
+          // could be kept. The error is raised once the workers stopped.
+          try {
+            write_report(false);  // checkpoint for resuming
+          } catch (const OutputError&) {
+            write_error = std::current_exception();
+            next = tasks.size();
+          }
+        }
       }
       if (--st.remaining == 0) {
         std::lock_guard<std::mutex> lock(st.mu);
@@ -236,6 +250,7 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
       std::min<int>(req.jobs, static_cast<int>(std::max<std::size_t>(tasks.size(), 1)));
   for (int j = 0; j < n_workers; ++j) pool.emplace_back(worker);
   for (auto& th : pool) th.join();
+  if (write_error) std::rethrow_exception(write_error);
 
   write_report(true);
   result.all = kept;

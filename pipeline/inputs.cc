@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 
+#include "core/error.h"
 #include "io/nbrdf.h"
 #include "io/table_io.h"
 #include "pipeline/cache_key.h"
@@ -32,9 +33,10 @@ std::vector<std::string> ExpandInputs(const std::vector<std::string>& inputs) {
   std::vector<std::string> out;
   for (const std::string& in : inputs) {
     if (in == std::string(kNbrdfInputPrefix) + "all") {
-      for (const auto& m : ListNbrdfMaterials(NbrdfArchive())) {
-        out.push_back(std::string(kNbrdfInputPrefix) + m);
-      }
+      const fs::path zip = NbrdfArchive();
+      const std::vector<std::string> materials = ListNbrdfMaterials(zip);
+      if (materials.empty()) throw InputError(zip, kNoNbrdfMaterials);
+      for (const auto& m : materials) out.push_back(std::string(kNbrdfInputPrefix) + m);
     } else {
       out.push_back(in);
     }

@@ -19,6 +19,7 @@
 #include "io/atomic_file.h"
 #include "io/fit_report.h"
 #include "io/nbrdf.h"
+#include "io/output_policy.h"
 #include "io/table_io.h"
 #include "models/registry.h"
 #include "pipeline/cache_key.h"
@@ -140,7 +141,7 @@ std::vector<double> FitCached(const MaterialSpec& m, const std::filesystem::path
   j["status"] = ToString(r.status);
   j["source"] = m.fit_table.string();
   j["key"] = h.Hex();
-  std::filesystem::create_directories(cache_dir);
+  MakeOutputFolder(cache_dir);
   WriteTextAtomically(entry, j.dump(2) + "\n");
   if (log) {
     log->Add("compute", "fit " + m.model + " of " + m.fit_table.string() + " (" +
@@ -211,7 +212,7 @@ std::shared_ptr<const FactorTextures> FactorCached(const MaterialSpec& m,
   const auto table = tables->Get(m.table);
   const auto t0 = Clock::now();
   Factorization r = Factor(*table, opt);
-  std::filesystem::create_directories(cache_dir);
+  MakeOutputFolder(cache_dir);
   SaveFactorization(r, cache_dir, stem, {{"source", m.table.string()}});
   if (log) {
     log->Add("compute", "factorization " + FactorFormLabel(FormOf(r.brdf)) + " " +

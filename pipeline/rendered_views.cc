@@ -92,7 +92,7 @@ report::MaterialViews RenderMaterialViews(const Table& table, const report::Mate
   BrdfFunction approx;
   std::shared_ptr<FactoredBrdf> factored;
   if (e.kind == report::Entry::Kind::kFit) {
-    const ModelInfo* model = FindModel(e.name);
+    const ModelInfo* model = FindModel(e.Model());  // a numbered duplicate: its model
     if (!model || e.params.size() != model->param_names.size()) {
       v.missing = fmt::format("No renders: {} cannot be evaluated (unknown model or {} parameters).",
                               e.name, e.params.size());

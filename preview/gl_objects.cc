@@ -73,7 +73,8 @@ Program::Program(const std::string& vertex_src, const std::string& fragment_src)
     glGetProgramInfoLog(id_, len, &written, log.data());
     log.resize(static_cast<size_t>(written));
     glDeleteProgram(id_);
-    throw std::runtime_error("shader program failed to link:\n" + log);
+    throw std::runtime_error("shader program failed to link: " +
+                             (log.empty() ? std::string("the driver gave no reason") : "\n" + log));
   }
 }
 

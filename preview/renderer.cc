@@ -1,5 +1,7 @@
 #include "preview/renderer.h"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -35,6 +37,24 @@ std::array<float, 4> SphereRect(const Eigen::Matrix4d& view, const Eigen::Matrix
 
 Vec3 Scaled(const Light& l) {
   return l.intensity * l.colour;
+}
+
+// The lights reaching an object are uniform arrays of its fragment shader: beyond the GL's
+// uniform space the program fails to link, and Mesa says no more than that (5,000 lights,
+// issue 14 item 16). Refused first, with the limit: vec4 slots per light at worst (a vec3 or
+// a float takes a whole slot), 64 slots kept for the material's and camera's uniforms.
+void CheckLightUniforms(const std::string& object, std::size_t dir, std::size_t point,
+                        std::size_t spot) {
+  GLint components = 0;
+  glGetIntegerv(GL_MAX_FRAGMENT_UNIFORM_COMPONENTS, &components);
+  const long slots = components / 4 - 64;
+  const auto need = static_cast<long>(2 * dir + 4 * point + 7 * spot);
+  if (components <= 0 || need <= slots) return;
+  throw InputError(fmt::format(
+      "object '{}': {} lights reach it ({} directional, {} point, {} spot), more than this "
+      "OpenGL's fragment shaders hold: at most about {} directional or {} point or {} spot lights "
+      "(GL_MAX_FRAGMENT_UNIFORM_COMPONENTS = {})",
+      object, dir + point + spot, dir, point, spot, slots / 2, slots / 4, slots / 7, components));
 }
 
 }  // namespace
@@ -179,6 +199,7 @@ Image Renderer::RenderLinear(const Scene& scene, const MaterialSet& materials, E
                                          : spot)
           .push_back(&l);
     }
+    CheckLightUniforms(obj.name, dir.size(), point.size(), spot.size());
     ShaderVariant v;
     v.material = mat.kind;
     v.model = mat.model;

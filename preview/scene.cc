@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "io/input_file.h"
 #include "io/nbrdf.h"
 #include "models/registry.h"
 #include "preview/material.h"
@@ -439,6 +440,7 @@ void LoadSceneMeshes(Scene* scene, ExplainLog* log) {
 }
 
 Scene LoadScene(const std::filesystem::path& path, ExplainLog* log) {
+  CheckInputFile(path);  // a folder is "is a directory", not "invalid JSON ... end of input"
   std::ifstream in(path);
   if (!in) throw InputError(path, "cannot open scene file");
   std::stringstream ss;

@@ -111,15 +111,27 @@ std::vector<std::string> SplitCsvRecord(const std::string& text, std::size_t* po
 
 namespace {
 
+// A number, or NaN for an empty field (not computed). brdfit never writes a non-finite number,
+// so "nan" or "inf" is refused, not read as "no value" (issue 14 item 11).
 double ParseDouble(const std::string& s, const std::filesystem::path& path, int line,
                    const std::string& column) {
-  if (s == "nan" || s == "NaN" || s.empty()) return NAN;
+  if (s.empty()) return NAN;
   double v = 0;
   const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (ec != std::errc() || end != s.data() + s.size()) {
     throw InputError(path, fmt::format("line {}: column {}: '{}' is not a number", line, column, s));
   }
+  if (!std::isfinite(v)) {
+    throw InputError(path, fmt::format("line {}: column {}: '{}' is not finite", line, column, s));
+  }
   return v;
+}
+
+// A time or an error: present and >= 0.
+void RequireNonNegative(double v, const std::filesystem::path& path, int line,
+                        const std::string& column) {
+  if (std::isnan(v)) throw InputError(path, fmt::format("line {}: column {} is empty", line, column));
+  if (v < 0) throw InputError(path, fmt::format("line {}: column {}: {} is negative", line, column, v));
 }
 
 long ParseInt(const std::string& s, const std::filesystem::path& path, int line,
@@ -194,8 +206,21 @@ std::vector<BenchPoint> ReadBenchCsv(const std::filesystem::path& path) {
     b.metrics.log_rmse = num("log_rmse");
     b.metrics.cbrt_rmse = num("cbrt_rmse");
     b.metrics.rel_l2 = num("rel_l2");
+    if (col.count("metric_ok") && get("metric_ok") != "0" && get("metric_ok") != "1") {
+      throw InputError(path, fmt::format("line {}: column metric_ok: '{}' is not 0 or 1", line,
+                                         get("metric_ok")));
+    }
     b.metrics.ok = col.count("metric_ok") ? get("metric_ok") == "1"
                                           : std::isfinite(b.metrics.log_rmse);
+    RequireNonNegative(b.time_ms, path, line, "time_ms");
+    for (const char* c : {"prepare_ms", "init_ms", "solve_ms"}) {
+      if (col.count(c)) RequireNonNegative(num(c), path, line, c);
+    }
+    if (b.metrics.ok) {
+      for (const char* c : {"log_rmse", "cbrt_rmse", "rel_l2"}) {
+        if (col.count(c)) RequireNonNegative(num(c), path, line, c);
+      }
+    }
     b.metrics.cells = static_cast<std::size_t>(count("metric_cells"));
     b.metrics.weighting = get("weighting");
     b.metrics.cutoff_deg = num("cutoff_deg");
@@ -209,6 +234,16 @@ std::vector<BenchPoint> ReadBenchCsv(const std::filesystem::path& path) {
     re.p95_rel_error = num("p95_rel_error");
     re.ok = std::isfinite(re.psnr_db) && std::isfinite(re.psnr_srgb_db) &&
             std::isfinite(re.median_rel_error) && std::isfinite(re.p95_rel_error);
+    const bool none = std::isnan(re.psnr_db) && std::isnan(re.psnr_srgb_db) &&
+                      std::isnan(re.median_rel_error) && std::isnan(re.p95_rel_error);
+    if (!re.ok && !none) {
+      throw InputError(path, fmt::format("line {}: the rendered-error columns are partly empty "
+                                         "(all four or none)",
+                                         line));
+    }
+    if (re.ok && (re.median_rel_error < 0 || re.p95_rel_error < 0)) {
+      throw InputError(path, fmt::format("line {}: a negative rendered luminance error", line));
+    }
     if (!re.ok) re.psnr_db = re.psnr_srgb_db = re.median_rel_error = re.p95_rel_error = 0;
     points.push_back(std::move(b));
   }

@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <unordered_map>
 
 #include "core/error.h"
 
@@ -125,12 +126,24 @@ EntryDelta Judge(const std::string& material, const Entry* a, const Entry* b,
   return d;
 }
 
-const Entry* FindEntry(const Material* m, const std::string& key) {
-  if (!m) return nullptr;
-  for (const Entry& e : m->entries) {
-    if (e.Key() == key) return &e;
+// A material's entries by key (the first of a repeated key, as a linear search would find).
+using KeyMap = std::unordered_map<std::string, const Entry*>;
+KeyMap EntriesByKey(const Material* m) {
+  KeyMap map;
+  if (m) {
+    for (const Entry& e : m->entries) map.emplace(e.Key(), &e);
   }
-  return nullptr;
+  return map;
+}
+const Entry* Find(const KeyMap& map, const std::string& key) {
+  const auto it = map.find(key);
+  return it == map.end() ? nullptr : it->second;
+}
+
+std::unordered_map<std::string, const Material*> MaterialsByName(const Report& r) {
+  std::unordered_map<std::string, const Material*> map;
+  for (const Material& m : r.materials) map.emplace(m.name, &m);
+  return map;
 }
 
 }  // namespace
@@ -143,28 +156,31 @@ Comparison Compare(const Report& old_report, const Report& new_report,
   }
   Comparison c;
   c.options = options;
-  std::set<std::string> regressed;
+  // Lookups by name and key: linear in the entries, not quadratic (issue 14 item 8).
+  const auto old_materials = MaterialsByName(old_report);
+  const auto new_materials = MaterialsByName(new_report);
   for (const Material& ma : old_report.materials) {
-    const Material* mb = new_report.FindMaterial(ma.name);
+    const auto found = new_materials.find(ma.name);
+    const Material* mb = found == new_materials.end() ? nullptr : found->second;
     if (!mb) c.missing_materials.push_back(ma.name);
+    const KeyMap old_keys = EntriesByKey(&ma), new_keys = EntriesByKey(mb);
     for (const Entry& ea : ma.entries) {
-      c.deltas.push_back(Judge(ma.name, &ea, FindEntry(mb, ea.Key()), options));
+      c.deltas.push_back(Judge(ma.name, &ea, Find(new_keys, ea.Key()), options));
     }
     if (mb) {
       for (const Entry& eb : mb->entries) {
-        if (!FindEntry(&ma, eb.Key())) c.deltas.push_back(Judge(ma.name, nullptr, &eb, options));
+        if (!Find(old_keys, eb.Key())) c.deltas.push_back(Judge(ma.name, nullptr, &eb, options));
       }
     }
   }
   for (const Material& mb : new_report.materials) {
-    if (old_report.FindMaterial(mb.name)) continue;
+    if (old_materials.count(mb.name)) continue;
     c.added_materials.push_back(mb.name);
     for (const Entry& eb : mb.entries) c.deltas.push_back(Judge(mb.name, nullptr, &eb, options));
   }
+  std::set<std::string> regressed;
   for (const EntryDelta& d : c.deltas) {
-    if (d.regression &&
-        std::find(c.regressed_materials.begin(), c.regressed_materials.end(), d.material) ==
-            c.regressed_materials.end()) {
+    if (d.regression && regressed.insert(d.material).second) {
       c.regressed_materials.push_back(d.material);
     }
   }

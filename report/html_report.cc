@@ -375,10 +375,11 @@ class Page {
   // Materials x approximations: each material's best result (PickBest), and the best result of
   // each model or factorization over its losses and budgets (the same rule within the name).
   void Summary() {
-    std::vector<std::string> names;
+    std::vector<std::string> names;  // models and factorizations, in order of appearance
+    std::set<std::string> seen;
     for (const Material& m : report_.materials) {
       for (const Entry& e : m.entries) {
-        if (std::find(names.begin(), names.end(), e.name) == names.end()) names.push_back(e.name);
+        if (seen.insert(e.Model()).second) names.push_back(e.Model());
       }
     }
     if (names.empty()) return;
@@ -411,15 +412,17 @@ class Page {
                            b ? Psnr(*b) : "–", b ? LumPct(*b) : "–",
                            b ? HtmlEscape(b->name) : std::string("–"),
                            b ? Num(b->metrics.log_rmse) : std::string("–"));
+      // The entries of each model, grouped in one pass.
+      std::map<std::string, std::pair<std::vector<Entry>, std::vector<const Entry*>>> by_model;
+      for (const Entry& e : m.entries) {
+        auto& [of, from] = by_model[e.Model()];
+        of.push_back(e);
+        from.push_back(&e);
+      }
       for (const auto& n : names) {
-        std::vector<Entry> of;
-        std::vector<const Entry*> from;
-        for (const Entry& e : m.entries) {
-          if (e.name == n) {
-            of.push_back(e);
-            from.push_back(&e);
-          }
-        }
+        static const std::pair<std::vector<Entry>, std::vector<const Entry*>> kNone;
+        const auto it = by_model.find(n);
+        const auto& [of, from] = it == by_model.end() ? kNone : it->second;
         const BestPick p = PickBest(of);
         std::string text = "–";
         bool bold = false;
@@ -452,11 +455,14 @@ class Page {
              "marker: sample budget; dashed: the Pareto front (nothing is both faster and more "
              "accurate than a point on it).</p>\n<div class=\"charts\">\n";
     std::vector<std::string> mats;
+    std::map<std::string, std::vector<BenchPoint>> of;  // per material, in one pass
     for (const auto& b : report_.bench) {
-      if (std::find(mats.begin(), mats.end(), b.material) == mats.end()) mats.push_back(b.material);
+      auto& points = of[b.material];
+      if (points.empty()) mats.push_back(b.material);
+      points.push_back(b);
     }
     for (const auto& mat : mats) {
-      Chart(ParetoChart("Run time against error: " + mat, BenchPoints(report_.bench, mat), palette_),
+      Chart(ParetoChart("Run time against error: " + mat, BenchPoints(of[mat], mat), palette_),
             "scatter plot of run time against log_rmse for " + mat);
     }
     body_ += "</div>\n<details><summary>All bench points</summary>\n<div class=\"scroll\"><table><tr>"
@@ -494,7 +500,11 @@ class Page {
     if (!m.entries.empty()) {
       Chart(ParetoChart("Run time against error: " + m.name, EntryPoints(m), palette_),
             "scatter plot of fit time against log_rmse for " + m.name);
-      Chart(MetricsChart("Metrics: " + m.name, m), "bar chart of the metrics of " + m.name);
+      const auto usable = static_cast<std::size_t>(
+          std::count_if(m.entries.begin(), m.entries.end(), [](const Entry& e) { return Usable(e); }));
+      const std::string of =
+          usable > kMaxMetricBars ? fmt::format(" (the best {} of {})", kMaxMetricBars, usable) : "";
+      Chart(MetricsChart("Metrics: " + m.name + of, m), "bar chart of the metrics of " + m.name);
     }
     for (const Slice& s : m.slices) {
       Chart(SliceChart(fmt::format("{}: θd = {:.1f}°, φd = {:.1f}°", m.name, s.theta_d_deg,
@@ -520,18 +530,7 @@ class Page {
     const int best = pick.index;
     // Rows best first: by the rule that picked the best (rendered score, or log_rmse when no
     // entry has a rendered error; entries without one after those with), failed and unscored last.
-    std::vector<std::size_t> order(m.entries.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      const Entry &ea = m.entries[a], &eb = m.entries[b];
-      if (Usable(ea) != Usable(eb)) return Usable(ea);
-      if (!Usable(ea)) return false;
-      if (HasRendered(ea) != HasRendered(eb)) return HasRendered(ea);
-      if (HasRendered(ea)) {
-        return RenderedScore(ea.metrics.rendered) > RenderedScore(eb.metrics.rendered);
-      }
-      return ea.metrics.log_rmse < eb.metrics.log_rmse;
-    });
+    const std::vector<std::size_t> order = RankEntries(m.entries);
     const auto front_v = ParetoFront(m.entries);
     const std::set<std::size_t> front(front_v.begin(), front_v.end());
     auto best_of = [&](auto get, bool rendered = false) {

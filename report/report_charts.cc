@@ -43,7 +43,7 @@ Palette::Palette(const Report& report) {
     colors_[name] = kColors[next++ % std::size(kColors)];
   };
   for (const Material& m : report.materials) {
-    for (const Entry& e : m.entries) add(e.name);
+    for (const Entry& e : m.entries) add(e.Model());
   }
   for (const BenchPoint& b : report.bench) add(b.model);
 }
@@ -57,7 +57,7 @@ std::vector<ParetoPoint> EntryPoints(const Material& m) {
   std::vector<ParetoPoint> points;
   for (const Entry& e : m.entries) {
     ParetoPoint p;
-    p.model = e.name;
+    p.model = e.Model();
     p.budget = e.budget;
     p.time_ms = e.time_ms;
     p.error = e.metrics.log_rmse;
@@ -89,15 +89,10 @@ std::vector<ParetoPoint> BenchPoints(const std::vector<BenchPoint>& bench,
 
 json ParetoChart(const std::string& title, const std::vector<ParetoPoint>& points,
                  const Palette& palette, const std::string& error_name) {
-  std::vector<std::string> budgets;
-  for (const auto& p : points) {
-    if (std::find(budgets.begin(), budgets.end(), p.budget) == budgets.end()) {
-      budgets.push_back(p.budget);
-    }
-  }
+  std::map<std::string, std::size_t> budgets;  // budget -> order of first appearance
+  for (const auto& p : points) budgets.emplace(p.budget, budgets.size());
   auto style = [&](const std::string& budget) {
-    const auto i = std::find(budgets.begin(), budgets.end(), budget) - budgets.begin();
-    return kPointStyles[static_cast<std::size_t>(i) % std::size(kPointStyles)];
+    return kPointStyles[budgets.at(budget) % std::size(kPointStyles)];
   };
   json datasets = json::array();
   std::map<std::string, std::size_t> index;  // "model\nbudget" -> dataset
@@ -192,8 +187,11 @@ json SliceChart(const std::string& title, const Slice& slice, const Palette& pal
 json MetricsChart(const std::string& title, const Material& m) {
   json labels = json::array();
   json log_rmse = json::array(), cbrt_rmse = json::array(), rel_l2 = json::array();
-  for (const Entry& e : m.entries) {
+  std::size_t drawn = 0;
+  for (const std::size_t i : RankEntries(m.entries)) {
+    const Entry& e = m.entries[i];
     if (e.Failed() || !e.metrics.ok) continue;
+    if (drawn++ == kMaxMetricBars) break;
     labels.push_back(e.name + " (" + e.budget + ")");
     log_rmse.push_back(Value(e.metrics.log_rmse));
     cbrt_rmse.push_back(Value(e.metrics.cbrt_rmse));
@@ -216,27 +214,31 @@ json MetricsChart(const std::string& title, const Material& m) {
 namespace {
 
 // One bar per (material, model): value(entries of that model in that material), NaN for none.
+// Entries are grouped in one pass per material (Entry::Model()), not once per model.
 json PerModelBars(const std::string& title, const Report& report, const Palette& palette,
                   const std::function<double(const std::vector<Entry>&)>& value,
                   const json& y_axis) {
   std::vector<std::string> models;
-  for (const Material& m : report.materials) {
-    for (const Entry& e : m.entries) {
-      if (std::find(models.begin(), models.end(), e.name) == models.end()) models.push_back(e.name);
+  std::map<std::string, std::size_t> model_index;
+  std::vector<std::vector<double>> values;  // [model][material]
+  for (std::size_t mi = 0; mi < report.materials.size(); ++mi) {
+    std::map<std::string, std::vector<Entry>> of;
+    for (const Entry& e : report.materials[mi].entries) {
+      of[e.Model()].push_back(e);
+      if (model_index.emplace(e.Model(), models.size()).second) {
+        models.push_back(e.Model());
+        values.emplace_back(report.materials.size(), NAN);
+      }
     }
+    for (const auto& [model, entries] : of) values[model_index.at(model)][mi] = value(entries);
   }
   json labels = json::array();
   for (const Material& m : report.materials) labels.push_back(m.name);
   json datasets = json::array();
-  for (const std::string& model : models) {
+  for (std::size_t k = 0; k < models.size(); ++k) {
+    const std::string& model = models[k];
     json data = json::array();
-    for (const Material& m : report.materials) {
-      std::vector<Entry> of;
-      for (const Entry& e : m.entries) {
-        if (e.name == model) of.push_back(e);
-      }
-      data.push_back(Value(value(of)));
-    }
+    for (const double v : values[k]) data.push_back(Value(v));
     datasets.push_back(
         {{"label", model}, {"data", data}, {"backgroundColor", palette.Color(model)}});
   }

@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "core/error.h"
 #include "io/factor_io.h"
@@ -15,6 +17,7 @@
 #include "io/nbrdf.h"
 #include "io/table_io.h"
 #include "report/bench_csv.h"
+#include "report/result_json.h"
 
 namespace brdfit::report {
 
@@ -56,39 +59,6 @@ Kind Classify(const fs::path& p) {
   return Kind::kUnknown;
 }
 
-double Get(const json& j, const char* key, double fallback = 0) {
-  const auto it = j.find(key);
-  return it != j.end() && it->is_number() ? it->get<double>() : fallback;
-}
-
-// The rendered-image metric's summary of `parent` ("rendered", io/metrics_json.h), when there.
-void ReadRendered(const json& parent, FitMetrics* m) {
-  const auto r = parent.find("rendered");
-  if (r == parent.end() || !r->is_object()) return;
-  m->rendered.ok = r->value("ok", true);
-  m->rendered.problem = r->value("problem", std::string());
-  m->rendered.psnr_db = Get(*r, "psnr_db");
-  m->rendered.psnr_srgb_db = Get(*r, "psnr_srgb_db");
-  m->rendered.median_rel_error = Get(*r, "median_rel_error");
-  m->rendered.p95_rel_error = Get(*r, "p95_rel_error");
-}
-
-// The metrics of a factorization sidecar ("fit_metrics") or a fit parameters file ("metrics",
-// without "ok": ok_default) as the writers name them (core/metrics.h); absent fields are 0.
-FitMetrics MetricsFromJson(const json& j, bool ok_default) {
-  FitMetrics m;
-  m.ok = j.value("ok", ok_default);
-  m.problem = j.value("problem", std::string());
-  m.log_rmse = Get(j, "log_rmse");
-  m.cbrt_rmse = Get(j, "cbrt_rmse");
-  m.rel_l2 = Get(j, "rel_l2");
-  m.cells = j.value("cells", std::size_t{0});
-  m.weighting = j.value("weighting", std::string());
-  m.cutoff_deg = Get(j, "cutoff_deg");
-  ReadRendered(j, &m);
-  return m;
-}
-
 // A table the report can load for the theta_h slices: a file, or an NBRDF input "nbrdf:NAME"
 // (tabulated by the CLI's loader, pipeline/inputs.h).
 bool LoadableTable(const std::string& source) {
@@ -128,14 +98,18 @@ std::string MaterialName(const fs::path& table) {
 
 Entry FactorEntry(const fs::path& sidecar, std::string* material, std::string* table) {
   const json j = ReadJson(sidecar);
-  if (j.value("format", "") != kFactorFormat) {
+  const JsonFields root(sidecar, "");
+  if (root.String(j, "format", "") != kFactorFormat) {
     throw InputError(sidecar,
                      "not a brdfit factorization sidecar (no format "
                      "\"brdfit-factorization\")");
   }
+  // Version, rank, diffuse (io/factor_io.h), then the textures too: a sidecar whose EXR is
+  // missing, damaged or of another size is refused here, not found out while drawing.
   const FactorSidecarHeader header = ReadFactorSidecarHeader(j, sidecar);
+  ReadFactorFiles(sidecar);
   FactorForm form;
-  form.parameterization = j.value("parameterization", std::string("?"));
+  form.parameterization = root.String(j, "parameterization", "");
   form.diffuse = header.diffuse[0] > 0 || header.diffuse[1] > 0 || header.diffuse[2] > 0;
   form.terms = TermSizes(j, header.rank);
   const bool sized = !form.terms.empty();
@@ -151,32 +125,38 @@ Entry FactorEntry(const fs::path& sidecar, std::string* material, std::string* t
       // An unknown parameterization: named in the entry, refused when its textures are loaded.
     }
   }
-  const json stats = j.value("stats", json::object());
-  const json solver = j.value("solver", json::object());
+  const json solver = root.Object(j, "solver");
+  if (!solver.contains("resolution")) root.Child("solver").Fail("resolution", "is missing");
+  e.budget = fmt::format("res {}", root.Child("solver").Count(solver, "resolution", 0));
+  e.status = "converged";
+  const JsonFields sf = root.Child("stats");
+  const json stats = root.Object(j, "stats");
   // Sidecars before refine_loss existed were refined under the relative loss.
   const std::string refine_loss =
       solver.contains("refine_loss") && solver["refine_loss"].is_string()
           ? solver["refine_loss"].get<std::string>()
           : "rel";
-  e.loss = stats.value("refined", false) ? "log (linear) + " + refine_loss + " (refined)"
-                                         : "log (linear)";
-  e.budget = fmt::format("res {}", solver.value("resolution", 0));
-  e.status = "converged";
-  const double seconds = Get(stats, "seconds"), system = Get(stats, "system_seconds");
+  e.loss = sf.Bool(stats, "refined", false) ? "log (linear) + " + refine_loss + " (refined)"
+                                            : "log (linear)";
+  const double seconds = sf.Number(stats, "seconds", 0, 0);
+  const double system = sf.Number(stats, "system_seconds", 0, 0);
   e.time_ms = 1e3 * seconds;
   e.times_ms = {{"system", 1e3 * system}, {"solve", 1e3 * (seconds - system)}};
-  if (stats.value("system_reused", false)) e.message = "factored system reused";
-  const json metrics = j.value("metrics", json::object());
-  const json fm = metrics.value("fit_metrics", json::object());
-  e.metrics = MetricsFromJson(fm, false);
+  if (sf.Bool(stats, "system_reused", false)) e.message = "factored system reused";
+  if (!j.contains("metrics")) root.Fail("metrics", "is missing");
+  const JsonFields mf = root.Child("metrics");
+  const json metrics = root.Object(j, "metrics");
+  if (!metrics.contains("fit_metrics")) mf.Fail("fit_metrics", "is missing");
+  const json fm = mf.Object(metrics, "fit_metrics");
+  e.metrics = MetricsFromJson(fm, false, mf.Child("fit_metrics"));
   // A sidecar's rendered error sits beside fit_metrics (docs/formats.md): factorizations are
   // then ranked with the fits by the same rendered score (core/model_choice.h).
-  ReadRendered(metrics, &e.metrics);
+  RenderedFromJson(metrics, mf, &e.metrics);
   if (!e.metrics.ok) {
     e.status = "failed";
-    e.message = fm.value("problem", std::string("no metrics in the sidecar"));
+    e.message = e.metrics.problem.empty() ? "no metrics in the sidecar" : e.metrics.problem;
   }
-  const std::string file = j.value("source", json::object()).value("file", std::string());
+  const std::string file = root.Child("source").String(root.Object(j, "source"), "file", "");
   *table = file;
   // The stem of the sidecar minus the ".factor" part, when the sidecar names no source.
   *material = file.empty() ? MaterialName(fs::path(sidecar.stem()).stem()) : MaterialName(file);
@@ -196,17 +176,68 @@ std::string LossLabel(const json& options) {
   return loss;
 }
 
-// Adds an entry to its material; a second entry with the same key is told apart by a suffix.
-void AddEntry(Report& r, const std::string& material, const std::string& source, Entry e) {
-  Material& m = r.GetOrAddMaterial(material);
-  if (m.source.empty()) m.source = source;
-  const std::string base = e.name;
-  for (int k = 2; std::any_of(m.entries.begin(), m.entries.end(),
-                              [&](const Entry& x) { return x.Key() == e.Key(); });
-       ++k) {
-    e.name = fmt::format("{} #{}", base, k);
+// Materials by name and the keys their entries use, so that adding n entries costs O(n log n)
+// however many share a key (each duplicate scanned all entries for every suffix it tried:
+// cubic in the fits of one material, issue 14 item 8).
+class EntryIndex {
+ public:
+  explicit EntryIndex(Report* r) : report_(r) {
+    for (std::size_t i = 0; i < r->materials.size(); ++i) {
+      materials_.emplace(r->materials[i].name, i);
+      for (const Entry& e : r->materials[i].entries) keys_[r->materials[i].name].insert(e.Key());
+    }
   }
-  m.entries.push_back(std::move(e));
+
+  Material& GetOrAddMaterial(const std::string& name) {
+    const auto [it, added] = materials_.emplace(name, report_->materials.size());
+    if (added) {
+      report_->materials.emplace_back();
+      report_->materials.back().name = name;
+    }
+    return report_->materials[it->second];
+  }
+
+  // Adds e to its material; a second entry with the same key is told apart by a suffix in its
+  // name, base_name keeping the name: " (FILE)" when file_suffix is given (factorizations),
+  // then "#2", "#3", ... while the key is still taken.
+  const Entry& Add(const std::string& material, Entry e, const std::string& file_suffix = "") {
+    Material& m = GetOrAddMaterial(material);
+    auto& used = keys_[material];
+    if (used.count(e.Key())) {
+      e.base_name = e.name;
+      if (!file_suffix.empty()) e.name += " (" + file_suffix + ")";
+      if (used.count(e.Key())) {
+        const std::string stem = e.name;
+        int& k = next_[material + '\n' + e.Key()];
+        for (k = std::max(k, 2); used.count((e.name = fmt::format("{} #{}", stem, k), e.Key()));
+             ++k) {
+        }
+        ++k;
+      }
+    }
+    used.insert(e.Key());
+    m.entries.push_back(std::move(e));
+    return m.entries.back();
+  }
+
+ private:
+  Report* report_;
+  std::unordered_map<std::string, std::size_t> materials_;
+  std::unordered_map<std::string, std::unordered_set<std::string>> keys_;
+  std::unordered_map<std::string, int> next_;  // material + key -> next suffix to try
+};
+
+// What the inputs read so far add up to.
+struct Builder {
+  ReportSources out;
+  EntryIndex index{&out.report};
+};
+
+// Adds an entry to its material (recording the material's table source if it has none).
+void AddEntry(Builder* b, const std::string& material, const std::string& source, Entry e) {
+  Material& m = b->index.GetOrAddMaterial(material);
+  if (m.source.empty()) m.source = source;
+  b->index.Add(material, std::move(e));
 }
 
 Entry FitEntry(const FitReportEntry& f) {
@@ -235,10 +266,11 @@ Entry FitEntry(const FitReportEntry& f) {
 }
 
 // A fit report (HDF5, io/fit_report.h): every fit of every material, and its tables.
-void AddFitReport(const std::vector<FitReportEntry>& entries, ReportSources* out) {
+void AddFitReport(const std::vector<FitReportEntry>& entries, Builder* b) {
+  ReportSources* out = &b->out;
   for (const FitReportEntry& f : entries) {
     const std::string material = f.material.empty() ? MaterialName(f.source) : f.material;
-    AddEntry(out->report, material, f.source, FitEntry(f));
+    AddEntry(b, material, f.source, FitEntry(f));
     if (!f.source.empty() && !out->tables.count(material) && LoadableTable(f.source)) {
       out->tables[material] = f.source;
     }
@@ -246,63 +278,85 @@ void AddFitReport(const std::vector<FitReportEntry>& entries, ReportSources* out
 }
 
 // The parameters JSON of `brdfit fit` (FitParamsJson): fits without timings.
-bool AddFitParamsJson(const fs::path& p, ReportSources* out) {
+bool AddFitParamsJson(const fs::path& p, Builder* b) {
+  ReportSources* out = &b->out;
   // Ordered: the parameters must keep the model's order.
   std::ifstream in(p, std::ios::binary);
   if (!in) throw InputError(p, "cannot open");
   const auto j = nlohmann::ordered_json::parse(in, nullptr, false);
   if (j.is_discarded() || !j.is_object()) throw InputError(p, "not a JSON object");
-  if (j.value("format", "") != "brdfit-fit-params") return false;
+  if (!j.contains("format") || j["format"] != "brdfit-fit-params") return false;
   const auto fits = j.value("fits", nlohmann::ordered_json::array());
   if (!fits.is_array()) throw InputError(p, "\"fits\" is not an array");
-  for (const auto& f : fits) {
+  struct Fit {
+    std::string material, source;
+    Entry entry;
+  };
+  std::vector<Fit> read;  // all checked before any is added
+  for (std::size_t i = 0; i < fits.size(); ++i) {
+    const auto& f = fits[i];
     if (!f.is_object()) throw InputError(p, "an element of \"fits\" is not an object");
+    const JsonFields ff(p, fmt::format("fits[{}]", i));
     Entry e;
     e.kind = Entry::Kind::kFit;
-    e.name = f.value("model", std::string("?"));
-    const json options = f.value("options", nlohmann::ordered_json::object());
+    const json fj = f;  // unordered for the members whose order does not matter
+    e.name = ff.String(fj, "model", "?");
+    const json options = ff.Object(fj, "options");
     e.loss = LossLabel(options);
     e.budget = options.value("budget", std::string("?"));
-    e.status = f.value("status", std::string("?"));
-    e.message = f.value("message", std::string());
+    e.status = ff.String(fj, "status", "?");
+    e.message = ff.String(fj, "message", "");
+    if (f.contains("params") && !f["params"].is_object()) ff.Fail("params", "is not an object");
     const auto params = f.value("params", nlohmann::ordered_json::object());
     for (const auto& [name, value] : params.items()) {
       if (!value.is_number()) throw InputError(p, "parameter " + name + " is not a number");
       e.param_names.push_back(name);
       e.params.push_back(value.get<double>());
     }
-    e.metrics =
-        MetricsFromJson(f.value("metrics", nlohmann::ordered_json::object()), e.status != "failed");
-    e.chosen = f.value("chosen", false);
-    e.choice = f.value("choice", std::string());
-    const std::string source = f.value("source", std::string());
-    const std::string material = f.value("material", MaterialName(source));
-    AddEntry(out->report, material, source, std::move(e));
-    if (!source.empty() && !out->tables.count(material) && LoadableTable(source)) {
-      out->tables[material] = source;
+    if (e.status != "failed" && !f.contains("metrics")) ff.Fail("metrics", "is missing");
+    e.metrics = MetricsFromJson(ff.Object(fj, "metrics"), e.status != "failed", ff.Child("metrics"));
+    e.chosen = ff.Bool(fj, "chosen", false);
+    e.choice = ff.String(fj, "choice", "");
+    const std::string source = ff.String(fj, "source", "");
+    const std::string material = ff.String(fj, "material", MaterialName(source));
+    read.push_back({material, source, std::move(e)});
+  }
+  for (Fit& f : read) {
+    AddEntry(b, f.material, f.source, std::move(f.entry));
+    if (!f.source.empty() && !out->tables.count(f.material) && LoadableTable(f.source)) {
+      out->tables[f.material] = f.source;
     }
   }
   return true;
 }
 
-void AddInput(const fs::path& p, bool explicit_input, ReportSources* out) {
+void AddInputOf(const fs::path& p, bool explicit_input, Builder* b);
+
+// Any JSON library error (a member of the wrong type deep inside) names the file too.
+void AddInput(const fs::path& p, bool explicit_input, Builder* b) {
+  try {
+    AddInputOf(p, explicit_input, b);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(p, std::string("unexpected JSON content: ") + e.what());
+  }
+}
+
+void AddInputOf(const fs::path& p, bool explicit_input, Builder* b) {
   const Kind kind = Classify(p);
+  ReportSources* out = &b->out;
   Report& r = out->report;
   switch (kind) {
     case Kind::kFactor: {
       std::string material, table;
       Entry e = FactorEntry(p, &material, &table);
-      Material& m = r.GetOrAddMaterial(material);
+      Material& m = b->index.GetOrAddMaterial(material);
       if (m.source.empty()) m.source = table;
       if (!table.empty() && !out->tables.count(material) && LoadableTable(table)) {
         out->tables[material] = table;
       }
       // Two factorizations with the same name and budget (e.g. --suffix runs): keep both apart.
-      for (const Entry& other : m.entries) {
-        if (other.Key() == e.Key()) e.name += " (" + p.filename().string() + ")";
-      }
-      out->factors.push_back({material, e.name, p});
-      m.entries.push_back(std::move(e));
+      const Entry& added = b->index.Add(material, std::move(e), p.filename().string());
+      out->factors.push_back({material, added.name, p});
       break;
     }
     case Kind::kBench: {
@@ -316,7 +370,7 @@ void AddInput(const fs::path& p, bool explicit_input, ReportSources* out) {
     case Kind::kParamsJson:
       // In a folder the fit report beside it holds the same fits (and their times).
       if (!explicit_input) break;
-      if (!AddFitParamsJson(p, out)) {
+      if (!AddFitParamsJson(p, b)) {
         throw InputError(p, "not a brdfit fit parameters file (format \"brdfit-fit-params\")");
       }
       break;
@@ -346,12 +400,12 @@ void AddInput(const fs::path& p, bool explicit_input, ReportSources* out) {
           }
         }
         if (is_report) {
-          AddFitReport(fits, out);
+          AddFitReport(fits, b);
           break;
         }
       }
       out->tables[MaterialName(p)] = p;
-      Material& m = r.GetOrAddMaterial(MaterialName(p));
+      Material& m = b->index.GetOrAddMaterial(MaterialName(p));
       if (m.source.empty()) m.source = p.string();
       break;
     }
@@ -368,6 +422,7 @@ void AddInput(const fs::path& p, bool explicit_input, ReportSources* out) {
 }  // namespace
 
 void AddBenchEntries(Report* report) {
+  EntryIndex index(report);
   for (const BenchPoint& b : report->bench) {
     Entry e;
     e.kind = Entry::Kind::kFit;
@@ -380,12 +435,46 @@ void AddBenchEntries(Report* report) {
     e.metrics = b.metrics;
     e.time_ms = b.time_ms;
     e.times_ms = {{"prepare", b.prepare_ms}, {"init", b.init_ms}, {"solve", b.solve_ms}};
-    report->GetOrAddMaterial(b.material).entries.push_back(std::move(e));
+    // Not renamed: a repeated bench point stays a repeat of its key.
+    index.GetOrAddMaterial(b.material).entries.push_back(std::move(e));
   }
 }
 
-ReportSources ReadReportInputs(const std::vector<fs::path>& inputs) {
-  ReportSources out;
+namespace {
+
+// Why a path that is neither a regular file nor a folder cannot be read: "no such file or
+// folder" only when nothing is there (a FIFO or /dev/zero was reported as missing).
+std::string NotReadable(const fs::path& p) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(p, ec);
+  if (ec && ec != std::errc::no_such_file_or_directory) return "cannot be read: " + ec.message();
+  switch (st.type()) {
+    case fs::file_type::not_found: return "no such file or folder";
+    case fs::file_type::fifo: return "is a FIFO, not a regular file";
+    case fs::file_type::character: return "is a character device, not a regular file";
+    case fs::file_type::block: return "is a block device, not a regular file";
+    case fs::file_type::socket: return "is a socket, not a regular file";
+    default: return "is not a regular file";
+  }
+}
+
+// Runs add(); with `skipped`, an InputError is recorded there instead of thrown.
+template <class F>
+void Guarded(std::vector<std::string>* skipped, F add) {
+  if (!skipped) return add();
+  try {
+    add();
+  } catch (const InputError& e) {
+    skipped->push_back(e.what());
+  }
+}
+
+}  // namespace
+
+ReportSources ReadReportInputs(const std::vector<fs::path>& inputs,
+                               std::vector<std::string>* skipped) {
+  Builder b;
+  ReportSources& out = b.out;
   for (const fs::path& p : inputs) {
     std::error_code ec;
     if (fs::is_directory(p, ec)) {
@@ -394,15 +483,15 @@ ReportSources ReadReportInputs(const std::vector<fs::path>& inputs) {
         if (e.is_regular_file()) files.push_back(e.path());
       }
       std::sort(files.begin(), files.end());
-      for (const auto& f : files) AddInput(f, false, &out);
+      for (const auto& f : files) Guarded(skipped, [&] { AddInput(f, false, &b); });
     } else if (fs::is_regular_file(p, ec)) {
-      AddInput(p, true, &out);
+      Guarded(skipped, [&] { AddInput(p, true, &b); });
     } else {
-      throw InputError(p, "no such file or folder");
+      Guarded(skipped, [&] { throw InputError(p, NotReadable(p)); });
     }
     out.report.inputs.push_back(p.string());
   }
-  return out;
+  return std::move(out);
 }
 
 }  // namespace brdfit::report

@@ -32,8 +32,11 @@ struct ReportSources {
   std::vector<FactorRef> factors;                       // for slices (pipeline/factor_export.h)
 };
 
-// Throws InputError naming the file when an input is missing, unreadable or of no known kind.
-ReportSources ReadReportInputs(const std::vector<std::filesystem::path>& inputs);
+// Throws InputError naming the file when an input is missing, not a regular file or folder,
+// unreadable, of no known kind, or holds a member out of its range (report/result_json.h); with
+// `skipped`, such an input is left out and its error appended there instead.
+ReportSources ReadReportInputs(const std::vector<std::filesystem::path>& inputs,
+                               std::vector<std::string>* skipped = nullptr);
 
 // Bench points as entries of their materials (for `brdfit compare` on two bench CSVs): one fit
 // entry per point, keyed like any fit (model | loss | budget).

@@ -33,21 +33,33 @@ bool Usable(const CostError& p) {
 }
 }  // namespace
 
+// Sorted by (cost, error), a point is on the front when it has the least error of its cost and
+// less error than every cheaper point: O(n log n).
 std::vector<std::size_t> ParetoFront(const std::vector<CostError>& points) {
-  std::vector<std::size_t> front;
+  std::vector<std::size_t> order;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    if (!Usable(points[i])) continue;
-    bool dominated = false;
-    for (std::size_t j = 0; j < points.size() && !dominated; ++j) {
-      if (j == i || !Usable(points[j])) continue;
-      const CostError &a = points[i], &b = points[j];
-      dominated = b.cost <= a.cost && b.error <= a.error && (b.cost < a.cost || b.error < a.error);
-    }
-    if (!dominated) front.push_back(i);
+    if (Usable(points[i])) order.push_back(i);
   }
-  std::stable_sort(front.begin(), front.end(), [&](std::size_t a, std::size_t b) {
-    return points[a].cost < points[b].cost;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const CostError &pa = points[a], &pb = points[b];
+    if (pa.cost != pb.cost) return pa.cost < pb.cost;
+    if (pa.error != pb.error) return pa.error < pb.error;
+    return a < b;
   });
+  std::vector<std::size_t> front;
+  double cheaper_min = INFINITY;  // least error among points cheaper than the current cost
+  for (std::size_t k = 0; k < order.size();) {
+    const double cost = points[order[k]].cost, least = points[order[k]].error;
+    std::size_t end = k;
+    while (end < order.size() && points[order[end]].cost == cost) ++end;
+    if (least < cheaper_min) {
+      for (std::size_t j = k; j < end && points[order[j]].error == least; ++j) {
+        front.push_back(order[j]);
+      }
+      cheaper_min = least;
+    }
+    k = end;
+  }
   return front;
 }
 
@@ -108,5 +120,20 @@ std::string BestRule(BestBy by) {
 }
 
 int BestEntry(const std::vector<Entry>& entries) { return PickBest(entries).index; }
+
+std::vector<std::size_t> RankEntries(const std::vector<Entry>& entries) {
+  auto rendered = [](const Entry& e) { return EntryUsable(e) && e.metrics.rendered.ok; };
+  std::vector<std::size_t> order(entries.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const Entry &ea = entries[a], &eb = entries[b];
+    if (EntryUsable(ea) != EntryUsable(eb)) return EntryUsable(ea);
+    if (!EntryUsable(ea)) return false;
+    if (rendered(ea) != rendered(eb)) return rendered(ea);
+    if (rendered(ea)) return RenderedScore(ea.metrics.rendered) > RenderedScore(eb.metrics.rendered);
+    return ea.metrics.log_rmse < eb.metrics.log_rmse;
+  });
+  return order;
+}
 
 }  // namespace brdfit::report

@@ -22,6 +22,9 @@ struct Entry {
   // Model ("lambert+ggx") or factorization: "factor:" and the label of its form
   // (core/factor_form.h): "factor:mccool", "factor:mccool+d r2".
   std::string name;
+  // The name before a suffix told two entries with one key apart ("lambert+ggx" of
+  // "lambert+ggx #2"); empty when it is the name.
+  std::string base_name;
   std::string loss;    // fits: loss name ("log"); factorizations: "log (linear)", with
                        // " + rel (refined)" / " + logratio (refined)" when the refinement ran
   std::string budget;  // fits: "full", "stride:8", "random:N"; factorizations: "res 64"
@@ -48,6 +51,8 @@ struct Entry {
   double time_ms = 0;
 
   bool Failed() const { return status == "failed"; }
+  // The model or factorization, without a duplicate's suffix: what summaries group by.
+  const std::string& Model() const { return base_name.empty() ? name : base_name; }
   // Identifies the entry within its material across reports: "name | loss | budget".
   std::string Key() const;
 };
@@ -152,5 +157,11 @@ BestPick PickBest(const std::vector<Entry>& entries);
 std::string BestRule(BestBy by);
 // PickBest(entries).index.
 int BestEntry(const std::vector<Entry>& entries);
+// Indices of the entries, best first by the rule of PickBest's kRendered and kLogRmse: usable
+// entries with a rendered error by descending RenderedScore, then the other usable ones by
+// ascending log_rmse, then failed or unscored ones; ties keep the entries' order. (The pick
+// itself may differ: a chosen entry.) The metrics table's row order, and what the report draws
+// when it draws only a material's first few results.
+std::vector<std::size_t> RankEntries(const std::vector<Entry>& entries);
 
 }  // namespace brdfit::report

@@ -270,6 +270,36 @@ TEST_F(Cli, ReportAndCompareShowRankKFactorizationsWithTheirCost) {
   EXPECT_NE(c.out.find(cost), std::string::npos) << c.out;
 }
 
+// Issue 14 item 8: the slices of a material with 600 fits draw its best 8 (and say so), not
+// 600 lines per slice; every fit is still in the metrics table. The best is a numbered
+// duplicate ("lambert+ggx #k"): it is drawn and rendered as its model.
+TEST_F(Cli, ReportOnManyFitsOfOneMaterialSlicesOnlyTheBest) {
+  ASSERT_EQ(Brdfit("synth --model lambert+ggx --grid 16,16,32 -o " + P("gold.h5")).code, 0);
+  std::vector<FitReportEntry> fits;
+  for (int i = 0; i < 600; ++i) {
+    FitReportEntry e = FitEntries(dir_, 0.02)[0];  // gold, lambert+ggx
+    e.options = R"({"budget":"full","loss":"log","max_iterations":)" + std::to_string(i) + "}";
+    e.result.metrics.log_rmse = i == 7 ? 0.001 : 0.01 + 1e-5 * i;
+    fits.push_back(e);
+  }
+  WriteFitReport(fits, dir_ / "fits.h5");
+  const CliRun r = Brdfit("report " + P("fits.h5") + " -o " + P("r.html"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string html = ReadText(dir_ / "r.html");
+  EXPECT_NE(html.find("The θh slices draw the best 8 of this material&#39;s 600 results"),
+            std::string::npos);
+  EXPECT_EQ(html.find("not drawn"), std::string::npos);
+  // 4 slices, each with the measured series and 8 fits.
+  std::size_t series = 0;
+  for (std::size_t at = html.find("\"spanGaps\""); at != std::string::npos;
+       at = html.find("\"spanGaps\"", at + 1)) {
+    ++series;
+  }
+  EXPECT_EQ(series, 4u * (1 + 8));
+  EXPECT_NE(html.find("<b>Renders</b> of <b>lambert+ggx #"), std::string::npos);
+  EXPECT_NE(html.find("lambert+ggx #600</td>"), std::string::npos);
+}
+
 // Fits of NBRDF inputs ("nbrdf:NAME") get their slices too: the report tabulates the network.
 TEST_F(Cli, ReportOnNbrdfFitsDrawsSlices) {
   const fs::path zip = fs::path(BRDFIT_SHARED_DATA) / "merl_nbrdf.zip";

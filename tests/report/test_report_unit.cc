@@ -14,6 +14,7 @@
 #include "report/compare.h"
 #include "core/error.h"
 #include "report/html_report.h"
+#include "io/factor_io.h"
 #include "io/model_params.h"
 #include "report/report_inputs.h"
 #include "report/report_slices.h"
@@ -322,9 +323,9 @@ TEST(Compare, MetricChoice) {
 TEST(Inputs, FactorSidecarBecomesAnEntryOfItsTablesMaterial) {
   const ScratchDir scratch("sidecar");
   const fs::path& dir = scratch.path();
+  // The sidecar with its two textures (io/factor_io.h adds format, version and textures): the
+  // report reads a sidecar only together with them.
   const nlohmann::json j = {
-      {"format", "brdfit-factorization"},
-      {"format_version", 1},
       {"parameterization", "halfdiff"},
       {"solver", {{"resolution", 48}}},
       {"stats", {{"seconds", 0.25}, {"system_seconds", 0.2}, {"system_reused", false}}},
@@ -336,7 +337,11 @@ TEST(Inputs, FactorSidecarBecomesAnEntryOfItsTablesMaterial) {
         {"rendered",
          {{"ok", true}, {"psnr_db", 31.5}, {"psnr_srgb_db", 30.1}, {"median_rel_error", 0.058},
           {"p95_rel_error", 0.2}}}}}};
-  WriteFile(dir / "gold-paint.halfdiff.factor.json", j.dump());
+  FactorFiles files;
+  files.sidecar = j;
+  files.terms.resize(1);
+  files.terms[0].p.image = files.terms[0].q.image = RgbImage::Filled(4, 4, 0.5f);
+  WriteFactorFiles(FactorFilePaths(dir, "gold-paint.halfdiff"), files);
   std::string material, table;
   const Entry e = FactorEntry(dir / "gold-paint.halfdiff.factor.json", &material, &table);
   EXPECT_EQ(material, "gold-paint");
