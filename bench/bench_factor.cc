@@ -4,7 +4,9 @@
 // parameterizations. The material is an NBRDF network (../shared/data/merl_nbrdf.zip) tabulated
 // once, or a synthetic Lambert + GGX table when the archive is absent. Counters: cells, f<=0,
 // PCG iterations, and the rendered-image metric of the result (psnr_dB, med_lum_%; docs/
-// accuracy.md). The same metric over all 100 materials: bench_factor_accuracy. Medians:
+// accuracy.md). BM_FactorReusedForm: a reused system plus the refinement of each refined form
+// (factor/factor_refine.h; `brdfit factor`'s candidates first). The same metric over all 100
+// materials: bench_factor_accuracy. Medians:
 //   build/bench/bench_factor --benchmark_repetitions=9 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
@@ -13,6 +15,7 @@
 
 #include "core/synth.h"
 #include "factor/factor.h"
+#include "factor/factor_choice.h"
 #include "factor/factor_form.h"
 #include "factor/factor_metrics.h"
 #include "io/nbrdf.h"
@@ -97,6 +100,40 @@ void BM_FactorReused(benchmark::State& state) {
   Label(state, r);
 }
 
+// The refined forms (factor/factor_refine.h) at 64^2: `brdfit factor`'s candidates
+// (factor/factor_choice.h), then a few more of docs/nbrdf-results.md's table.
+const std::vector<FactorCandidate>& RefinedForms() {
+  static const std::vector<FactorCandidate> forms = [] {
+    std::vector<FactorCandidate> f = kAutoFactorCandidates;
+    f.push_back({"mccool+ref+lr", FactorParam::kMcCool, false, true, 1, RefineLoss::kLogRatio});
+    f.push_back({"mccool+d+lr", FactorParam::kMcCool, true, true, 1, RefineLoss::kLogRatio});
+    f.push_back({"halfdiff+d+lr", FactorParam::kHalfDiff, true, true, 1, RefineLoss::kLogRatio});
+    f.push_back({"mccool+d+r4+lr", FactorParam::kMcCool, true, true, 4, RefineLoss::kLogRatio});
+    return f;
+  }();
+  return forms;
+}
+
+// Reused system + the form's refinement (none for the log-linear candidate).
+void BM_FactorReusedForm(benchmark::State& state) {
+  const Table& t = TheMaterial().table;
+  const FactorCandidate& c = RefinedForms()[static_cast<std::size_t>(state.range(0))];
+  FactorOptions base;
+  base.resolution = 64;
+  const FactorOptions o = CandidateOptions(base, c);
+  FactorSystemCache cache;
+  Factorization r = Factor(t, o, &cache);
+  for (auto _ : state) {
+    r = Factor(t, o, &cache);
+    benchmark::DoNotOptimize(r);
+  }
+  if (!r.stats.system_reused) state.SkipWithError("cache miss");
+  Label(state, r);
+  state.SetLabel(TheMaterial().name + " " + c.name);
+  state.counters["refine_ms"] = 1e3 * r.stats.refine_seconds;
+  state.counters["lm_it"] = r.stats.refine_iterations;
+}
+
 // Args: {parameterization (0 mccool, 1 halfdiff), resolution}.
 BENCHMARK(BM_FactorFirst)
     ->ArgsProduct({{0, 1}, {32, 64}})
@@ -104,6 +141,10 @@ BENCHMARK(BM_FactorFirst)
     ->UseRealTime();
 BENCHMARK(BM_FactorReused)
     ->ArgsProduct({{0, 1}, {32, 64}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_FactorReusedForm)
+    ->DenseRange(0, 6)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -1,6 +1,7 @@
 // Hostile inputs and options through the executable (issue 14 items 10-12, 15, 16): each bad
 // input or option exits non-zero naming the file and the problem, and writes nothing under an
 // output's name. Each test states the item it reproduces.
+#include <fmt/core.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -19,6 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/factor_io.h"
 #include "cli_process.h"
 #include "tmpfs_mount.h"
 #include "core/synth.h"
@@ -202,10 +204,11 @@ TEST_F(BrokenInputs, ReportRefusesSidecarsOfANewerVersionOrWithBrokenTextures) {
     std::ofstream(p, std::ios::binary) << good_p;
   };
   nlohmann::json j = nlohmann::json::parse(good_sidecar);
-  j["format_version"] = 2;
+  j["format_version"] = kFactorFormatVersion + 1;
   std::ofstream(sidecar, std::ios::binary) << j.dump();
   ExpectReportRefuses({sidecar.string()}, sidecar.string(),
-                      "format_version 2 is newer than this brdfit reads (1)");
+                      fmt::format("unsupported format_version {} (this reader: 1 to {})",
+                                  kFactorFormatVersion + 1, kFactorFormatVersion));
   restore();
   fs::remove(p);
   ExpectReportRefuses({sidecar.string()}, p.string(), "");
@@ -220,7 +223,7 @@ TEST_F(BrokenInputs, ReportRefusesSidecarsOfANewerVersionOrWithBrokenTextures) {
   const CliRun r8 = RunCli(dir_, {"factor", table_.string(), "--res", "8", "-q", "-o", P("fac8")});
   ASSERT_EQ(r8.code, 0) << r8.log;
   fs::copy_file(dir_ / "fac8/t.p.exr", p, fs::copy_options::overwrite_existing);
-  ExpectReportRefuses({sidecar.string()}, p.string(), "image is 8 x 8, the sidecar says 16 x 16");
+  ExpectReportRefuses({sidecar.string()}, p.string(), "image is 8 x 8, the sidecar t.factor.json says 16 x 16");
 }
 
 TEST_F(BrokenInputs, ReportKeepGoingWritesThePageNotesTheProblemAndExitsTwo) {

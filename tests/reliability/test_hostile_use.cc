@@ -152,7 +152,7 @@ TEST(HostileNames, FactorOfArchiveMembersWritesOnlyInsideTheOutputFolder) {
   WriteZip(zip, {"merl_nbrdf/../../X.h5", "merl_nbrdf/" + (abs / "X.h5").string()}, member);
   fs::create_directories(dir / "a" / "b");
   ::setenv("BRDFIT_NBRDF_ZIP", zip.c_str(), 1);
-  const CliRun r = RunBrdfit({"factor", "nbrdf:all", "--res", "8", "-o",
+  const CliRun r = RunBrdfit({"factor", "nbrdf:all", "--res", "8", "--no-auto", "-o",
                            (dir / "a" / "b" / "out").string()},
                           dir / "run.log");
   ::unsetenv("BRDFIT_NBRDF_ZIP");
