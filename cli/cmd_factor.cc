@@ -211,7 +211,8 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
         "table", "form", "res", "cells", "f<=0", "ln-rmse", "E2-log", "cbrt", "psnr_dB", "med_lum",
         "tex_KiB", "fetches", "system", "time");
   }
-  for (const std::string& file : pipeline::ExpandInputs(o.files)) {
+  const std::vector<std::string> files = pipeline::ExpandInputs(o.files);
+  for (const std::string& file : files) {
     try {
       const Table table = pipeline::LoadInput(file);
       Factorization r;
@@ -225,7 +226,10 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
         } else {
           std::vector<Factorization> tried;
           std::vector<FactorScore> scores;
+          const bool last = &file == &files.back();
           for (const FactorCandidate& c : kAutoFactorCandidates) {
+            // On the last table, a parameterization's system goes once its candidates are done.
+            if (last && !tried.empty() && tried.back().options.param != c.param) cache.Clear();
             tried.push_back(Factor(table, CandidateOptions(options, c), &cache));
             scores.push_back({ScoreFactorizationRendered(table, tried.back().brdf),
                               CostOf(tried.back().brdf)});
@@ -260,6 +264,9 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
       } catch (const InputError& e) {
         throw InputError(file, e.what());
       }
+      // The factored systems (~100 MB each on the MERL grid) serve the next tables; after the
+      // last one they are dropped before the metrics' own per-cell arrays are made.
+      if (&file == &files.back()) cache.Clear();
       const double ln_rmse = FactorLnRatioRmse(table, r.brdf, options.max_theta);
       const FitMetrics m = ScoreFactorization(table, r.brdf, metric_samples);
       const std::string stem = OutputStem(file, o.suffix);

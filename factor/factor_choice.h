@@ -27,7 +27,8 @@ struct FactorCandidate {
   RefineLoss loss;
 };
 
-// The candidates of the default, in the order they are tried.
+// The candidates of the default, in the order they are tried (one parameterization after the
+// other, so that a caller can drop a system it will not need again).
 extern const std::vector<FactorCandidate> kAutoFactorCandidates;
 
 // `base` (resolution, lambda, weighting, angle cut-off, iterations) with a candidate's form.

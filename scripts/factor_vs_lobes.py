@@ -9,7 +9,8 @@ bench_accuracy's CSV (one row per material, model and loss), single-lobe models 
 row is scored as brdfit chooses (core/model_choice.h): S = psnr_db - 20 * median_rel_error.
 Prints, per form, the mean PSNR, median of the median luminance errors, and on how many
 materials it beats the best single lobe (S higher); then the same for the best factorization
-of each material (over all forms, or over --candidates: what `brdfit factor` tries).
+of each material: the highest S over all forms, and over --candidates by `brdfit factor`'s own
+rule (factor/factor_choice.h: the least texture memory within 0.5 dB of the best S).
 """
 import argparse
 import csv
@@ -19,6 +20,19 @@ from collections import defaultdict
 
 def score(row):
     return float(row["psnr_db"]) - 20.0 * float(row["median_rel_error"])
+
+
+def texture_bytes(form, res):
+    """Bytes of the float32 RGB textures (core/factor_form.h), 12 B more with a diffuse value."""
+    parts = form.split("+")
+    rank = next((int(p[1]) for p in parts[1:] if len(p) == 2 and p[0] == "r"), 1)
+    return rank * 2 * res * res * 12 + (12 if "d" in parts[1:] else 0)
+
+
+def choose(rows, tolerance=0.5):
+    best = max(score(r) for r in rows)
+    near = [r for r in rows if score(r) >= best - tolerance]
+    return min(near, key=lambda r: (texture_bytes(r["param"], int(r["res"])), -score(r)))
 
 
 def ok(row):
@@ -61,16 +75,22 @@ def main():
 
     for f in sorted(forms):
         line(f, forms[f])
-    for label, pool in (("best of all forms", sorted(forms)),
-                        ("best of candidates", [c for c in a.candidates.split(",") if c])):
+    for label, pool, pick in (("best of all forms", sorted(forms), lambda rows: max(rows, key=score)),
+                              ("chosen of candidates", [c for c in a.candidates.split(",") if c],
+                               choose)):
         if not pool:
             continue
         best = {}
         for m in materials:
             rows = [forms[f][m] for f in pool if m in forms[f]]
             if rows:
-                best[m] = max(rows, key=score)
+                best[m] = pick(rows)
         line(label, best)
+        if label.startswith("chosen"):
+            counts = defaultdict(int)
+            for r in best.values():
+                counts[r["param"]] += 1
+            print("  chosen: " + ", ".join(f"{f} {n}" for f, n in sorted(counts.items())))
 
 
 if __name__ == "__main__":
