@@ -1,13 +1,14 @@
-// Refinement of a factorization under the relative loss, with an optional diffuse value and a
-// sum of K products (docs/factorization.md §7).
+// Refinement of a factorization under the relative or the log-ratio loss, with an optional
+// diffuse value and a sum of K products (docs/factorization.md §13).
 //
 // Form, per RGB channel (channels are independent problems):
 //   f_r = d + sum_k exp(a_r^T x_k)
 // a_r: the log-linear row of cell r in the cached system (factor_system.h), the same for every
 // term; x_k: log-texel unknowns of term k (positivity is free: the unknowns are logs); d >= 0
 // the diffuse value kd / pi (1/sr).
-// Objective: the relative loss of the analytic fits (fit/loss.h, after Sun et al. 2018),
-//   E = sum_r w_r ((f_r - m_r) / (|m_r| + eps))^2 + sum_k |S x_k|^2
+// Objective: a loss of the analytic fits (fit/loss.h), relative (after Sun et al. 2018) or
+// log-ratio, rho = (f - m) / (|m| + eps) or ln((f + eps) / (m + eps)),
+//   E = sum_r w_r rho(f_r, m_r)^2 + sum_k |S x_k|^2
 // w_r: the system's cell weights (solid angle), S: its smoothness rows and gauge row (one gauge
 // per term: each product is invariant under the same rescaling of its factors). Minimized by
 // Levenberg-Marquardt (Marquardt 1963, diagonal scaling) with d projected onto d >= 0; the

@@ -3,6 +3,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -69,6 +71,60 @@ TEST_F(FactorCli, WritesTexturesAndSidecar) {
   EXPECT_TRUE(sidecar["metrics"]["fit_metrics"]["ok"].get<bool>());
   EXPECT_LT(sidecar["metrics"]["ln_ratio_rmse"].get<double>(), 0.05);  // 16^2 texels
   EXPECT_NE(r.out.find("product"), std::string::npos) << r.out;
+}
+
+// The default tries every candidate of factor/factor_choice.h and keeps the one the rule picks
+// (checked here from the recorded scores, independently of ChooseFactorization); an option that
+// names the form turns the choice off.
+TEST_F(FactorCli, DefaultKeepsTheCandidateWithTheBestRenderedScore) {
+  // A bright Lambert body under a separable lobe: only the forms with a diffuse value hold it.
+  const Table t = testing::Tabulate(
+      testing::SmallGrid(), [](const Vec3& wi, const Vec3& wo, const HalfDiffAngles& a) {
+        const testing::Rgb pi = testing::TrueP(testing::ThetaOf(wi));
+        const testing::Rgb po = testing::TrueP(testing::ThetaOf(wo));
+        const testing::Rgb q = testing::TrueQh(a.theta_h);
+        return testing::Rgb{0.5 + pi[0] * q[0] * po[0], 0.6 + pi[1] * q[1] * po[1],
+                            0.7 + pi[2] * q[2] * po[2]};
+      });
+  const std::string table = (dir_ / "body.h5").string();
+  WriteHdf5Table(t, table);
+  const CliRun r = Brdfit({"factor", table, "--res", "16", "-o", (dir_ / "out").string()}, dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  nlohmann::json sidecar;
+  const FactoredBrdf b = LoadFactoredBrdf(dir_ / "out" / "body.factor.json", &sidecar);
+  const nlohmann::json& choice = sidecar.at("choice");
+  ASSERT_EQ(choice.at("candidates").size(), 4u);
+  double best = -1e300;
+  for (const auto& c : choice["candidates"]) best = std::max(best, c["score_db"].get<double>());
+  std::string expect;
+  std::size_t least = SIZE_MAX;
+  for (const auto& c : choice["candidates"]) {
+    if (c["score_db"].get<double>() >= best - 0.5 && c["texture_bytes"].get<std::size_t>() < least) {
+      least = c["texture_bytes"].get<std::size_t>();
+      expect = c["form"].get<std::string>();
+    }
+  }
+  EXPECT_EQ(choice["chosen"], expect);
+  EXPECT_TRUE(b.has_diffuse()) << choice.dump(1);  // the body needs d
+  EXPECT_NE(r.out.find("<- chosen"), std::string::npos) << r.out;
+  // The chosen form is what was written: its rendered metric is the candidate's.
+  for (const auto& c : choice["candidates"]) {
+    if (c["form"] == expect) {
+      EXPECT_DOUBLE_EQ(c["psnr_db"].get<double>(),
+                       sidecar["metrics"]["rendered"]["psnr_db"].get<double>());
+    }
+  }
+
+  const CliRun e = Brdfit({"factor", table, "--res", "16", "--rank", "1", "-o",
+                           (dir_ / "explicit").string()},
+                          dir_);
+  ASSERT_EQ(e.code, 0) << e.err;
+  nlohmann::json explicit_sidecar;
+  const FactoredBrdf one =
+      LoadFactoredBrdf(dir_ / "explicit" / "body.factor.json", &explicit_sidecar);
+  EXPECT_FALSE(explicit_sidecar.contains("choice"));
+  EXPECT_EQ(one.rank(), 1);
+  EXPECT_FALSE(one.has_diffuse());
 }
 
 TEST_F(FactorCli, SecondTableReusesTheSystem) {
