@@ -268,11 +268,39 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
       // last one they are dropped before the metrics' own per-cell arrays are made.
       if (&file == &files.back()) cache.Clear();
       const double ln_rmse = FactorLnRatioRmse(table, r.brdf, options.max_theta);
+      // What each product bought: the lower ranks met on the way, scored like the result.
+      nlohmann::json ranks;
+      if (!r.lower_ranks.empty()) {
+        std::vector<const FactoredBrdf*> all;
+        for (const FactoredBrdf& b : r.lower_ranks) all.push_back(&b);
+        all.push_back(&r.brdf);
+        for (const FactoredBrdf* b : all) {
+          const RenderedError e = b == &r.brdf ? re : ScoreFactorizationRendered(table, *b);
+          const FactorCost c = CostOf(*b);
+          ranks.push_back(nlohmann::json{
+              {"rank", b->rank()},
+              {"score_db", e.ok ? nlohmann::json(RenderedScoreDb(e)) : nlohmann::json()},
+              {"psnr_db", e.ok ? nlohmann::json(e.psnr_db) : nlohmann::json()},
+              {"median_rel_error", e.ok ? nlohmann::json(e.median_rel_error) : nlohmann::json()},
+              {"texture_bytes", c.texture_bytes},
+              {"fetches_per_light", c.fetches_per_light},
+              {"fetches_per_fragment", c.fetches_per_fragment}});
+          if (!o.quiet) {
+            fmt::print("  rank {}: S {:>7} dB  psnr {:>6} dB  med_lum {:>6}  {:>7.1f} KiB  {} fetches "
+                       "per light\n",
+                       b->rank(), e.ok ? fmt::format("{:.2f}", RenderedScoreDb(e)) : "-",
+                       e.ok ? fmt::format("{:.1f}", e.psnr_db) : "-",
+                       e.ok ? fmt::format("{:.1f}%", 100 * e.median_rel_error) : "-",
+                       c.texture_bytes / 1024.0, c.fetches_per_light);
+          }
+        }
+      }
       const FitMetrics m = ScoreFactorization(table, r.brdf, metric_samples);
       const std::string stem = OutputStem(file, o.suffix);
       nlohmann::json extra = {{"source", SourceJson(file, table)},
                               {"metrics", MetricsJson(m, re, ln_rmse)}};
       if (!choice.is_null()) extra["choice"] = choice;
+      if (!ranks.is_null()) extra["ranks"] = ranks;
       const FactorPaths paths = SaveFactorization(r, o.out_dir, stem, extra);
       if (written) {
         for (const fs::path& p : paths.All()) written->push_back(p);

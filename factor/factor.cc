@@ -130,15 +130,15 @@ Factorization Factor(const Table& table, const FactorOptions& options, FactorSys
 
   const int n = options.resolution;
   const int k = sys->num_p();
-  auto bake = [&](const Eigen::MatrixX3d& xt) {
+  auto bake = [&](const Eigen::MatrixX3d& xt, std::size_t* clamped) {
     FactorTerm t;
-    t.p = BakeDisk(xt, 0, k, n, &st.clamped_texels);
-    t.q = options.param == FactorParam::kMcCool ? BakeDisk(xt, k, sys->num_q(), n, &st.clamped_texels)
-                                                : BakeTexels(xt, k, n, &st.clamped_texels);
+    t.p = BakeDisk(xt, 0, k, n, clamped);
+    t.q = options.param == FactorParam::kMcCool ? BakeDisk(xt, k, sys->num_q(), n, clamped)
+                                                : BakeTexels(xt, k, n, clamped);
     return t;
   };
   if (!options.NeedsRefinement()) {
-    out.brdf = FactoredBrdf(options.param, {0, 0, 0}, {bake(x)});
+    out.brdf = FactoredBrdf(options.param, {0, 0, 0}, {bake(x, &st.clamped_texels)});
   } else {
     const auto t1 = std::chrono::steady_clock::now();
     RefineOptions ro;
@@ -149,8 +149,14 @@ Factorization Factor(const Table& table, const FactorOptions& options, FactorSys
     ro.max_rows = options.refine_rows;
     const RefineResult r = RefineFactorization(*sys, table, x, removed, ro);
     std::vector<FactorTerm> terms;
-    for (const auto& xt : r.terms) terms.push_back(bake(xt));
+    for (const auto& xt : r.terms) terms.push_back(bake(xt, &st.clamped_texels));
     out.brdf = FactoredBrdf(options.param, r.diffuse, std::move(terms));
+    for (const RefineResult::Stage& stage : r.lower_ranks) {
+      std::vector<FactorTerm> lower;
+      std::size_t unreported = 0;  // the stats describe the result, not the stages
+      for (const auto& xt : stage.terms) lower.push_back(bake(xt, &unreported));
+      out.lower_ranks.emplace_back(options.param, stage.diffuse, std::move(lower));
+    }
     st.refine_rows = r.rows;
     st.refine_iterations = r.iterations;
     st.refine_rel_rms_start = r.rel_rms_start;

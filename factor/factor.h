@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "factor/factor_eval.h"
 #include "factor/factor_param.h"
@@ -67,6 +68,9 @@ struct Factorization {
   FactorOptions options;
   FactoredBrdf brdf;
   FactorStats stats;
+  // With rank K > 1: the refined solutions of ranks 1 .. K-1 met on the way (same d option),
+  // so that what each further product buys can be shown.
+  std::vector<FactoredBrdf> lower_ranks;
 };
 
 // Throws InputError (bad options, no usable cell). Throws std::runtime_error if the solve

@@ -399,6 +399,7 @@ RefineResult RefineFactorization(const FactorSystem& sys, const Table& table,
       for (int t = 0; t < k; ++t) out.terms[t].col(c) = th.segment(t * n, n);
       if (options.diffuse) d[c] = th[p.num_unknowns() - 1];
     }
+    if (k < rank) out.lower_ranks.push_back({d, out.terms});
   }
   out.diffuse = d;
 

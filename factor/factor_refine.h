@@ -56,6 +56,13 @@ struct RefineOptions {
 struct RefineResult {
   std::array<double, 3> diffuse{0, 0, 0};
   std::vector<Eigen::MatrixX3d> terms;  // log-texel unknowns per term (system layout)
+  // The refined solution of every lower rank on the way (ranks 1 .. K-1, in order): what each
+  // further product bought (docs/factorization.md §13).
+  struct Stage {
+    std::array<double, 3> diffuse{0, 0, 0};
+    std::vector<Eigen::MatrixX3d> terms;
+  };
+  std::vector<Stage> lower_ranks;
   std::size_t rows = 0;
   int iterations = 0;
   double rel_rms_start = 0;  // sqrt(sum res^2 / (3 sum w)) over the rows used, at the start

@@ -127,6 +127,34 @@ TEST_F(FactorCli, DefaultKeepsTheCandidateWithTheBestRenderedScore) {
   EXPECT_FALSE(one.has_diffuse());
 }
 
+// --rank K shows what each product buys: every rank 1..K scored like the result, its texture
+// memory and fetches growing by one product each.
+TEST_F(FactorCli, RankKReportsEveryLowerRank) {
+  const CliRun r = Brdfit({"factor", table_, "--res", "16", "--diffuse", "--rank", "3", "-o",
+                           (dir_ / "out").string()},
+                          dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  nlohmann::json sidecar;
+  const FactoredBrdf b = LoadFactoredBrdf(dir_ / "out" / "product.factor.json", &sidecar);
+  ASSERT_EQ(b.rank(), 3);
+  const nlohmann::json& ranks = sidecar.at("ranks");
+  ASSERT_EQ(ranks.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(ranks[k]["rank"], k + 1);
+    EXPECT_EQ(ranks[k]["fetches_per_light"], 2 * (k + 1));
+    EXPECT_TRUE(ranks[k]["psnr_db"].is_number()) << ranks.dump(1);
+    if (k > 0) {
+      // One product more (two 16^2 float32 RGB textures); 12 B of d where one of them has d = 0.
+      const double more = ranks[k]["texture_bytes"].get<double>() -
+                          ranks[k - 1]["texture_bytes"].get<double>();
+      EXPECT_NEAR(more, 2 * 16 * 16 * 12, 12);
+    }
+  }
+  EXPECT_DOUBLE_EQ(ranks[2]["psnr_db"].get<double>(),
+                   sidecar["metrics"]["rendered"]["psnr_db"].get<double>());
+  EXPECT_NE(r.out.find("rank 2: S"), std::string::npos) << r.out;
+}
+
 TEST_F(FactorCli, SecondTableReusesTheSystem) {
   fs::copy_file(table_, dir_ / "copy.h5");
   const CliRun r = Brdfit({"factor", table_, (dir_ / "copy.h5").string(), "--param", "halfdiff",
