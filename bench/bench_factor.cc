@@ -86,10 +86,9 @@ void BM_FactorFirst(benchmark::State& state) {
   Label(state, r);
 }
 
-// Reused: the system comes from the cache; per material only logs, A^T W y and solves.
-void BM_FactorReused(benchmark::State& state) {
+// Times Factor with the system from the cache (built once before the loop).
+Factorization TimeReused(benchmark::State& state, const FactorOptions& o) {
   const Table& t = TheMaterial().table;
-  const FactorOptions o = Options(state);
   FactorSystemCache cache;
   Factorization r = Factor(t, o, &cache);
   for (auto _ : state) {
@@ -98,6 +97,12 @@ void BM_FactorReused(benchmark::State& state) {
   }
   if (!r.stats.system_reused) state.SkipWithError("cache miss");
   Label(state, r);
+  return r;
+}
+
+// Reused: the system comes from the cache; per material only logs, A^T W y and solves.
+void BM_FactorReused(benchmark::State& state) {
+  TimeReused(state, Options(state));
 }
 
 // The refined forms (factor/factor_refine.h) at 64^2: `brdfit factor`'s candidates
@@ -116,19 +121,10 @@ const std::vector<FactorCandidate>& RefinedForms() {
 
 // Reused system + the form's refinement (none for the log-linear candidate).
 void BM_FactorReusedForm(benchmark::State& state) {
-  const Table& t = TheMaterial().table;
   const FactorCandidate& c = RefinedForms()[static_cast<std::size_t>(state.range(0))];
   FactorOptions base;
   base.resolution = 64;
-  const FactorOptions o = CandidateOptions(base, c);
-  FactorSystemCache cache;
-  Factorization r = Factor(t, o, &cache);
-  for (auto _ : state) {
-    r = Factor(t, o, &cache);
-    benchmark::DoNotOptimize(r);
-  }
-  if (!r.stats.system_reused) state.SkipWithError("cache miss");
-  Label(state, r);
+  const Factorization r = TimeReused(state, CandidateOptions(base, c));
   state.SetLabel(TheMaterial().name + " " + c.name);
   state.counters["refine_ms"] = 1e3 * r.stats.refine_seconds;
   state.counters["lm_it"] = r.stats.refine_iterations;
