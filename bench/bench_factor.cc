@@ -140,7 +140,7 @@ BENCHMARK(BM_FactorReused)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_FactorReusedForm)
-    ->DenseRange(0, 6)
+    ->DenseRange(0, static_cast<int>(RefinedForms().size()) - 1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
