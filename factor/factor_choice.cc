@@ -51,9 +51,10 @@ std::optional<FactorChoice> ChooseFactorization(const std::vector<FactorScore>& 
   c.score_db = s[pick];
   c.reason = pick == *best
                  ? fmt::format("highest rendered score S = {:.2f} dB", s[pick])
-                 : fmt::format("S = {:.2f} dB, within {:.1f} dB of the best ({:.2f} dB) with less "
-                               "texture memory",
-                               s[pick], tolerance_db, s[*best]);
+                 : fmt::format(
+                       "S = {:.2f} dB, within {:.1f} dB of the best ({:.2f} dB) with less "
+                       "texture memory",
+                       s[pick], tolerance_db, s[*best]);
   return c;
 }
 

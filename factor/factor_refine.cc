@@ -29,7 +29,8 @@ struct RowSet {
 
 RowSet PickRows(const FactorSystem& sys, const Table& table, std::size_t max_rows) {
   const std::size_t n = sys.num_rows();
-  const std::size_t stride = std::max<std::size_t>(1, (n + max_rows - 1) / std::max<std::size_t>(1, max_rows));
+  const std::size_t stride =
+      std::max<std::size_t>(1, (n + max_rows - 1) / std::max<std::size_t>(1, max_rows));
   RowSet s;
   std::vector<std::array<double, 3>> m;
   for (std::size_t r = 0; r < n; r += stride) {
@@ -75,7 +76,12 @@ class ChannelProblem {
  public:
   ChannelProblem(const FactorSystem& sys, const RowSet& rows, int channel, int rank, bool diffuse,
                  RefineLoss loss, const Eigen::SparseMatrix<double>& sts)
-      : sys_(sys), rows_(rows), ch_(channel), rank_(rank), diffuse_(diffuse), loss_(loss),
+      : sys_(sys),
+        rows_(rows),
+        ch_(channel),
+        rank_(rank),
+        diffuse_(diffuse),
+        loss_(loss),
         sts_(sts) {
     n_ = sys.num_p() + sys.num_q();
     nt_ = rank_ * n_ + (diffuse_ ? 1 : 0);
@@ -110,8 +116,7 @@ class ChannelProblem {
   }
 
   // Levenberg-Marquardt from *th; returns the iterations taken.
-  int Minimize(Eigen::VectorXd* th, int max_iterations, std::size_t dense_limit,
-               double tolerance) {
+  int Minimize(Eigen::VectorXd* th, int max_iterations, std::size_t dense_limit, double tolerance) {
     const bool dense = static_cast<std::size_t>(nt_) <= dense_limit;
     double cost = Linearize(*th, dense);
     if (!std::isfinite(cost)) return 0;
@@ -166,7 +171,8 @@ class ChannelProblem {
         f += ce[k];
       }
       double s;
-      const double res = Residual(loss_, f, rows_.m(static_cast<Eigen::Index>(i), ch_), rows_.w[i], &s);
+      const double res =
+          Residual(loss_, f, rows_.m(static_cast<Eigen::Index>(i), ch_), rows_.w[i], &s);
       for (int k = 0; k < rank_; ++k) ce[k] *= s;
       ce[rank_] = s;
       cost += res * res;
@@ -201,7 +207,8 @@ class ChannelProblem {
       g_.segment(k * n_, n_) += sx;
       for (int j = 0; j < sts_.outerSize(); ++j) {
         for (Eigen::SparseMatrix<double>::InnerIterator itr(sts_, j); itr; ++itr) {
-          const int a = k * n_ + static_cast<int>(itr.row()), c = k * n_ + static_cast<int>(itr.col());
+          const int a = k * n_ + static_cast<int>(itr.row()),
+                    c = k * n_ + static_cast<int>(itr.col());
           if (a == c) diag_[a] += itr.value();
           if (a <= c) (dense ? h_(a, c) : SparseAt(a, c)) += itr.value();
         }
@@ -257,7 +264,8 @@ class ChannelProblem {
       for (int j = 0; j < sts_.outerSize(); ++j) {
         for (Eigen::SparseMatrix<double>::InnerIterator itr(sts_, j); itr; ++itr) {
           if (itr.row() <= itr.col()) {
-            t.emplace_back(k * n_ + static_cast<int>(itr.row()), k * n_ + static_cast<int>(itr.col()), 1.0);
+            t.emplace_back(k * n_ + static_cast<int>(itr.row()),
+                           k * n_ + static_cast<int>(itr.col()), 1.0);
           }
         }
       }
@@ -285,8 +293,8 @@ class ChannelProblem {
   const Eigen::SparseMatrix<double>& sts_;
   int n_ = 0, nt_ = 0;
   Eigen::VectorXd g_, diag_;
-  Eigen::MatrixXd h_;                // dense H (upper), few unknowns
-  Eigen::SparseMatrix<double> hs_;   // sparse H (upper), many unknowns
+  Eigen::MatrixXd h_;               // dense H (upper), few unknowns
+  Eigen::SparseMatrix<double> hs_;  // sparse H (upper), many unknowns
   using SparseLdlt = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper>;
   std::unique_ptr<SparseLdlt> ldlt_;  // (not movable itself)
   bool have_pattern_ = false;

@@ -47,10 +47,10 @@ struct RefineOptions {
   RefineLoss loss = RefineLoss::kRel;
   bool diffuse = false;
   int rank = 1;
-  int max_iterations = 30;            // LM iterations per channel and stage
-  std::size_t max_rows = 1 << 14;     // rows used at most (every s-th row, weights times s)
-  std::size_t dense_limit = 1024;     // unknowns per channel up to which H is solved densely
-  double tolerance = 1e-6;            // stop when a step lowers the objective by less (relative)
+  int max_iterations = 30;         // LM iterations per channel and stage
+  std::size_t max_rows = 1 << 14;  // rows used at most (every s-th row, weights times s)
+  std::size_t dense_limit = 1024;  // unknowns per channel up to which H is solved densely
+  double tolerance = 1e-6;         // stop when a step lowers the objective by less (relative)
 };
 
 struct RefineResult {
@@ -65,8 +65,8 @@ struct RefineResult {
   std::vector<Stage> lower_ranks;
   std::size_t rows = 0;
   int iterations = 0;
-  double rel_rms_start = 0;  // sqrt(sum res^2 / (3 sum w)) over the rows used, at the start
-  double rel_rms = 0;        // ... at the end
+  double rel_rms_start = 0;    // sqrt(sum res^2 / (3 sum w)) over the rows used, at the start
+  double rel_rms = 0;          // ... at the end
   double objective_start = 0;  // E (data + smoothness), channels summed, at the start
   double objective = 0;        // ... at the end (never above objective_start at rank 1)
 };

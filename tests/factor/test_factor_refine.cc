@@ -121,20 +121,21 @@ TEST(FactorRefine, LambertPlusSeparableMicrofacetThroughFactor) {
   // (FactorRecovery: <= 1e-3 in ln at 128^2), within which the lobe's tail and d trade off:
   // d comes back to 5 %.
   const Rgb d{0.04, 0.08, 0.15};
-  const Table t = testing::Tabulate(
-      testing::SmallGrid(), [&](const Vec3& wi, const Vec3& wo, const HalfDiffAngles& a) {
-        const Rgb pi = testing::TrueP(testing::ThetaOf(wi)), po = testing::TrueP(testing::ThetaOf(wo));
-        const Rgb q = testing::TrueQh(a.theta_h);
-        return Rgb{d[0] + pi[0] * q[0] * po[0], d[1] + pi[1] * q[1] * po[1],
-                   d[2] + pi[2] * q[2] * po[2]};
-      });
+  const Table t = testing::Tabulate(testing::SmallGrid(), [&](const Vec3& wi, const Vec3& wo,
+                                                              const HalfDiffAngles& a) {
+    const Rgb pi = testing::TrueP(testing::ThetaOf(wi)), po = testing::TrueP(testing::ThetaOf(wo));
+    const Rgb q = testing::TrueQh(a.theta_h);
+    return Rgb{d[0] + pi[0] * q[0] * po[0], d[1] + pi[1] * q[1] * po[1],
+               d[2] + pi[2] * q[2] * po[2]};
+  });
   FactorOptions o;
   o.resolution = 128;
   o.lambda = 1e-9;
   o.diffuse = true;
   o.refine_iterations = 100;
   const Factorization with = Factor(t, o);
-  for (int c = 0; c < 3; ++c) EXPECT_NEAR(with.brdf.diffuse()[c], d[c], 0.05 * d[c]) << "channel " << c;
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(with.brdf.diffuse()[c], d[c], 0.05 * d[c]) << "channel " << c;
   EXPECT_LE(FactorLnRatioRmse(t, with.brdf), 2e-3);
   o.diffuse = false;
   const double without = FactorLnRatioRmse(t, Factor(t, o).brdf);
