@@ -190,19 +190,19 @@ int main(int argc, char** argv) {
 
   std::string out =
       "material,param,res,status,ln_ratio_rmse,log_rmse,psnr_db,psnr_srgb_db,median_rel_error,"
-      "p95_rel_error,factor_ms,refine_ms,refine_iterations,refine_rel_rms_start,refine_rel_rms,diffuse_r,diffuse_g,"
+      "p95_rel_error,factor_ms,refine_ms,refine_iterations,refine_rel_rms_start,refine_rel_rms,"
+      "diffuse_r,diffuse_g,"
       "diffuse_b\n";
   for (const Row& r : rows) {
     const RenderedError& e = r.rendered;
     const std::string status = !r.error.empty() ? "failed" : e.ok ? "ok" : "metric_failed";
-    out += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.4f},{:.4f},{:.6f},{:.6f},{:.1f},{:.1f},{},{:.5g},{:.5g},"
-                       "{:.5g},{:.5g},{:.5g}\n",
-                       r.material,
-                       configs[r.config].form, configs[r.config].resolution, status,
-                       r.ln_ratio_rmse, r.fit.log_rmse, e.psnr_db, e.psnr_srgb_db,
-                       e.median_rel_error, e.p95_rel_error, r.factor_ms,
-                       1e3 * r.stats.refine_seconds, r.stats.refine_iterations, r.stats.refine_rel_rms_start,
-                       r.stats.refine_rel_rms, r.diffuse[0], r.diffuse[1], r.diffuse[2]);
+    out += fmt::format(
+        "{},{},{},{},{:.6g},{:.6g},{:.4f},{:.4f},{:.6f},{:.6f},{:.1f},{:.1f},{},{:.5g},{:.5g},"
+        "{:.5g},{:.5g},{:.5g}\n",
+        r.material, configs[r.config].form, configs[r.config].resolution, status, r.ln_ratio_rmse,
+        r.fit.log_rmse, e.psnr_db, e.psnr_srgb_db, e.median_rel_error, e.p95_rel_error, r.factor_ms,
+        1e3 * r.stats.refine_seconds, r.stats.refine_iterations, r.stats.refine_rel_rms_start,
+        r.stats.refine_rel_rms, r.diffuse[0], r.diffuse[1], r.diffuse[2]);
   }
   WriteTextAtomically(csv, out);
 

@@ -17,8 +17,8 @@
 #include "cli/demo.h"
 #include "core/error.h"
 #include "core/file_stem.h"
-#include "factor/factor.h"
 #include "core/model_choice.h"
+#include "factor/factor.h"
 #include "factor/factor_choice.h"
 #include "factor/factor_form.h"
 #include "factor/factor_metrics.h"
@@ -62,7 +62,7 @@ struct FactorCliOptions {
   int refine_iterations = FactorOptions{}.refine_iterations;
   std::string refine_loss = "rel";
   bool auto_form = kDefaultAutoForm;  // cleared by any option that names the form
-  std::string suffix;  // appended to each output stem (the demo writes both forms)
+  std::string suffix;                 // appended to each output stem (the demo writes both forms)
   bool quiet = false;
 };
 
@@ -231,24 +231,26 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
             // On the last table, a parameterization's system goes once its candidates are done.
             if (last && !tried.empty() && tried.back().options.param != c.param) cache.Clear();
             tried.push_back(Factor(table, CandidateOptions(options, c), &cache));
-            scores.push_back({ScoreFactorizationRendered(table, tried.back().brdf),
-                              CostOf(tried.back().brdf)});
+            scores.push_back(
+                {ScoreFactorizationRendered(table, tried.back().brdf), CostOf(tried.back().brdf)});
           }
           const auto pick = ChooseFactorization(scores);
           const std::size_t i = pick ? pick->index : 0;
-          choice = {{"rule", "S = psnr_db - 20 median_rel_error; least texture memory within "
-                             "0.5 dB of the best (factor/factor_choice.h)"},
-                    {"chosen", kAutoFactorCandidates[i].name},
-                    {"reason", pick ? pick->reason : "no candidate has a rendered error: the first"}};
+          choice = {
+              {"rule",
+               "S = psnr_db - 20 median_rel_error; least texture memory within "
+               "0.5 dB of the best (factor/factor_choice.h)"},
+              {"chosen", kAutoFactorCandidates[i].name},
+              {"reason", pick ? pick->reason : "no candidate has a rendered error: the first"}};
           for (std::size_t k = 0; k < tried.size(); ++k) {
             const RenderedError& e = scores[k].rendered;
             choice["candidates"].push_back(nlohmann::json{
                 {"form", kAutoFactorCandidates[k].name},
-                 {"score_db", e.ok ? nlohmann::json(RenderedScoreDb(e)) : nlohmann::json()},
-                 {"psnr_db", e.ok ? nlohmann::json(e.psnr_db) : nlohmann::json()},
-                 {"median_rel_error", e.ok ? nlohmann::json(e.median_rel_error) : nlohmann::json()},
-                 {"texture_bytes", scores[k].cost.texture_bytes},
-                 {"seconds", tried[k].stats.seconds}});
+                {"score_db", e.ok ? nlohmann::json(RenderedScoreDb(e)) : nlohmann::json()},
+                {"psnr_db", e.ok ? nlohmann::json(e.psnr_db) : nlohmann::json()},
+                {"median_rel_error", e.ok ? nlohmann::json(e.median_rel_error) : nlohmann::json()},
+                {"texture_bytes", scores[k].cost.texture_bytes},
+                {"seconds", tried[k].stats.seconds}});
             if (!o.quiet) {
               fmt::print("  candidate {:<16} S {:>7} dB  psnr {:>6} dB  med_lum {:>6}{}\n",
                          kAutoFactorCandidates[k].name,
@@ -286,12 +288,13 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
               {"fetches_per_light", c.fetches_per_light},
               {"fetches_per_fragment", c.fetches_per_fragment}});
           if (!o.quiet) {
-            fmt::print("  rank {}: S {:>7} dB  psnr {:>6} dB  med_lum {:>6}  {:>7.1f} KiB  {} fetches "
-                       "per light\n",
-                       b->rank(), e.ok ? fmt::format("{:.2f}", RenderedScoreDb(e)) : "-",
-                       e.ok ? fmt::format("{:.1f}", e.psnr_db) : "-",
-                       e.ok ? fmt::format("{:.1f}%", 100 * e.median_rel_error) : "-",
-                       c.texture_bytes / 1024.0, c.fetches_per_light);
+            fmt::print(
+                "  rank {}: S {:>7} dB  psnr {:>6} dB  med_lum {:>6}  {:>7.1f} KiB  {} fetches "
+                "per light\n",
+                b->rank(), e.ok ? fmt::format("{:.2f}", RenderedScoreDb(e)) : "-",
+                e.ok ? fmt::format("{:.1f}", e.psnr_db) : "-",
+                e.ok ? fmt::format("{:.1f}%", 100 * e.median_rel_error) : "-",
+                c.texture_bytes / 1024.0, c.fetches_per_light);
           }
         }
       }

@@ -168,5 +168,4 @@ Factorization Factor(const Table& table, const FactorOptions& options, FactorSys
   return out;
 }
 
-
 }  // namespace brdfit

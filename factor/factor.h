@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
+#include "core/table.h"
 #include "factor/factor_eval.h"
 #include "factor/factor_param.h"
 #include "factor/factor_refine.h"
 #include "factor/factor_system.h"
-#include "core/table.h"
 
 namespace brdfit {
 
@@ -57,10 +57,10 @@ struct FactorStats {
   double seconds = 0;                 // the whole Factor() call
   double solve_log_rms = 0;           // weighted RMS log residual of the solution, pre-bake
   // Refinement (FactorOptions::NeedsRefinement), channels pooled, over the rows it used:
-  std::size_t refine_rows = 0;        // rows used (a deterministic subset of the used cells)
-  int refine_iterations = 0;           // LM iterations, summed over channels and terms
-  double refine_rel_rms_start = 0;    // sqrt(weighted mean rel^2) of the log-linear start
-  double refine_rel_rms = 0;          // ... and of the refined solution
+  std::size_t refine_rows = 0;      // rows used (a deterministic subset of the used cells)
+  int refine_iterations = 0;        // LM iterations, summed over channels and terms
+  double refine_rel_rms_start = 0;  // sqrt(weighted mean rel^2) of the log-linear start
+  double refine_rel_rms = 0;        // ... and of the refined solution
   double refine_seconds = 0;
 };
 

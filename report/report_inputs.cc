@@ -314,7 +314,8 @@ bool AddFitParamsJson(const fs::path& p, Builder* b) {
       e.params.push_back(value.get<double>());
     }
     if (e.status != "failed" && !f.contains("metrics")) ff.Fail("metrics", "is missing");
-    e.metrics = MetricsFromJson(ff.Object(fj, "metrics"), e.status != "failed", ff.Child("metrics"));
+    e.metrics =
+        MetricsFromJson(ff.Object(fj, "metrics"), e.status != "failed", ff.Child("metrics"));
     e.chosen = ff.Bool(fj, "chosen", false);
     e.choice = ff.String(fj, "choice", "");
     const std::string source = ff.String(fj, "source", "");
@@ -449,12 +450,18 @@ std::string NotReadable(const fs::path& p) {
   const fs::file_status st = fs::status(p, ec);
   if (ec && ec != std::errc::no_such_file_or_directory) return "cannot be read: " + ec.message();
   switch (st.type()) {
-    case fs::file_type::not_found: return "no such file or folder";
-    case fs::file_type::fifo: return "is a FIFO, not a regular file";
-    case fs::file_type::character: return "is a character device, not a regular file";
-    case fs::file_type::block: return "is a block device, not a regular file";
-    case fs::file_type::socket: return "is a socket, not a regular file";
-    default: return "is not a regular file";
+    case fs::file_type::not_found:
+      return "no such file or folder";
+    case fs::file_type::fifo:
+      return "is a FIFO, not a regular file";
+    case fs::file_type::character:
+      return "is a character device, not a regular file";
+    case fs::file_type::block:
+      return "is a block device, not a regular file";
+    case fs::file_type::socket:
+      return "is a socket, not a regular file";
+    default:
+      return "is not a regular file";
   }
 }
 

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/factor_export.h"
 #include "io/hdf5_table.h"
+#include "pipeline/factor_export.h"
 #include "tests/factor/factor_test_util.h"
 
 namespace brdfit {
@@ -99,7 +99,8 @@ TEST_F(FactorCli, DefaultKeepsTheCandidateWithTheBestRenderedScore) {
   std::string expect;
   std::size_t least = SIZE_MAX;
   for (const auto& c : choice["candidates"]) {
-    if (c["score_db"].get<double>() >= best - 0.5 && c["texture_bytes"].get<std::size_t>() < least) {
+    if (c["score_db"].get<double>() >= best - 0.5 &&
+        c["texture_bytes"].get<std::size_t>() < least) {
       least = c["texture_bytes"].get<std::size_t>();
       expect = c["form"].get<std::string>();
     }
@@ -115,9 +116,8 @@ TEST_F(FactorCli, DefaultKeepsTheCandidateWithTheBestRenderedScore) {
     }
   }
 
-  const CliRun e = Brdfit({"factor", table, "--res", "16", "--rank", "1", "-o",
-                           (dir_ / "explicit").string()},
-                          dir_);
+  const CliRun e = Brdfit(
+      {"factor", table, "--res", "16", "--rank", "1", "-o", (dir_ / "explicit").string()}, dir_);
   ASSERT_EQ(e.code, 0) << e.err;
   nlohmann::json explicit_sidecar;
   const FactoredBrdf one =
@@ -130,9 +130,9 @@ TEST_F(FactorCli, DefaultKeepsTheCandidateWithTheBestRenderedScore) {
 // --rank K shows what each product buys: every rank 1..K scored like the result, its texture
 // memory and fetches growing by one product each.
 TEST_F(FactorCli, RankKReportsEveryLowerRank) {
-  const CliRun r = Brdfit({"factor", table_, "--res", "16", "--diffuse", "--rank", "3", "-o",
-                           (dir_ / "out").string()},
-                          dir_);
+  const CliRun r = Brdfit(
+      {"factor", table_, "--res", "16", "--diffuse", "--rank", "3", "-o", (dir_ / "out").string()},
+      dir_);
   ASSERT_EQ(r.code, 0) << r.err;
   nlohmann::json sidecar;
   const FactoredBrdf b = LoadFactoredBrdf(dir_ / "out" / "product.factor.json", &sidecar);
@@ -145,8 +145,8 @@ TEST_F(FactorCli, RankKReportsEveryLowerRank) {
     EXPECT_TRUE(ranks[k]["psnr_db"].is_number()) << ranks.dump(1);
     if (k > 0) {
       // One product more (two 16^2 float32 RGB textures); 12 B of d where one of them has d = 0.
-      const double more = ranks[k]["texture_bytes"].get<double>() -
-                          ranks[k - 1]["texture_bytes"].get<double>();
+      const double more =
+          ranks[k]["texture_bytes"].get<double>() - ranks[k - 1]["texture_bytes"].get<double>();
       EXPECT_NEAR(more, 2 * 16 * 16 * 12, 12);
     }
   }
