@@ -533,6 +533,20 @@ void FactorFilesSeeds(const fs::path& dir) {
   WriteBytes(dir / "p-empty", std::string(1, '\1'));
 }
 
+// A NaN texel in h.q.exr: was read, and broke fuzz_factor_files' round trip (NaN != NaN).
+void FactorFilesCrafted(const fs::path& dir) {
+  const fs::path tmp = dir / ".nan";
+  fs::create_directories(tmp);
+  FactorFiles f = fuzz::ValidFactorFiles();
+  f.terms[0].q.image.At(1, 2)[0] = std::numeric_limits<float>::quiet_NaN();
+  const FactorPaths paths = FactorFilePaths(tmp, "h", 2);
+  WriteFactorFiles(paths, f);
+  std::ifstream in(paths.terms[0].q, std::ios::binary);
+  const std::string q(std::istreambuf_iterator<char>(in), {});
+  fs::remove_all(tmp);
+  WriteBytes(dir / "crafted-nan-texel-q", std::string(1, '\2') + q);
+}
+
 int main(int argc, char** argv) {
   if (argc != 2) {
     std::cerr << "usage: fuzz_make_seeds <repo>/fuzz\n";
@@ -553,6 +567,7 @@ int main(int argc, char** argv) {
   SidecarSeeds(corpus / "factor_sidecar");
   FitReportSeeds(corpus / "fit_report");
   FactorFilesSeeds(corpus / "factor_files");
+  FactorFilesCrafted(regressions / "factor_files");
   FitReportCrafted(regressions / "fit_report");
   ExrCrafted(regressions / "exr");
   SidecarCrafted(regressions / "factor_sidecar");
