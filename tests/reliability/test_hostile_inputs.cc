@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <H5Cpp.h>
+#include <fmt/core.h>
 #include <sys/types.h>
 #include <zip.h>
 
@@ -24,6 +25,7 @@
 #include "core/synth.h"
 #include "core/error.h"
 #include "io/exr_texture.h"
+#include "io/factor_io.h"
 #include "io/fit_report.h"
 #include "io/hdf5_table.h"
 #include "io/hdf5_util.h"
@@ -202,10 +204,12 @@ TEST_F(BrokenInputs, ReportRefusesSidecarsOfANewerVersionOrWithBrokenTextures) {
     std::ofstream(p, std::ios::binary) << good_p;
   };
   nlohmann::json j = nlohmann::json::parse(good_sidecar);
-  j["format_version"] = 2;
+  j["format_version"] = kFactorFormatVersion + 1;
   std::ofstream(sidecar, std::ios::binary) << j.dump();
   ExpectReportRefuses({sidecar.string()}, sidecar.string(),
-                      "format_version 2 is newer than this brdfit reads (1)");
+                      fmt::format("unsupported format_version {} (this reader: {} to {})",
+                                  kFactorFormatVersion + 1, kFactorFormatOldestVersion,
+                                  kFactorFormatVersion));
   restore();
   fs::remove(p);
   ExpectReportRefuses({sidecar.string()}, p.string(), "");
@@ -220,7 +224,7 @@ TEST_F(BrokenInputs, ReportRefusesSidecarsOfANewerVersionOrWithBrokenTextures) {
   const CliRun r8 = RunCli(dir_, {"factor", table_.string(), "--res", "8", "-q", "-o", P("fac8")});
   ASSERT_EQ(r8.code, 0) << r8.log;
   fs::copy_file(dir_ / "fac8/t.p.exr", p, fs::copy_options::overwrite_existing);
-  ExpectReportRefuses({sidecar.string()}, p.string(), "image is 8 x 8, the sidecar says 16 x 16");
+  ExpectReportRefuses({sidecar.string()}, p.string(), "image is 8 x 8, the sidecar t.factor.json says 16 x 16");
 }
 
 TEST_F(BrokenInputs, ReportKeepGoingWritesThePageNotesTheProblemAndExitsTwo) {
@@ -244,7 +248,8 @@ TEST_F(BrokenInputs, ReportKeepGoingWritesThePageNotesTheProblemAndExitsTwo) {
 std::string ParamsJson(const std::string& log_rmse) {
   return R"({"format":"brdfit-fit-params","format_version":1,"fits":[{"source":"t.h5",)"
          R"("material":"t","model":"lambert+ggx","status":"converged","message":"",)"
-         R"("params":{},"metrics":{"log_rmse":)" +
+         R"("params":{"lambert.kd_r":0.3,"lambert.kd_g":0.3,"lambert.kd_b":0.3,"ggx.ks_r":0.5,)"
+         R"("ggx.ks_g":0.5,"ggx.ks_b":0.5,"ggx.alpha":0.2},"metrics":{"log_rmse":)" +
          log_rmse + R"(,"cbrt_rmse":0.02,"rel_l2":0.03},"options":{"budget":"full","loss":"log"}}]})";
 }
 
