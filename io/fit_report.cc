@@ -190,7 +190,8 @@ class Reader : public hdf5::Reader {
   double InRange(const H5::H5Object& obj, const std::string& where, const char* name, double lo,
                  double hi) const {
     const double v = Double(obj, where, name);
-    if (v < lo || v > hi) Fail(fmt::format("{}@{} is {}, outside [{}, {}]", where, name, v, lo, hi));
+    if (v < lo || v > hi)
+      Fail(fmt::format("{}@{} is {}, outside [{}, {}]", where, name, v, lo, hi));
     return v;
   }
   // A 1-D array of at most max finite floats.
@@ -319,7 +320,8 @@ class Reader : public hdf5::Reader {
     const H5::Group wg = Group(mg, mw, "worst");
     m.worst.cell = static_cast<std::uint32_t>(Count(wg, ww, "cell"));
     // Angles of a cell of the (theta_h, theta_d, phi_d) grid, phi_d either way round.
-    m.worst.angles = {InRange(wg, ww, "theta_h", 0, kPi / 2), InRange(wg, ww, "theta_d", 0, kPi / 2),
+    m.worst.angles = {InRange(wg, ww, "theta_h", 0, kPi / 2),
+                      InRange(wg, ww, "theta_d", 0, kPi / 2),
                       InRange(wg, ww, "phi_d", -2 * kPi, 2 * kPi)};
     m.worst.theta_i_deg = InRange(wg, ww, "theta_i_deg", 0, 180);
     m.worst.theta_o_deg = InRange(wg, ww, "theta_o_deg", 0, 180);

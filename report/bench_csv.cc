@@ -10,8 +10,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "io/atomic_file.h"
 #include "core/error.h"
+#include "io/atomic_file.h"
 #include "io/input_file.h"
 
 namespace brdfit::report {
@@ -121,10 +121,12 @@ double ParseDouble(const std::string& s, const std::filesystem::path& path, int 
   double v = 0;
   const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (ec != std::errc() || end != s.data() + s.size()) {
-    throw InputError(path, fmt::format("line {}: column {}: '{}' is not a number", line, column, PrintableExcerpt(s, 64)));
+    throw InputError(path, fmt::format("line {}: column {}: '{}' is not a number", line, column,
+                                       PrintableExcerpt(s, 64)));
   }
   if (!std::isfinite(v)) {
-    throw InputError(path, fmt::format("line {}: column {}: '{}' is not finite", line, column, PrintableExcerpt(s, 64)));
+    throw InputError(path, fmt::format("line {}: column {}: '{}' is not finite", line, column,
+                                       PrintableExcerpt(s, 64)));
   }
   return v;
 }
@@ -141,8 +143,8 @@ long ParseInt(const std::string& s, const std::filesystem::path& path, int line,
   long v = 0;
   const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (ec != std::errc() || end != s.data() + s.size() || v < 0) {
-    throw InputError(path,
-                     fmt::format("line {}: column {}: '{}' is not a count", line, column, PrintableExcerpt(s, 64)));
+    throw InputError(path, fmt::format("line {}: column {}: '{}' is not a count", line, column,
+                                       PrintableExcerpt(s, 64)));
   }
   return v;
 }
@@ -167,8 +169,8 @@ std::vector<BenchPoint> ReadBenchCsv(const std::filesystem::path& path) {
   // A column twice would leave the rows one field longer than the columns found by name.
   for (std::size_t i = 0; i < header.size(); ++i) {
     if (!col.emplace(header[i], i).second) {
-      throw InputError(path, fmt::format("line 1: column '{}' appears twice",
-                                         PrintableExcerpt(header[i], 64)));
+      throw InputError(
+          path, fmt::format("line 1: column '{}' appears twice", PrintableExcerpt(header[i], 64)));
     }
   }
   for (const char* required : {"material", "model", "budget", "time_ms", "log_rmse"}) {
@@ -247,8 +249,8 @@ std::vector<BenchPoint> ReadBenchCsv(const std::filesystem::path& path) {
     b.fit_cells = static_cast<std::size_t>(count("fit_cells"));
     const long iterations = count("iterations");
     if (iterations > std::numeric_limits<int>::max()) {
-      throw InputError(path, fmt::format("line {}: column iterations: {} is too large", line,
-                                         iterations));
+      throw InputError(
+          path, fmt::format("line {}: column iterations: {} is too large", line, iterations));
     }
     b.iterations = static_cast<int>(iterations);
     // Files written before the rendered-image metric have none of its columns.

@@ -18,9 +18,9 @@
 #include "io/model_params.h"
 #include "io/nbrdf.h"
 #include "io/table_io.h"
+#include "models/registry.h"
 #include "report/bench_csv.h"
 #include "report/result_json.h"
-#include "models/registry.h"
 
 namespace brdfit::report {
 
