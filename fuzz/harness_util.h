@@ -90,6 +90,9 @@ int FuzzFactorSidecar(const std::uint8_t* data, std::size_t size);
 int FuzzScene(const std::uint8_t* data, std::size_t size);
 int FuzzFitReport(const std::uint8_t* data, std::size_t size);
 int FuzzMesh(const std::uint8_t* data, std::size_t size);
+int FuzzFactorFiles(const std::uint8_t* data, std::size_t size);
+int FuzzBenchCsv(const std::uint8_t* data, std::size_t size);
+int FuzzRenderCache(const std::uint8_t* data, std::size_t size);
 
 }  // namespace brdfit::fuzz
 

@@ -27,6 +27,7 @@
 #include <OpenEXR/ImfRgbaFile.h>
 #include <OpenEXR/ImfTiledRgbaFile.h>
 
+#include "fuzz/factor_checks.h"
 #include "io/exr_texture.h"
 #include "io/factor_io.h"
 #include "io/fit_report.h"
@@ -506,6 +507,46 @@ void FitReportCrafted(const fs::path& dir) {
 
 }  // namespace
 
+// fuzz_factor_files input: byte 0 picks the file (0 sidecar, 1 p, 2 q, 3 p2, 4 q2) the rest
+// replaces beside the valid factorization of fuzz/factor_checks.h (fuzz/fuzz_factor_files.cc).
+void FactorFilesSeeds(const fs::path& dir) {
+  const fs::path tmp = dir / ".valid";
+  fs::create_directories(tmp);
+  const FactorPaths paths = FactorFilePaths(tmp, "h", 2);
+  WriteFactorFiles(paths, fuzz::ValidFactorFiles());
+  auto bytes = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string sidecar = bytes(paths.json), p = bytes(paths.terms[0].p),
+                    q = bytes(paths.terms[0].q), p2 = bytes(paths.terms[1].p),
+                    q2 = bytes(paths.terms[1].q);
+  fs::remove_all(tmp);
+  WriteBytes(dir / "valid-sidecar", std::string(1, '\0') + sidecar);
+  WriteBytes(dir / "valid-p", std::string(1, '\1') + p);
+  WriteBytes(dir / "valid-q", std::string(1, '\2') + q);
+  WriteBytes(dir / "valid-p2", std::string(1, '\3') + p2);
+  WriteBytes(dir / "valid-q2", std::string(1, '\4') + q2);
+  WriteBytes(dir / "q-as-p", std::string(1, '\1') + q);    // another size and factor name
+  WriteBytes(dir / "p-as-p2", std::string(1, '\3') + p);   // p's factor name as p2
+  WriteBytes(dir / "p-truncated", std::string(1, '\1') + p.substr(0, p.size() / 2));
+  WriteBytes(dir / "p-empty", std::string(1, '\1'));
+}
+
+// A NaN texel in h.q.exr: was read, and broke fuzz_factor_files' round trip (NaN != NaN).
+void FactorFilesCrafted(const fs::path& dir) {
+  const fs::path tmp = dir / ".nan";
+  fs::create_directories(tmp);
+  FactorFiles f = fuzz::ValidFactorFiles();
+  f.terms[0].q.image.At(1, 2)[0] = std::numeric_limits<float>::quiet_NaN();
+  const FactorPaths paths = FactorFilePaths(tmp, "h", 2);
+  WriteFactorFiles(paths, f);
+  std::ifstream in(paths.terms[0].q, std::ios::binary);
+  const std::string q(std::istreambuf_iterator<char>(in), {});
+  fs::remove_all(tmp);
+  WriteBytes(dir / "crafted-nan-texel-q", std::string(1, '\2') + q);
+}
+
 int main(int argc, char** argv) {
   if (argc != 2) {
     std::cerr << "usage: fuzz_make_seeds <repo>/fuzz\n";
@@ -513,7 +554,8 @@ int main(int argc, char** argv) {
   }
   const fs::path corpus = fs::path(argv[1]) / "corpus";
   const fs::path regressions = fs::path(argv[1]) / "regressions";
-  for (const char* d : {"merl", "hdf5_table", "nbrdf", "exr", "factor_sidecar", "fit_report"}) {
+  for (const char* d : {"merl", "hdf5_table", "nbrdf", "exr", "factor_sidecar", "fit_report",
+                        "factor_files"}) {
     fs::create_directories(corpus / d);
     fs::create_directories(regressions / d);
   }
@@ -524,6 +566,8 @@ int main(int argc, char** argv) {
   ExrSeeds(corpus / "exr");
   SidecarSeeds(corpus / "factor_sidecar");
   FitReportSeeds(corpus / "fit_report");
+  FactorFilesSeeds(corpus / "factor_files");
+  FactorFilesCrafted(regressions / "factor_files");
   FitReportCrafted(regressions / "fit_report");
   ExrCrafted(regressions / "exr");
   SidecarCrafted(regressions / "factor_sidecar");

@@ -247,6 +247,16 @@ FactorFiles ReadFactorFiles(const std::filesystem::path& json_path) {
       }
       const std::filesystem::path exr = json_path.parent_path() / t["file"].get<std::string>();
       tex.image = ReadRgbExr(exr, &tex.attributes);
+      // A NaN or Inf texel would be drawn as such; the solver never writes one.
+      for (std::size_t i = 0; i < tex.image.rgb.size(); ++i) {
+        if (!std::isfinite(tex.image.rgb[i])) {
+          const std::size_t pixel = i / 3;
+          throw InputError(exr, fmt::format("texel ({}, {}) channel {} is {}",
+                                            pixel % static_cast<std::size_t>(tex.image.width),
+                                            pixel / static_cast<std::size_t>(tex.image.width),
+                                            "RGB"[i % 3], tex.image.rgb[i]));
+        }
+      }
       auto attr = [&](const char* key) {
         auto it = tex.attributes.find(key);
         return it == tex.attributes.end() ? std::string("(missing)") : it->second;

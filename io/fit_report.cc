@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -15,6 +16,8 @@
 #include "core/metrics.h"
 #include "io/hdf5_util.h"
 #include "io/metrics_json.h"
+#include "io/model_params.h"
+#include "models/registry.h"
 
 namespace brdfit {
 
@@ -168,6 +171,29 @@ class Reader : public hdf5::Reader {
     if (v < 0) Fail(fmt::format("{}@{} is negative", where, name));
     return static_cast<std::size_t>(v);
   }
+  // An int attribute in [0, INT_MAX] (iterations, starts: a cast of -3 or 2^40 was kept).
+  int SmallCount(const H5::H5Object& obj, const std::string& where, const char* name) const {
+    const std::int64_t v = Int(obj, where, name);
+    if (v < 0 || v > std::numeric_limits<int>::max()) {
+      Fail(fmt::format("{}@{} is {}, outside [0, {}]", where, name, v,
+                       std::numeric_limits<int>::max()));
+    }
+    return static_cast<int>(v);
+  }
+  // A finite double attribute >= 0 (costs, errors, weights, times).
+  double NonNegative(const H5::H5Object& obj, const std::string& where, const char* name) const {
+    const double v = Double(obj, where, name);
+    if (v < 0) Fail(fmt::format("{}@{} is {}, below 0", where, name, v));
+    return v;
+  }
+  // A finite double attribute in [lo, hi].
+  double InRange(const H5::H5Object& obj, const std::string& where, const char* name, double lo,
+                 double hi) const {
+    const double v = Double(obj, where, name);
+    if (v < lo || v > hi)
+      Fail(fmt::format("{}@{} is {}, outside [{}, {}]", where, name, v, lo, hi));
+    return v;
+  }
   // A 1-D array of at most max finite floats.
   void ReadRendered(const H5::Group& rg, const std::string& rw, RenderedError* e) const {
     e->ok = Int(rg, rw, "ok") != 0;
@@ -213,6 +239,8 @@ class Reader : public hdf5::Reader {
     e.source = String(g, where, "source");
     e.material = String(g, where, "material");
     r.model = String(g, where, "model");
+    const ModelInfo* model = FindModel(r.model);
+    if (!model) Fail(fmt::format("{}@model: unknown model '{}'", where, r.model));
     e.options = String(g, where, "options");
     // FitParamsJson parses it (fuzz/regressions/fit_report/crafted-options-not-json.h5 made it
     // throw json::parse_error out of `brdfit fit --json`).
@@ -232,10 +260,10 @@ class Reader : public hdf5::Reader {
       e.chosen = chosen == 1;
     }
     if (g.attrExists("choice")) e.choice = String(g, where, "choice");
-    r.iterations = static_cast<int>(Int(g, where, "iterations"));
-    r.starts = static_cast<int>(Int(g, where, "starts"));
-    r.init_cost = Double(g, where, "init_cost");
-    r.final_cost = Double(g, where, "final_cost");
+    r.iterations = SmallCount(g, where, "iterations");
+    r.starts = SmallCount(g, where, "starts");
+    r.init_cost = NonNegative(g, where, "init_cost");
+    r.final_cost = NonNegative(g, where, "final_cost");
     r.fit_samples = Count(g, where, "fit_samples");
     r.fit_cells = Count(g, where, "fit_cells");
 
@@ -249,6 +277,23 @@ class Reader : public hdf5::Reader {
     if (r.param_names.size() != r.params.size()) {
       Fail(fmt::format("{}/params: {} names for {} values", where, r.param_names.size(),
                        r.params.size()));
+    }
+    // The model's parameters, by name and in its bounds (1e300 crashed the renderer); a failed
+    // fit holds the initial guess or zeros (core/result.h), or none.
+    if (r.Failed() ? !r.params.empty() && r.params.size() != model->params.size()
+                   : r.params.size() != model->params.size()) {
+      Fail(fmt::format("{}/params: {} values, model {} has {} parameters", where, r.params.size(),
+                       r.model, model->params.size()));
+    }
+    if (!r.params.empty()) {
+      if (const std::string bad = CheckModelParamNames(*model, r.param_names); !bad.empty()) {
+        Fail(fmt::format("{}/params@names: {}", where, bad));
+      }
+    }
+    if (!r.Failed()) {
+      if (const std::string bad = CheckModelParams(r.model, r.params); !bad.empty()) {
+        Fail(fmt::format("{}/params: {}", where, bad));
+      }
     }
     std::vector<hsize_t> dims;
     const H5::DataSet ab = Dataset(g, where, "at_bound", H5T_INTEGER, &dims);
@@ -264,20 +309,22 @@ class Reader : public hdf5::Reader {
     FitMetrics& m = r.metrics;
     m.ok = Int(mg, mw, "ok") != 0;
     m.problem = String(mg, mw, "problem");
-    m.log_rmse = Double(mg, mw, "log_rmse");
-    m.cbrt_rmse = Double(mg, mw, "cbrt_rmse");
-    m.rel_l2 = Double(mg, mw, "rel_l2");
+    m.log_rmse = NonNegative(mg, mw, "log_rmse");
+    m.cbrt_rmse = NonNegative(mg, mw, "cbrt_rmse");
+    m.rel_l2 = NonNegative(mg, mw, "rel_l2");
     m.cells = Count(mg, mw, "cells");
-    m.total_weight = Double(mg, mw, "total_weight");
+    m.total_weight = NonNegative(mg, mw, "total_weight");
     m.weighting = String(mg, mw, "weighting");
-    m.cutoff_deg = Double(mg, mw, "cutoff_deg");
+    m.cutoff_deg = InRange(mg, mw, "cutoff_deg", 0, 90);
     const std::string ww = mw + "/worst";
     const H5::Group wg = Group(mg, mw, "worst");
     m.worst.cell = static_cast<std::uint32_t>(Count(wg, ww, "cell"));
-    m.worst.angles = {Double(wg, ww, "theta_h"), Double(wg, ww, "theta_d"),
-                      Double(wg, ww, "phi_d")};
-    m.worst.theta_i_deg = Double(wg, ww, "theta_i_deg");
-    m.worst.theta_o_deg = Double(wg, ww, "theta_o_deg");
+    // Angles of a cell of the (theta_h, theta_d, phi_d) grid, phi_d either way round.
+    m.worst.angles = {InRange(wg, ww, "theta_h", 0, kPi / 2),
+                      InRange(wg, ww, "theta_d", 0, kPi / 2),
+                      InRange(wg, ww, "phi_d", -2 * kPi, 2 * kPi)};
+    m.worst.theta_i_deg = InRange(wg, ww, "theta_i_deg", 0, 180);
+    m.worst.theta_o_deg = InRange(wg, ww, "theta_o_deg", 0, 180);
     m.worst.log_error = Double(wg, ww, "log_error");
     const std::vector<double> meas = Doubles(wg, ww, "measured", 3);
     const std::vector<double> pred = Doubles(wg, ww, "predicted", 3);
@@ -302,15 +349,15 @@ class Reader : public hdf5::Reader {
 
     if (g.nameExists("timing")) {
       const std::string tw = where + "/timing";
-      const H5::Group tg = g.openGroup("timing");
-      r.times.load = Double(tg, tw, "load_ms");
-      r.times.prepare = Double(tg, tw, "prepare_ms");
-      r.times.init = Double(tg, tw, "init_ms");
-      r.times.solve = Double(tg, tw, "solve_ms");
-      r.times.metrics = Double(tg, tw, "metrics_ms");
-      r.times.init_cpu = Double(tg, tw, "init_cpu_ms");
-      r.times.solve_cpu = Double(tg, tw, "solve_cpu_ms");
-      r.times.metrics_cpu = Double(tg, tw, "metrics_cpu_ms");
+      const H5::Group tg = Group(g, where, "timing");
+      r.times.load = NonNegative(tg, tw, "load_ms");
+      r.times.prepare = NonNegative(tg, tw, "prepare_ms");
+      r.times.init = NonNegative(tg, tw, "init_ms");
+      r.times.solve = NonNegative(tg, tw, "solve_ms");
+      r.times.metrics = NonNegative(tg, tw, "metrics_ms");
+      r.times.init_cpu = NonNegative(tg, tw, "init_cpu_ms");
+      r.times.solve_cpu = NonNegative(tg, tw, "solve_cpu_ms");
+      r.times.metrics_cpu = NonNegative(tg, tw, "metrics_cpu_ms");
     }
     return e;
   }
@@ -332,7 +379,7 @@ class Reader : public hdf5::Reader {
     std::vector<FitReportEntry> out;
     for (hsize_t i = 0; i < n; ++i) {
       const std::string name = entries.getObjnameByIdx(i);
-      out.push_back(Entry(entries.openGroup(name), "/entries/" + name));
+      out.push_back(Entry(Group(entries, "/entries", name), "/entries/" + name));
     }
     return out;
   }

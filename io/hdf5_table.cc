@@ -5,6 +5,7 @@
 #include <hdf5.h>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -174,6 +175,10 @@ class Reader : public hdf5::Reader {
     p.generator = String(prov, pw, "generator");
     p.model = String(prov, pw, "model");
     p.parameters_json = String(prov, pw, "parameters");
+    // `brdfit info --json` embeds it as JSON; empty when the generator had none.
+    if (!p.parameters_json.empty() && !nlohmann::json::accept(p.parameters_json)) {
+      Fail("/provenance@parameters is not JSON");
+    }
     p.seed = Uint64(prov, pw, "seed");
     p.noise = Double(prov, pw, "noise");
     p.missing_fraction = Double(prov, pw, "missing_fraction");

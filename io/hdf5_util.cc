@@ -200,9 +200,24 @@ std::uint64_t Reader::Uint64(const H5::H5Object& obj, const std::string& where,
   return Scalar<std::uint64_t>(obj, where, name, H5::PredType::NATIVE_UINT64);
 }
 
+void Reader::RequireHardLink(const H5::Group& parent, const std::string& where,
+                             const std::string& name) const {
+  H5L_info_t info{};
+  if (H5Lget_info(parent.getId(), name.c_str(), &info, H5P_DEFAULT) < 0) {
+    Fail("cannot read the link " + Join(where, name));
+  }
+  if (info.type == H5L_TYPE_HARD) return;
+  const char* kind = info.type == H5L_TYPE_SOFT       ? "a soft link"
+                     : info.type == H5L_TYPE_EXTERNAL ? "an external link (into another file)"
+                                                      : "a user-defined link";
+  Fail(fmt::format("{} is {}; brdfit reads only objects stored in the file itself",
+                   Join(where, name), kind));
+}
+
 H5::Group Reader::Group(const H5::Group& parent, const std::string& where,
                         const std::string& name) const {
   if (!parent.nameExists(name)) Fail("missing group " + Join(where, name));
+  RequireHardLink(parent, where, name);
   return parent.openGroup(name);
 }
 
@@ -211,6 +226,7 @@ H5::DataSet Reader::Dataset(const H5::Group& parent, const std::string& where,
                             std::vector<hsize_t>* dims) const {
   const std::string what = "dataset " + Join(where, name);
   if (!parent.nameExists(name)) Fail("missing " + what);
+  RequireHardLink(parent, where, name);
   H5::DataSet ds = parent.openDataSet(name);
   if (ds.getTypeClass() != cls) {
     Fail(fmt::format("{} must hold {}", what, cls == H5T_FLOAT ? "floats" : "integers"));

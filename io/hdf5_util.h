@@ -72,6 +72,12 @@ class Reader {
   std::int32_t Int32(const H5::H5Object& obj, const std::string& where, const char* name) const;
   std::uint64_t Uint64(const H5::H5Object& obj, const std::string& where, const char* name) const;
 
+  // Fails unless parent/name is a hard link: an external link would be followed into another
+  // file (any path the file names), a soft one elsewhere in this file. Group() and Dataset()
+  // check it before opening.
+  void RequireHardLink(const H5::Group& parent, const std::string& where,
+                       const std::string& name) const;
+
   H5::Group Group(const H5::Group& parent, const std::string& where, const std::string& name) const;
 
   // A dataset of class cls with elements of at most 8 bytes; *dims receives its shape.

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
@@ -68,6 +69,14 @@ Image ReadPng(const std::filesystem::path& path) {
     const std::string msg = image.message;
     png_image_free(&image);
     throw InputError(path, "cannot read PNG: " + msg);
+  }
+  // A few bytes of header can declare 2^31 x 2^31 pixels: the largest render is 8192 x 8192.
+  constexpr std::uint64_t kMaxPixels = std::uint64_t{1} << 26;
+  if (image.width == 0 || image.height == 0 ||
+      std::uint64_t{image.width} * image.height > kMaxPixels) {
+    const std::string size = std::to_string(image.width) + " x " + std::to_string(image.height);
+    png_image_free(&image);
+    throw InputError(path, "declares " + size + " pixels (at most 2^26)");
   }
   image.format = PNG_FORMAT_RGBA;
   std::vector<png_byte> bytes(PNG_IMAGE_SIZE(image));

@@ -28,6 +28,37 @@ bool IsUnqualified(const ModelInfo& m, std::size_t i, std::string_view name) {
 
 }  // namespace
 
+std::string CheckModelParams(const std::string& model, const std::vector<double>& params) {
+  const ModelInfo* info = FindModel(model);
+  if (!info) return "unknown model '" + model + "'";
+  if (params.size() != info->params.size()) {
+    return fmt::format("{} parameters, model {} has {}", params.size(), model,
+                       info->params.size());
+  }
+  for (std::size_t k = 0; k < params.size(); ++k) {
+    const ParamSpec& s = info->params[k];
+    if (!std::isfinite(params[k]) || params[k] < s.lower || params[k] > s.upper) {
+      return fmt::format("parameter {} = {} outside the model's bounds [{}, {}]",
+                         info->param_names[k], params[k], s.lower, s.upper);
+    }
+  }
+  return "";
+}
+
+std::string CheckModelParamNames(const ModelInfo& model, const std::vector<std::string>& names) {
+  if (names.size() != model.param_names.size()) {
+    return fmt::format("{} names, model {} has {} parameters", names.size(), model.name,
+                       model.param_names.size());
+  }
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    if (names[k] != model.param_names[k]) {
+      return fmt::format("parameter {} is '{}', model {} calls it '{}'", k, names[k], model.name,
+                         model.param_names[k]);
+    }
+  }
+  return "";
+}
+
 std::string ValidParamNames(const ModelInfo& m) {
   std::string out;
   for (std::size_t i = 0; i < m.params.size(); ++i) {

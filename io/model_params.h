@@ -23,6 +23,16 @@ std::vector<double> ResolveModelParams(const ModelInfo& model,
 // {"lambert.kd_r": 0.5, ...} in parameter order (qualified names), as compact JSON.
 std::string ParamsToJson(const ModelInfo& model, const std::vector<double>& params);
 
+// Why `params` cannot be the parameters of `model` ("" if they can): the model is registered,
+// there is one value per parameter, each finite and inside its bounds. Readers of files that
+// hold parameters (fit reports, fit parameters JSON, render caches) refuse what this refuses:
+// a value of 1e300 crashed the renderer (issue 14 item 5).
+std::string CheckModelParams(const std::string& model, const std::vector<double>& params);
+
+// Why `names` are not `model`'s qualified parameter names in order ("" if they are). The
+// model must be registered.
+std::string CheckModelParamNames(const ModelInfo& model, const std::vector<std::string>& names);
+
 // "lambert.kd_r (kd_r), ..., ggx.alpha (alpha)": every accepted spelling.
 std::string ValidParamNames(const ModelInfo& model);
 

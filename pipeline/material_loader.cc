@@ -17,6 +17,7 @@
 #include "fit/fitter.h"
 #include "fit/options.h"
 #include "io/atomic_file.h"
+#include "io/fit_cache_entry.h"
 #include "io/fit_report.h"
 #include "io/nbrdf.h"
 #include "io/output_policy.h"
@@ -74,25 +75,6 @@ class TableCache {
   std::map<std::string, std::shared_ptr<const Table>> tables_;
 };
 
-// Why cached parameters of `model` are unusable ("" if they are usable): a cache entry is a
-// file like any other, and may hold anything (docs/reliability.md).
-std::string CheckCachedParams(const std::string& model, const std::vector<double>& params) {
-  const ModelInfo* info = FindModel(model);
-  if (!info) return "unknown model '" + model + "'";
-  if (params.size() != info->params.size()) {
-    return fmt::format("{} parameters, model {} has {}", params.size(), model,
-                       info->params.size());
-  }
-  for (std::size_t k = 0; k < params.size(); ++k) {
-    const ParamSpec& s = info->params[k];
-    if (!std::isfinite(params[k]) || params[k] < s.lower || params[k] > s.upper) {
-      return fmt::format("parameter {} = {} outside the model's bounds [{}, {}]",
-                         info->param_names[k], params[k], s.lower, s.upper);
-    }
-  }
-  return "";
-}
-
 // Cache entry of a fit: {"model", "params", "param_names", "status", "source", "key"}.
 std::vector<double> FitCached(const MaterialSpec& m, const std::filesystem::path& cache_dir,
                               TableCache* tables, ExplainLog* log) {
@@ -105,22 +87,16 @@ std::vector<double> FitCached(const MaterialSpec& m, const std::filesystem::path
   h.Add("|fit|" + m.model + "|" + OptionsJson(sample_options, fit_options));
   const std::filesystem::path entry = cache_dir / ("fit-" + h.Hex() + ".json");
   if (std::filesystem::exists(entry)) {
-    std::ifstream in(entry);
     try {
-      const nlohmann::json j = nlohmann::json::parse(in);
-      if (j.at("model").get<std::string>() == m.model) {
-        auto params = j.at("params").get<std::vector<double>>();
-        if (const std::string bad = CheckCachedParams(m.model, params); !bad.empty()) {
-          throw InputError(entry, bad);  // recomputed below
-        }
-        if (log) {
-          log->Add("reuse", "fit " + m.model + " of " + m.fit_table.string() + " from cache " +
-                                entry.string());
-        }
-        return params;
+      const std::vector<double> params = ReadFitCacheEntry(entry, m.model);
+      if (log) {
+        log->Add("reuse", "fit " + m.model + " of " + m.fit_table.string() + " from cache " +
+                              entry.string());
       }
-    } catch (const std::exception& e) {
-      // A damaged entry is recomputed and overwritten below.
+      return params;
+    } catch (const InputError& e) {
+      // A damaged entry (or another model's under a colliding key) is recomputed and
+      // overwritten below.
       if (log) {
         log->Add("note", "cache entry " + entry.string() + " unreadable (" + e.what() +
                              "): recomputing");
@@ -134,15 +110,15 @@ std::vector<double> FitCached(const MaterialSpec& m, const std::filesystem::path
     throw InputError(m.fit_table,
                      "fit of '" + m.model + "' for material '" + m.name + "' failed: " + r.message);
   }
-  nlohmann::json j;
-  j["model"] = r.model;
-  j["params"] = r.params;
-  j["param_names"] = r.param_names;
-  j["status"] = ToString(r.status);
-  j["source"] = m.fit_table.string();
-  j["key"] = h.Hex();
+  FitCacheEntry cached;
+  cached.model = r.model;
+  cached.params = r.params;
+  cached.param_names = r.param_names;
+  cached.status = ToString(r.status);
+  cached.source = m.fit_table.string();
+  cached.key = h.Hex();
   MakeOutputFolder(cache_dir);
-  WriteTextAtomically(entry, j.dump(2) + "\n");
+  WriteTextAtomically(entry, FitCacheEntryJson(cached));
   if (log) {
     log->Add("compute", "fit " + m.model + " of " + m.fit_table.string() + " (" +
                             ToString(r.status) + ", " + Fmt(MsSince(t0)) + " ms) -> " +

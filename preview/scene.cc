@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "io/input_file.h"
 #include "io/nbrdf.h"
+#include "io/unique_keys_json.h"
 #include "models/registry.h"
 #include "preview/material.h"
 
@@ -306,7 +307,7 @@ Object ParseObject(Reader r, int index) {
 Scene ParseScene(const std::string& text, const std::filesystem::path& source) {
   Json j;
   try {
-    j = Json::parse(text);
+    j = ParseJsonUniqueKeys(text, source);  // a key twice is refused, naming it
   } catch (const Json::exception& e) {
     // Not only parse_error: a number too large for a double is out_of_range (406)
     // (fuzz/regressions/scene/number-overflow-41e308).

@@ -5,12 +5,14 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
 
-#include "io/atomic_file.h"
 #include "core/error.h"
+#include "io/atomic_file.h"
+#include "io/input_file.h"
 
 namespace brdfit::report {
 
@@ -119,10 +121,12 @@ double ParseDouble(const std::string& s, const std::filesystem::path& path, int 
   double v = 0;
   const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (ec != std::errc() || end != s.data() + s.size()) {
-    throw InputError(path, fmt::format("line {}: column {}: '{}' is not a number", line, column, s));
+    throw InputError(path, fmt::format("line {}: column {}: '{}' is not a number", line, column,
+                                       PrintableExcerpt(s, 64)));
   }
   if (!std::isfinite(v)) {
-    throw InputError(path, fmt::format("line {}: column {}: '{}' is not finite", line, column, s));
+    throw InputError(path, fmt::format("line {}: column {}: '{}' is not finite", line, column,
+                                       PrintableExcerpt(s, 64)));
   }
   return v;
 }
@@ -139,8 +143,8 @@ long ParseInt(const std::string& s, const std::filesystem::path& path, int line,
   long v = 0;
   const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (ec != std::errc() || end != s.data() + s.size() || v < 0) {
-    throw InputError(path,
-                     fmt::format("line {}: column {}: '{}' is not a count", line, column, s));
+    throw InputError(path, fmt::format("line {}: column {}: '{}' is not a count", line, column,
+                                       PrintableExcerpt(s, 64)));
   }
   return v;
 }
@@ -156,11 +160,18 @@ std::vector<BenchPoint> ReadBenchCsv(const std::filesystem::path& path) {
   std::size_t pos = 0;
   int line = 1;
   std::map<std::string, std::size_t> col;
+  std::vector<std::string> header;
   try {
-    const auto header = SplitCsvRecord(text, &pos);
-    for (std::size_t i = 0; i < header.size(); ++i) col[header[i]] = i;
+    header = SplitCsvRecord(text, &pos);
   } catch (const std::invalid_argument& e) {
     throw InputError(path, fmt::format("line 1: {}", e.what()));
+  }
+  // A column twice would leave the rows one field longer than the columns found by name.
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    if (!col.emplace(header[i], i).second) {
+      throw InputError(
+          path, fmt::format("line 1: column '{}' appears twice", PrintableExcerpt(header[i], 64)));
+    }
   }
   for (const char* required : {"material", "model", "budget", "time_ms", "log_rmse"}) {
     if (!col.count(required)) {
@@ -177,9 +188,9 @@ std::vector<BenchPoint> ReadBenchCsv(const std::filesystem::path& path) {
       throw InputError(path, fmt::format("line {}: {}", line, e.what()));
     }
     if (f.size() == 1 && f[0].empty()) continue;  // blank line
-    if (f.size() != col.size()) {
+    if (f.size() != header.size()) {
       throw InputError(path, fmt::format("line {}: {} fields, the header has {}", line, f.size(),
-                                         col.size()));
+                                         header.size()));
     }
     auto get = [&](const char* name) -> std::string {
       const auto it = col.find(name);
@@ -221,11 +232,27 @@ std::vector<BenchPoint> ReadBenchCsv(const std::filesystem::path& path) {
         if (col.count(c)) RequireNonNegative(num(c), path, line, c);
       }
     }
+    // What a file does not record reads as 0, as in a fit report: no NaN leaves the reader
+    // (fuzz_bench_csv: an empty error of a failed point was written back as "nan" and refused).
+    for (double* v : {&b.prepare_ms, &b.init_ms, &b.solve_ms, &b.metrics.log_rmse,
+                      &b.metrics.cbrt_rmse, &b.metrics.rel_l2}) {
+      if (std::isnan(*v)) *v = 0;
+    }
     b.metrics.cells = static_cast<std::size_t>(count("metric_cells"));
     b.metrics.weighting = get("weighting");
     b.metrics.cutoff_deg = num("cutoff_deg");
+    if (std::isnan(b.metrics.cutoff_deg)) b.metrics.cutoff_deg = 0;
+    if (b.metrics.cutoff_deg < 0 || b.metrics.cutoff_deg > 90) {
+      throw InputError(path, fmt::format("line {}: column cutoff_deg: {} is outside [0, 90]", line,
+                                         b.metrics.cutoff_deg));
+    }
     b.fit_cells = static_cast<std::size_t>(count("fit_cells"));
-    b.iterations = static_cast<int>(count("iterations"));
+    const long iterations = count("iterations");
+    if (iterations > std::numeric_limits<int>::max()) {
+      throw InputError(
+          path, fmt::format("line {}: column iterations: {} is too large", line, iterations));
+    }
+    b.iterations = static_cast<int>(iterations);
     // Files written before the rendered-image metric have none of its columns.
     RenderedError& re = b.metrics.rendered;
     re.psnr_db = num("psnr_db");

@@ -14,8 +14,11 @@
 #include "core/error.h"
 #include "io/factor_io.h"
 #include "io/fit_report.h"
+#include "io/image_io.h"
+#include "io/model_params.h"
 #include "io/nbrdf.h"
 #include "io/table_io.h"
+#include "models/registry.h"
 #include "report/bench_csv.h"
 #include "report/result_json.h"
 
@@ -313,6 +316,15 @@ bool AddFitParamsJson(const fs::path& p, Builder* b) {
       e.param_names.push_back(name);
       e.params.push_back(value.get<double>());
     }
+    // A usable fit's parameters are its registered model's, in order and in bounds (as a fit
+    // report's, io/fit_report.h).
+    if (e.status != "failed") {
+      const ModelInfo* model = FindModel(e.name);
+      if (!model) ff.Fail("model", "is '" + e.name + "', not a registered model");
+      std::string bad = CheckModelParamNames(*model, e.param_names);
+      if (bad.empty()) bad = CheckModelParams(e.name, e.params);
+      if (!bad.empty()) ff.Fail("params", "are not the model's: " + bad);
+    }
     if (e.status != "failed" && !f.contains("metrics")) ff.Fail("metrics", "is missing");
     e.metrics =
         MetricsFromJson(ff.Object(fj, "metrics"), e.status != "failed", ff.Child("metrics"));
@@ -366,6 +378,9 @@ void AddInputOf(const fs::path& p, bool explicit_input, Builder* b) {
       break;
     }
     case Kind::kRender:
+      // Decoded whole, so that a truncated or damaged PNG is refused here (the page embeds the
+      // file's bytes as they are).
+      ReadPng(p);
       r.renders.push_back({p.stem().string(), p.string()});
       break;
     case Kind::kParamsJson:

@@ -65,7 +65,7 @@ common_flags() {
   # seen; OpenEXR too, for header attributes (docs/reliability.md): the malloc limit is raised
   # for them; the RSS limit still bounds real use.
   local malloc_limit=1024
-  case $h in hdf5_table | nbrdf | fit_report | exr) malloc_limit=8192 ;; esac
+  case $h in hdf5_table | nbrdf | fit_report | exr | factor_files) malloc_limit=8192 ;; esac
   local f="-rss_limit_mb=2048 -malloc_limit_mb=$malloc_limit -print_final_stats=1"
   f+=" -artifact_prefix=$OUT/artifacts/$h/ $(flags_for "$h")"
   [[ -f fuzz/dict/$h.dict ]] && f+=" -dict=fuzz/dict/$h.dict"

@@ -36,6 +36,9 @@ constexpr Harnesses kHarnesses[] = {
     {"scene", FuzzScene},
     {"fit_report", FuzzFitReport},
     {"mesh", FuzzMesh},
+    {"factor_files", FuzzFactorFiles},
+    {"bench_csv", FuzzBenchCsv},
+    {"render_cache", FuzzRenderCache},
 };
 
 struct Input {

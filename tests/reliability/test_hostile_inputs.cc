@@ -1,7 +1,6 @@
 // Hostile inputs and options through the executable (issue 14 items 10-12, 15, 16): each bad
 // input or option exits non-zero naming the file and the problem, and writes nothing under an
 // output's name. Each test states the item it reproduces.
-#include <fmt/core.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -15,17 +14,18 @@
 #include <vector>
 
 #include <H5Cpp.h>
+#include <fmt/core.h>
 #include <sys/types.h>
 #include <zip.h>
 
 #include <nlohmann/json.hpp>
 
-#include "io/factor_io.h"
 #include "cli_process.h"
 #include "tmpfs_mount.h"
 #include "core/synth.h"
 #include "core/error.h"
 #include "io/exr_texture.h"
+#include "io/factor_io.h"
 #include "io/fit_report.h"
 #include "io/hdf5_table.h"
 #include "io/hdf5_util.h"
@@ -207,8 +207,9 @@ TEST_F(BrokenInputs, ReportRefusesSidecarsOfANewerVersionOrWithBrokenTextures) {
   j["format_version"] = kFactorFormatVersion + 1;
   std::ofstream(sidecar, std::ios::binary) << j.dump();
   ExpectReportRefuses({sidecar.string()}, sidecar.string(),
-                      fmt::format("unsupported format_version {} (this reader: 1 to {})",
-                                  kFactorFormatVersion + 1, kFactorFormatVersion));
+                      fmt::format("unsupported format_version {} (this reader: {} to {})",
+                                  kFactorFormatVersion + 1, kFactorFormatOldestVersion,
+                                  kFactorFormatVersion));
   restore();
   fs::remove(p);
   ExpectReportRefuses({sidecar.string()}, p.string(), "");
@@ -247,7 +248,8 @@ TEST_F(BrokenInputs, ReportKeepGoingWritesThePageNotesTheProblemAndExitsTwo) {
 std::string ParamsJson(const std::string& log_rmse) {
   return R"({"format":"brdfit-fit-params","format_version":1,"fits":[{"source":"t.h5",)"
          R"("material":"t","model":"lambert+ggx","status":"converged","message":"",)"
-         R"("params":{},"metrics":{"log_rmse":)" +
+         R"("params":{"lambert.kd_r":0.3,"lambert.kd_g":0.3,"lambert.kd_b":0.3,"ggx.ks_r":0.5,)"
+         R"("ggx.ks_g":0.5,"ggx.ks_b":0.5,"ggx.alpha":0.2},"metrics":{"log_rmse":)" +
          log_rmse + R"(,"cbrt_rmse":0.02,"rel_l2":0.03},"options":{"budget":"full","loss":"log"}}]})";
 }
 

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <iterator>
 #include <string>
 
@@ -123,6 +124,24 @@ TEST(HostileFactorSidecar, TexturesOutsideRegularFilesAreRejected) {
   const std::string msg = MessageOf(
       [] { ReadFactorFiles(Regression("factor_sidecar", "crafted-absolute-file.json")); });
   EXPECT_NE(msg.find("/dev/zero: is not a regular file"), std::string::npos) << msg;
+}
+
+TEST(HostileFactorSidecar, NonFiniteTexelsAreRejected) {
+  // Were read, drawn as NaN, and broke the write -> read round trip of fuzz_factor_files.
+  FactorFiles f;
+  f.sidecar = {{"parameterization", "pq"}};
+  f.terms.resize(1);
+  f.terms[0].p.image = RgbImage::Filled(2, 2, 0.5f);
+  f.terms[0].q.image = RgbImage::Filled(3, 2, 0.5f);
+  f.terms[0].q.image.At(2, 1)[1] = std::numeric_limits<float>::quiet_NaN();
+  const fs::path dir = fuzz::ScratchDir() / "nan-texel";
+  fs::create_directories(dir);
+  const FactorPaths paths = FactorFilePaths(dir, "n");
+  WriteFactorFiles(paths, f);
+  const std::string msg = MessageOf([&] { ReadFactorFiles(paths.json); });
+  EXPECT_NE(msg.find(paths.terms[0].q.string() + ": texel (2, 1) channel G is nan"),
+            std::string::npos)
+      << msg;
 }
 
 TEST(HostileFitReport, OptionsThatAreNotJsonAreAnInputError) {

@@ -248,8 +248,8 @@ TEST_F(Cli, ReportAndCompareShowRankKFactorizationsWithTheirCost) {
   f.brdf = testing::HandBuiltFactoredBrdf(FactorParam::kMcCool, 2, {0.02, 0.03, 0.04}, 16);
   const nlohmann::json metrics = {
       {"fit_metrics",
-       {{"ok", true}, {"log_rmse", 0.05}, {"cbrt_rmse", 0.06}, {"rel_l2", 0.4}, {"cells", 10},
-        {"weighting", "bin-measure"}, {"cutoff_deg", 80}}}};
+       {{"ok", true}, {"log_rmse", 0.05}, {"cbrt_rmse", 0.02}, {"rel_l2", 0.1}, {"cells", 10},
+        {"cutoff_deg", 80}}}};
   fs::create_directories(dir_ / "f");
   SaveFactorization(f, dir_ / "f", "gold",
                     {{"source", {{"file", P("gold.h5")}}}, {"metrics", metrics}});
