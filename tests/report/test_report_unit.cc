@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "report/html_report.h"
 #include "io/factor_io.h"
+#include "io/image_io.h"
 #include "io/model_params.h"
 #include "report/report_inputs.h"
 #include "report/report_slices.h"
@@ -370,12 +371,15 @@ TEST(Inputs, FoldersKeepKnownKindsAndExplicitUnknownFilesAreErrors) {
   b.status = "converged";
   WriteBenchCsv(dir / "bench.csv", {b});
   WriteFile(dir / "notes.txt", "hello");
-  WriteFile(dir / "fake.png", "not a png");
+  WritePng(dir / "render.png", Image(2, 2));
   const ReportSources s = ReadReportInputs({dir});
   EXPECT_EQ(s.report.bench.size(), 1u);
-  EXPECT_EQ(s.report.renders.size(), 1u);  // classified by name; the writer checks the bytes
+  EXPECT_EQ(s.report.renders.size(), 1u);  // a PNG by its name, decoded in full
   EXPECT_THROW(ReadReportInputs({dir / "notes.txt"}), InputError);
   EXPECT_THROW(ReadReportInputs({dir / "missing.csv"}), InputError);
+  // A file named .png that is not one is refused (issue 14 item 14), in a folder too.
+  WriteFile(dir / "fake.png", "not a png");
+  EXPECT_THROW(ReadReportInputs({dir}), InputError);
 }
 
 // ---- HTML ----------------------------------------------------------------------------------
