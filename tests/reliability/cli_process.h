@@ -49,4 +49,15 @@ inline int Wait(pid_t pid) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
+struct CliRun {
+  int code;
+  std::string log;  // stdout and stderr together
+};
+
+// Runs `brdfit args...` to completion with its output in `log`.
+inline CliRun Run(const std::vector<std::string>& args, const std::filesystem::path& log) {
+  const int code = Wait(Spawn(args, log));
+  return {code, ReadAll(log)};
+}
+
 }  // namespace brdfit::testing_cli

@@ -35,15 +35,11 @@ using testing_cli::ReadAll;
 using testing_cli::Spawn;
 using testing_cli::Wait;
 
-struct CliRun {
-  int code;
-  std::string log;
-};
+using testing_cli::CliRun;
 
-// Runs brdfit to completion in `dir`'s log file.
+// Runs brdfit to completion with its output in `log`.
 CliRun RunBrdfit(const std::vector<std::string>& args, const fs::path& log) {
-  const int code = Wait(Spawn(args, log));
-  return {code, ReadAll(log)};
+  return testing_cli::Run(args, log);
 }
 
 // n synthetic lambert+ggx tables (varied roughness) on a g^2 x 2g grid.

@@ -34,15 +34,10 @@ using testing_cli::ReadAll;
 using testing_cli::Spawn;
 using testing_cli::Wait;
 
-struct CliRun {
-  int code;
-  std::string log;
-};
+using testing_cli::CliRun;
 
 CliRun RunCli(const ScratchDir& dir, const std::vector<std::string>& args) {
-  const fs::path log = dir / "run.log";
-  const int code = Wait(Spawn(args, log));
-  return {code, ReadAll(log)};
+  return testing_cli::Run(args, dir / "run.log");
 }
 
 Table SmallTable() {
