@@ -221,7 +221,9 @@ TEST_F(Hdf5TableErrors, GzipCompressedTableLoadsExactly) {
     ASSERT_NO_THROW(back = ReadHdf5Table(path_)) << ErrorOf(path_);
     EXPECT_EQ(back.valid, t.valid);
     for (std::size_t i = 0; i < t.rgb.size(); ++i) {
-      if (t.valid[i / 3]) ASSERT_EQ(back.rgb[i], t.rgb[i]) << i;
+      if (t.valid[i / 3]) {
+        ASSERT_EQ(back.rgb[i], t.rgb[i]) << i;
+      }
     }
   }
 }
