@@ -66,6 +66,22 @@ struct FactorCliOptions {
   bool quiet = false;
 };
 
+// The rendered score of one candidate or rank, for the sidecar (null where the metric failed)
+// and for the printed line.
+nlohmann::json ScoreJson(const RenderedError& e) {
+  const auto number = [&](double v) { return e.ok ? nlohmann::json(v) : nlohmann::json(); };
+  return {{"score_db", number(RenderedScoreDb(e))},
+          {"psnr_db", number(e.psnr_db)},
+          {"median_rel_error", number(e.median_rel_error)}};
+}
+
+std::string ScoreText(const RenderedError& e) {
+  return fmt::format("S {:>7} dB  psnr {:>6} dB  med_lum {:>6}",
+                     e.ok ? fmt::format("{:.2f}", RenderedScoreDb(e)) : "-",
+                     e.ok ? fmt::format("{:.1f}", e.psnr_db) : "-",
+                     e.ok ? fmt::format("{:.1f}%", 100 * e.median_rel_error) : "-");
+}
+
 nlohmann::json MetricsJson(const FitMetrics& m, const RenderedError& rendered, double ln_rmse) {
   nlohmann::json j = {{"ln_ratio_rmse", ln_rmse},
                       {"ln_ratio_rmse_definition",
@@ -244,19 +260,13 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
               {"reason", pick ? pick->reason : "no candidate has a rendered error: the first"}};
           for (std::size_t k = 0; k < tried.size(); ++k) {
             const RenderedError& e = scores[k].rendered;
-            choice["candidates"].push_back(nlohmann::json{
-                {"form", kAutoFactorCandidates[k].name},
-                {"score_db", e.ok ? nlohmann::json(RenderedScoreDb(e)) : nlohmann::json()},
-                {"psnr_db", e.ok ? nlohmann::json(e.psnr_db) : nlohmann::json()},
-                {"median_rel_error", e.ok ? nlohmann::json(e.median_rel_error) : nlohmann::json()},
-                {"texture_bytes", scores[k].cost.texture_bytes},
-                {"seconds", tried[k].stats.seconds}});
+            nlohmann::json c = ScoreJson(e);
+            c["form"] = kAutoFactorCandidates[k].name;
+            c["texture_bytes"] = scores[k].cost.texture_bytes;
+            c["seconds"] = tried[k].stats.seconds;
+            choice["candidates"].push_back(std::move(c));
             if (!o.quiet) {
-              fmt::print("  candidate {:<16} S {:>7} dB  psnr {:>6} dB  med_lum {:>6}{}\n",
-                         kAutoFactorCandidates[k].name,
-                         e.ok ? fmt::format("{:.2f}", RenderedScoreDb(e)) : "-",
-                         e.ok ? fmt::format("{:.1f}", e.psnr_db) : "-",
-                         e.ok ? fmt::format("{:.1f}%", 100 * e.median_rel_error) : "-",
+              fmt::print("  candidate {:<16} {}{}\n", kAutoFactorCandidates[k].name, ScoreText(e),
                          k == i ? "  <- chosen" : "");
             }
           }
@@ -279,22 +289,15 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
         for (const FactoredBrdf* b : all) {
           const RenderedError e = b == &r.brdf ? re : ScoreFactorizationRendered(table, *b);
           const FactorCost c = CostOf(*b);
-          ranks.push_back(nlohmann::json{
-              {"rank", b->rank()},
-              {"score_db", e.ok ? nlohmann::json(RenderedScoreDb(e)) : nlohmann::json()},
-              {"psnr_db", e.ok ? nlohmann::json(e.psnr_db) : nlohmann::json()},
-              {"median_rel_error", e.ok ? nlohmann::json(e.median_rel_error) : nlohmann::json()},
-              {"texture_bytes", c.texture_bytes},
-              {"fetches_per_light", c.fetches_per_light},
-              {"fetches_per_fragment", c.fetches_per_fragment}});
+          nlohmann::json line = ScoreJson(e);
+          line["rank"] = b->rank();
+          line["texture_bytes"] = c.texture_bytes;
+          line["fetches_per_light"] = c.fetches_per_light;
+          line["fetches_per_fragment"] = c.fetches_per_fragment;
+          ranks.push_back(std::move(line));
           if (!o.quiet) {
-            fmt::print(
-                "  rank {}: S {:>7} dB  psnr {:>6} dB  med_lum {:>6}  {:>7.1f} KiB  {} fetches "
-                "per light\n",
-                b->rank(), e.ok ? fmt::format("{:.2f}", RenderedScoreDb(e)) : "-",
-                e.ok ? fmt::format("{:.1f}", e.psnr_db) : "-",
-                e.ok ? fmt::format("{:.1f}%", 100 * e.median_rel_error) : "-",
-                c.texture_bytes / 1024.0, c.fetches_per_light);
+            fmt::print("  rank {}: {}  {:>7.1f} KiB  {} fetches per light\n", b->rank(),
+                       ScoreText(e), c.texture_bytes / 1024.0, c.fetches_per_light);
           }
         }
       }
