@@ -13,6 +13,7 @@ struct SampleCounts {
   std::size_t beyond_cutoff = 0;  // valid but beyond the cut-off (or grazing): dropped
   std::size_t eligible = 0;       // valid, finite, inside the cut-off
   std::size_t selected = 0;       // cells kept by the budget (== observations)
+  bool operator==(const SampleCounts&) const = default;
 };
 
 }  // namespace brdfit

@@ -265,7 +265,7 @@ FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& lo
   c0 = ThreadCpuMs();
   std::vector<double> pred(3 * metric.NumSamples());
   for (std::size_t s = 0; s < metric.NumSamples(); ++s) {
-    ops.eval(r.params.data(), metric.geometry[s], &pred[3 * s]);
+    ops.eval(r.params.data(), SampleGeometry(metric, s), &pred[3 * s]);
   }
   r.metrics = ComputeMetricsPerSample(metric, pred);
   r.times.metrics = MsSince(t0);

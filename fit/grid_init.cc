@@ -75,7 +75,7 @@ GridInitializer::GridInitializer(const Samples& s, const LossData& l, const Para
   y_data_.resize(3 * n);
   for (std::size_t o = 0; o < n; ++o) {
     for (int ch = 0; ch < 3; ++ch) {
-      const double m = s.value[3 * o + ch];
+      const double m = s.Value(o)[ch];
       const double d = LossResidualWithSlope(l, o, ch, m).Slope();
       w_data_[3 * o + ch] = l.sqrt_w[o] * l.sqrt_w[o] * d * d;
       y_data_[3 * o + ch] = m;

@@ -25,7 +25,7 @@ LossData PrepareLoss(const Samples& samples, const FitOptions& options) {
     d.mult[o] = c;
     d.sqrt_w[o] = std::sqrt(samples.weight[o] * norm);
     for (int ch = 0; ch < 3; ++ch) {
-      const double m = samples.value[3 * o + ch];
+      const double m = samples.Value(o)[ch];
       d.target[3 * o + ch] = LossTransform(options.loss, m * c);
       if (!d.inv.empty()) d.inv[3 * o + ch] = 1.0 / (std::abs(m) + kRelEpsilon);
     }

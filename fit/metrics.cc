@@ -4,11 +4,25 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "fit/fast_cbrt.h"
 #include "fit/loss.h"
 
 namespace brdfit {
 
 namespace {
+
+// GuardedCbrt (fit/loss.h) with FastCbrt above the guard.
+double MetricCbrt(double x) {
+  return x >= kCbrtGuard && x < 1e300 ? FastCbrt(x) : GuardedCbrt(x);
+}
+
+// GuardedLog1p(a) - GuardedLog1p(b). Both above the guard (every non-negative a, b):
+// ln(1 + a) - ln(1 + b) = ln(1 + (a - b) / (1 + b)), one logarithm instead of two and no
+// cancellation when a and b are close.
+double LogDifference(double a, double b) {
+  if (a >= kLogGuard && b >= kLogGuard) return std::log1p((a - b) / (1.0 + b));
+  return GuardedLog1p(a) - GuardedLog1p(b);
+}
 
 // predicted(o) returns the 3 predictions of observation o; observations are visited in order.
 template <class Predicted>
@@ -34,14 +48,15 @@ FitMetrics Score(const Samples& samples, Predicted predicted) {
     }
     const double w = samples.weight[o];
     const double c = samples.cos_i[o];
+    const double* measured = samples.Value(o);
     double cell_worst = 0;
     for (int ch = 0; ch < 3; ++ch) {
       const double f = f_rgb[ch];
-      const double v = samples.value[3 * o + ch];
+      const double v = measured[ch];
       // The measured side is recomputed at each call rather than stored (48 bytes per
       // observation; docs/reliability.md, "Memory").
-      const double dl = GuardedLog1p(f * c) - GuardedLog1p(v * c);
-      const double dc = GuardedCbrt(f * c) - GuardedCbrt(v * c);
+      const double dl = LogDifference(f * c, v * c);
+      const double dc = MetricCbrt(f * c) - MetricCbrt(v * c);
       log_sum += w * dl * dl;
       cbrt_sum += w * dc * dc;
       num += w * c * c * (f - v) * (f - v);
@@ -53,14 +68,18 @@ FitMetrics Score(const Samples& samples, Predicted predicted) {
       m.worst.cell = samples.cell[o];
       m.worst.log_error = cell_worst;
       for (int ch = 0; ch < 3; ++ch) {
-        m.worst.measured[ch] = samples.value[3 * o + ch];
+        m.worst.measured[ch] = measured[ch];
         m.worst.predicted[ch] = f_rgb[ch];
       }
-      m.worst.theta_i_deg = std::acos(std::clamp(samples.cos_i[o], -1.0, 1.0)) * 180.0 / kPi;
-      m.worst.theta_o_deg = std::acos(std::clamp(samples.cos_o[o], -1.0, 1.0)) * 180.0 / kPi;
     }
   }
+  // The worst cell's directions, from its centre (the observation's own configuration: for a
+  // phi_d mirror, theta_i and theta_o of its sample swapped).
   m.worst.angles = samples.grid.CellCentre(static_cast<std::size_t>(m.worst.cell));
+  Vec3 wi, wo;
+  FromHalfDiff(m.worst.angles, 0.0, &wi, &wo);
+  m.worst.theta_i_deg = std::acos(std::clamp(wi.z, -1.0, 1.0)) * 180.0 / kPi;
+  m.worst.theta_o_deg = std::acos(std::clamp(wo.z, -1.0, 1.0)) * 180.0 / kPi;
   const double wsum = 3.0 * samples.total_weight;
   m.log_rmse = std::sqrt(log_sum / wsum);
   m.cbrt_rmse = std::sqrt(cbrt_sum / wsum);

@@ -41,10 +41,45 @@ struct UnitAxes {
   int ih, id, ip;
 };
 
+// The stride a stride:K budget applies: K, or the number of phi_d bins in [0, pi/2) when K is
+// larger (small grids), so that every row keeps a bin (and, unpaired, its mirror) rather than
+// none.
+int EffectiveStride(const Budget& b, const Grid& g) {
+  return std::min(b.stride, std::max((g.n_phi_d + 1) / 2, 1));
+}
+
 UnitAxes AxesOf(const Grid& g, const Unit& u) {
   UnitAxes a;
   g.Unindex(u.primary, &a.ih, &a.id, &a.ip);
   return a;
+}
+
+AxisTrig MakeAxisTrig(const Grid& g) {
+  AxisTrig t;
+  auto fill = [](int n, auto angle_at, std::vector<double>* s, std::vector<double>* c) {
+    s->resize(n);
+    c->resize(n);
+    for (int i = 0; i < n; ++i) {
+      const double a = angle_at(i + 0.5);
+      (*s)[i] = std::sin(a);
+      (*c)[i] = std::cos(a);
+    }
+  };
+  fill(g.n_theta_h, [&](double x) { return g.ThetaHAt(x); }, &t.sin_h, &t.cos_h);
+  fill(g.n_theta_d, [&](double x) { return g.ThetaDAt(x); }, &t.sin_d, &t.cos_d);
+  fill(g.n_phi_d, [&](double x) { return g.PhiDAt(x); }, &t.sin_p, &t.cos_p);
+  return t;
+}
+
+// The geometry at the centre of cell (ih, id, ip): the same operations as
+// FromHalfDiff(CellCentre(ih, id, ip), phi_h = 0), from the axis tables (bit-identical; tested).
+Geometry GeometryAt(const AxisTrig& t, const UnitAxes& a) {
+  const Vec3 d{t.sin_d[a.id] * t.cos_p[a.ip], t.sin_d[a.id] * t.sin_p[a.ip], t.cos_d[a.id]};
+  const Vec3 wi{t.cos_h[a.ih] * d.x + t.sin_h[a.ih] * d.z, d.y,
+                -t.sin_h[a.ih] * d.x + t.cos_h[a.ih] * d.z};
+  const Vec3 h{t.sin_h[a.ih], 0.0, t.cos_h[a.ih]};
+  const Vec3 wo = 2.0 * Dot(wi, h) * h - wi;
+  return MakeGeometry(wi, wo);
 }
 
 }  // namespace
@@ -83,7 +118,92 @@ std::string Budget::ToString() const {
   return "full";
 }
 
-Samples PrepareSamples(const Table& table, const SampleOptions& options) {
+namespace {
+
+// Visits, in (theta_h, theta_d, phi_d) order, every unit with at least one usable member:
+// fn(unit, w_cell) with w_cell the members' common cell weight. Counts what it drops and keeps
+// into *counts when counts is not null.
+template <class Fn>
+void ForEachUnit(const Table& table, const SampleOptions& options, const AxisTrig& t,
+                 SampleCounts* counts, Fn fn) {
+  const Grid& g = table.grid;
+  SampleCounts none;
+  SampleCounts& c = counts ? *counts : none;
+  const double cos_cut = std::max(std::cos(options.cutoff_deg * kPi / 180.0), kMinCos);
+  const bool pair = options.pair_mirrors;
+  const int half = pair ? (g.n_phi_d + 1) / 2 : g.n_phi_d;
+  for (int ih = 0; ih < g.n_theta_h; ++ih) {
+    for (int id = 0; id < g.n_theta_d; ++id) {
+      const double w_cell =
+          options.weighting == Weighting::kBinMeasure ? CellMeasure(g, ih, id, 0) : 1.0;
+      for (int ip = 0; ip < half; ++ip) {
+        // wi = R_y(theta_h) d with d = (sd cp, sd sp, cd); wo mirrors wi about h (geometry.h).
+        const double ci = t.cos_h[ih] * t.cos_d[id] - t.sin_h[ih] * t.sin_d[id] * t.cos_p[ip];
+        const double co = 2.0 * t.cos_d[id] * t.cos_h[ih] - ci;
+        const bool inside = ci >= cos_cut && co >= cos_cut;
+        Unit u{static_cast<std::uint32_t>(g.Index(ih, id, ip)), {0, 0}, 0, 0.0};
+        const int mirror = g.n_phi_d - 1 - ip;
+        const int n_members = (pair && mirror != ip) ? 2 : 1;
+        for (int m = 0; m < n_members; ++m) {
+          const std::size_t idx = g.Index(ih, id, m == 0 ? ip : mirror);
+          if (!table.valid[idx]) continue;
+          ++c.valid;
+          const double* v = table.Value(idx);
+          if (!(std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]))) {
+            ++c.nonfinite;
+            continue;
+          }
+          if (!inside) {
+            ++c.beyond_cutoff;
+            continue;
+          }
+          ++c.eligible;
+          u.cells[u.members++] = static_cast<std::uint32_t>(idx);
+          u.weight += w_cell;
+        }
+        if (u.members > 0) fn(u, UnitAxes{ih, id, ip}, w_cell);
+      }
+    }
+  }
+}
+
+void ReserveFor(std::size_t n_samples, std::size_t n_obs, bool stored, bool copy_values,
+                Samples* out) {
+  out->cell.reserve(n_obs);
+  if (copy_values) out->value.reserve(3 * n_obs);
+  out->weight.reserve(n_obs);
+  out->cos_i.reserve(n_obs);
+  if (stored) out->geometry.reserve(n_samples);
+  out->obs_begin.reserve(n_samples + 1);
+  out->obs_begin.push_back(0);
+}
+
+// Appends the unit as one sample, its members' weights w_cell * factor.
+void AppendUnit(const Table& table, const Unit& u, const UnitAxes& a, double w_cell,
+                double factor, bool stored, bool copy_values, Samples* out) {
+  const Geometry geo = GeometryAt(out->trig, a);
+  if (stored) out->geometry.push_back(geo);
+  for (int m = 0; m < u.members; ++m) {
+    const std::uint32_t idx = u.cells[m];
+    const bool is_mirror = idx != u.primary;
+    out->cell.push_back(idx);
+    const double* v = table.Value(idx);
+    if (copy_values) out->value.insert(out->value.end(), v, v + 3);
+    if (v[0] < 0 || v[1] < 0 || v[2] < 0) ++out->counts.negative;
+    const double w = w_cell * factor;
+    out->weight.push_back(w);
+    out->total_weight += w;
+    out->cos_i.push_back(is_mirror ? geo.cos_o : geo.cos_i);
+  }
+  out->obs_begin.push_back(static_cast<std::uint32_t>(out->cell.size()));
+}
+
+}  // namespace
+
+namespace {
+
+Samples PrepareSamplesImpl(const Table& table, const SampleOptions& options,
+                           GeometryStorage storage, bool copy_values) {
   if (!(options.cutoff_deg > 0.0 && options.cutoff_deg <= 90.0)) {
     throw InputError("angle cut-off must be in (0, 90] degrees, got " +
                      std::to_string(options.cutoff_deg));
@@ -96,78 +216,45 @@ Samples PrepareSamples(const Table& table, const SampleOptions& options) {
   out.grid = g;
   out.options = options;
   out.counts.cells = g.NumCells();
+  out.trig = MakeAxisTrig(g);
+  const bool stored = storage == GeometryStorage::kStored;
+  const Budget& b = options.budget;
 
-  // Per-axis trigonometry at cell centres (docs/conventions.md: centre = index + 0.5).
-  std::vector<double> sh(g.n_theta_h), ch(g.n_theta_h), sd(g.n_theta_d), cd(g.n_theta_d);
-  std::vector<double> sp(g.n_phi_d), cp(g.n_phi_d);
-  for (int i = 0; i < g.n_theta_h; ++i) {
-    const double t = g.ThetaHAt(i + 0.5);
-    sh[i] = std::sin(t);
-    ch[i] = std::cos(t);
+  if (b.kind == Budget::Kind::kFull) {
+    // Every unit: counted first so that the arrays are exactly sized (a full MERL table has
+    // 1.1 M observations: growth by doubling would hold up to twice that), then filled, with
+    // no per-unit list in between (17 MB for MERL).
+    std::size_t n_samples = 0, n_obs = 0;
+    ForEachUnit(table, options, out.trig, &out.counts, [&](const Unit& u, const UnitAxes&, double) {
+      ++n_samples;
+      n_obs += u.members;
+    });
+    ReserveFor(n_samples, n_obs, stored, copy_values, &out);
+    ForEachUnit(table, options, out.trig, nullptr,
+                [&](const Unit& u, const UnitAxes& a, double w_cell) {
+                  AppendUnit(table, u, a, w_cell, 1.0, stored, copy_values, &out);
+                });
+    out.counts.selected = out.cell.size();
+    return out;
   }
-  for (int i = 0; i < g.n_theta_d; ++i) {
-    const double t = g.ThetaDAt(i + 0.5);
-    sd[i] = std::sin(t);
-    cd[i] = std::cos(t);
-  }
-  for (int i = 0; i < g.n_phi_d; ++i) {
-    const double t = g.PhiDAt(i + 0.5);
-    sp[i] = std::sin(t);
-    cp[i] = std::cos(t);
-  }
-  const double cos_cut = std::max(std::cos(options.cutoff_deg * kPi / 180.0), kMinCos);
-  const bool pair = options.pair_mirrors;
-  const int half = pair ? (g.n_phi_d + 1) / 2 : g.n_phi_d;
 
   std::vector<Unit> units;
-  units.reserve(static_cast<std::size_t>(g.n_theta_h) * g.n_theta_d * half);
-  for (int ih = 0; ih < g.n_theta_h; ++ih) {
-    for (int id = 0; id < g.n_theta_d; ++id) {
-      const double w_cell =
-          options.weighting == Weighting::kBinMeasure ? CellMeasure(g, ih, id, 0) : 1.0;
-      for (int ip = 0; ip < half; ++ip) {
-        // wi = R_y(theta_h) d with d = (sd cp, sd sp, cd); wo mirrors wi about h (geometry.h).
-        const double ci = ch[ih] * cd[id] - sh[ih] * sd[id] * cp[ip];
-        const double co = 2.0 * cd[id] * ch[ih] - ci;
-        const bool inside = ci >= cos_cut && co >= cos_cut;
-        Unit u{static_cast<std::uint32_t>(g.Index(ih, id, ip)), {0, 0}, 0, 0.0};
-        const int mirror = g.n_phi_d - 1 - ip;
-        const int n_members = (pair && mirror != ip) ? 2 : 1;
-        for (int m = 0; m < n_members; ++m) {
-          const std::size_t idx = g.Index(ih, id, m == 0 ? ip : mirror);
-          if (!table.valid[idx]) continue;
-          ++out.counts.valid;
-          const double* v = table.Value(idx);
-          if (!(std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]))) {
-            ++out.counts.nonfinite;
-            continue;
-          }
-          if (!inside) {
-            ++out.counts.beyond_cutoff;
-            continue;
-          }
-          ++out.counts.eligible;
-          u.cells[u.members++] = static_cast<std::uint32_t>(idx);
-          u.weight += w_cell;
-        }
-        if (u.members > 0) units.push_back(u);
-      }
-    }
-  }
+  std::vector<double> unit_w_cell;
+  ForEachUnit(table, options, out.trig, &out.counts, [&](const Unit& u, const UnitAxes&, double w) {
+    units.push_back(u);
+    unit_w_cell.push_back(w);
+  });
 
   // Budget.
   std::vector<std::size_t> kept;
   std::vector<double> factor;
-  const Budget& b = options.budget;
-  if (b.kind == Budget::Kind::kFull) {
-    kept.resize(units.size());
-    for (std::size_t i = 0; i < units.size(); ++i) kept[i] = i;
-    factor.assign(units.size(), 1.0);
-  } else if (b.kind == Budget::Kind::kStride) {
+  if (b.kind == Budget::Kind::kStride) {
     if (b.stride < 1) throw InputError("stride budget needs K >= 1");
     // Keep phi_d bins offset, offset + K, ... of the half range; rescale each (theta_h,
-    // theta_d) row so that it keeps its total weight.
-    const int offset = b.stride / 2;
+    // theta_d) row so that it keeps its total weight. K beyond the half row (small grids) is
+    // the half row: one bin per row, never none.
+    const int stride = EffectiveStride(b, g);
+    const int offset = stride / 2;
     std::size_t row_begin = 0;
     while (row_begin < units.size()) {
       std::size_t row_end = row_begin;
@@ -176,11 +263,11 @@ Samples PrepareSamples(const Table& table, const SampleOptions& options) {
       const std::size_t row = units[row_begin].primary / g.n_phi_d;
       while (row_end < units.size() && units[row_end].primary / g.n_phi_d == row) {
         all += units[row_end].weight;
-        if (AxesOf(g, units[row_end]).ip % b.stride == offset) sel += units[row_end].weight;
+        if (AxesOf(g, units[row_end]).ip % stride == offset) sel += units[row_end].weight;
         ++row_end;
       }
       for (std::size_t i = row_begin; i < row_end; ++i) {
-        if (AxesOf(g, units[i]).ip % b.stride == offset) {
+        if (AxesOf(g, units[i]).ip % stride == offset) {
           kept.push_back(i);
           factor.push_back(all / sel);
         }
@@ -200,49 +287,140 @@ Samples PrepareSamples(const Table& table, const SampleOptions& options) {
     factor = std::move(s.factor);
   }
 
-  // Geometry and observations of the kept samples only, in exactly sized arrays (a full MERL
-  // table has 1.1 M observations: growth by doubling would hold up to twice that).
+  // Geometry and observations of the kept samples only, in exactly sized arrays.
   std::size_t n_obs = 0;
   for (std::size_t k : kept) n_obs += static_cast<std::size_t>(units[k].members);
+  ReserveFor(kept.size(), n_obs, stored, copy_values, &out);
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    const Unit& u = units[kept[k]];
+    AppendUnit(table, u, AxesOf(g, u), unit_w_cell[kept[k]], factor[k], stored, copy_values,
+               &out);
+  }
+  out.counts.selected = out.cell.size();
+  return out;
+}
+
+}  // namespace
+
+Samples PrepareSamples(const Table& table, const SampleOptions& options, GeometryStorage storage) {
+  return PrepareSamplesImpl(table, options, storage, true);
+}
+
+Samples PrepareMetricSamples(Table&& table, const SampleOptions& options) {
+  SampleOptions full = options;
+  full.budget = Budget{};
+  Samples out = PrepareSamplesImpl(table, full, GeometryStorage::kOnDemand, false);
+  out.table_rgb = std::move(table.rgb);
+  table = Table{};
+  return out;
+}
+
+namespace {
+
+// The first-half phi_d bin of sample s (its unit's primary cell, member or not).
+UnitAxes PrimaryAxes(const Samples& s, std::size_t sample) {
+  const Grid& g = s.grid;
+  UnitAxes a;
+  g.Unindex(s.cell[s.obs_begin[sample]], &a.ih, &a.id, &a.ip);
+  if (s.options.pair_mirrors) a.ip = std::min(a.ip, g.n_phi_d - 1 - a.ip);
+  return a;
+}
+
+// Copies the kept samples of `from` with their weights scaled by factor[k].
+Samples CopySelected(const Samples& from, const std::vector<std::size_t>& kept,
+                     const std::vector<double>& factor) {
+  Samples out;
+  out.grid = from.grid;
+  out.options = from.options;
+  out.counts = from.counts;
+  out.trig = from.trig;
+  out.counts.negative = 0;
+  std::size_t n_obs = 0;
+  for (std::size_t s : kept) n_obs += from.obs_begin[s + 1] - from.obs_begin[s];
+  out.geometry.reserve(kept.size());
+  out.obs_begin.reserve(kept.size() + 1);
   out.cell.reserve(n_obs);
   out.value.reserve(3 * n_obs);
   out.weight.reserve(n_obs);
   out.cos_i.reserve(n_obs);
-  out.cos_o.reserve(n_obs);
-  out.geometry.reserve(kept.size());
-  out.obs_begin.reserve(kept.size() + 1);
   out.obs_begin.push_back(0);
   for (std::size_t k = 0; k < kept.size(); ++k) {
-    const Unit& u = units[kept[k]];
-    // Same operations as FromHalfDiff(CellCentre(ih, id, ip), phi_h = 0), from the tables
-    // (bit-identical; tested).
-    const UnitAxes a = AxesOf(g, u);
-    const Vec3 d{sd[a.id] * cp[a.ip], sd[a.id] * sp[a.ip], cd[a.id]};
-    const Vec3 wi{ch[a.ih] * d.x + sh[a.ih] * d.z, d.y, -sh[a.ih] * d.x + ch[a.ih] * d.z};
-    const Vec3 h{sh[a.ih], 0.0, ch[a.ih]};
-    const Vec3 wo = 2.0 * Dot(wi, h) * h - wi;
-    const Geometry geo = MakeGeometry(wi, wo);
-    out.geometry.push_back(geo);
-    const double w_cell =
-        options.weighting == Weighting::kBinMeasure ? CellMeasure(g, a.ih, a.id, 0) : 1.0;
-    for (int m = 0; m < u.members; ++m) {
-      const std::uint32_t idx = u.cells[m];
-      int ih, id, ip;
-      g.Unindex(idx, &ih, &id, &ip);
-      const bool is_mirror = ip != a.ip;
-      out.cell.push_back(idx);
-      const double* v = table.Value(idx);
+    const std::size_t s = kept[k];
+    out.geometry.push_back(SampleGeometry(from, s));
+    for (std::uint32_t o = from.obs_begin[s]; o < from.obs_begin[s + 1]; ++o) {
+      out.cell.push_back(from.cell[o]);
+      const double* v = from.Value(o);
       out.value.insert(out.value.end(), v, v + 3);
       if (v[0] < 0 || v[1] < 0 || v[2] < 0) ++out.counts.negative;
-      const double w = w_cell * factor[k];
+      const double w = from.weight[o] * factor[k];
       out.weight.push_back(w);
       out.total_weight += w;
-      out.cos_i.push_back(is_mirror ? geo.cos_o : geo.cos_i);
-      out.cos_o.push_back(is_mirror ? geo.cos_i : geo.cos_o);
+      out.cos_i.push_back(from.cos_i[o]);
     }
     out.obs_begin.push_back(static_cast<std::uint32_t>(out.cell.size()));
   }
   out.counts.selected = out.cell.size();
+  return out;
+}
+
+}  // namespace
+
+Geometry SampleGeometry(const Samples& samples, std::size_t s) {
+  if (!samples.geometry.empty()) return samples.geometry[s];
+  return GeometryAt(samples.trig, PrimaryAxes(samples, s));
+}
+
+Samples SelectBudget(const Samples& full, const Budget& budget, std::uint64_t seed) {
+  const std::size_t ns = full.NumSamples();
+  // A sample's weight is its unit's: the sum of its members' cell weights, in member order.
+  std::vector<double> weight(ns, 0.0);
+  for (std::size_t s = 0; s < ns; ++s) {
+    for (std::uint32_t o = full.obs_begin[s]; o < full.obs_begin[s + 1]; ++o) {
+      weight[s] += full.weight[o];
+    }
+  }
+  std::vector<std::size_t> kept;
+  std::vector<double> factor;
+  if (budget.kind == Budget::Kind::kFull) {
+    kept.resize(ns);
+    for (std::size_t s = 0; s < ns; ++s) kept[s] = s;
+    factor.assign(ns, 1.0);
+  } else if (budget.kind == Budget::Kind::kStride) {
+    if (budget.stride < 1) throw InputError("stride budget needs K >= 1");
+    // As PrepareSamples: phi_d bins offset, offset + K, ... of each (theta_h, theta_d) row.
+    const int stride = EffectiveStride(budget, full.grid);
+    const int offset = stride / 2;
+    std::size_t row_begin = 0;
+    while (row_begin < ns) {
+      const UnitAxes first = PrimaryAxes(full, row_begin);
+      std::size_t row_end = row_begin;
+      double all = 0, sel = 0;
+      while (row_end < ns) {
+        const UnitAxes a = PrimaryAxes(full, row_end);
+        if (a.ih != first.ih || a.id != first.id) break;
+        all += weight[row_end];
+        if (a.ip % stride == offset) sel += weight[row_end];
+        ++row_end;
+      }
+      for (std::size_t s = row_begin; s < row_end; ++s) {
+        if (PrimaryAxes(full, s).ip % stride == offset) {
+          kept.push_back(s);
+          factor.push_back(all / sel);
+        }
+      }
+      row_begin = row_end;
+    }
+  } else {
+    if (budget.count < 1) throw InputError("random budget needs N >= 1");
+    std::vector<int> stratum(ns);
+    for (std::size_t s = 0; s < ns; ++s) stratum[s] = PrimaryAxes(full, s).ih;
+    Selection sel = SelectStratified(stratum, weight, budget.count, seed, kAllocationPower);
+    kept = std::move(sel.kept);
+    factor = std::move(sel.factor);
+  }
+  Samples out = CopySelected(full, kept, factor);
+  out.options.budget = budget;
+  out.options.seed = seed;
   return out;
 }
 
@@ -263,18 +441,19 @@ Samples Subsample(const Samples& samples, std::size_t n, std::uint64_t seed) {
   out.grid = samples.grid;
   out.options = samples.options;
   out.counts = samples.counts;
+  out.trig = samples.trig;
   out.obs_begin.push_back(0);
   for (std::size_t k = 0; k < sel.kept.size(); ++k) {
     const std::size_t s = sel.kept[k];
-    out.geometry.push_back(samples.geometry[s]);
+    out.geometry.push_back(SampleGeometry(samples, s));
     for (std::uint32_t o = samples.obs_begin[s]; o < samples.obs_begin[s + 1]; ++o) {
       out.cell.push_back(samples.cell[o]);
-      out.value.insert(out.value.end(), &samples.value[3 * o], &samples.value[3 * o] + 3);
+      const double* v = samples.Value(o);
+      out.value.insert(out.value.end(), v, v + 3);
       const double w = samples.weight[o] * sel.factor[k];
       out.weight.push_back(w);
       out.total_weight += w;
       out.cos_i.push_back(samples.cos_i[o]);
-      out.cos_o.push_back(samples.cos_o[o]);
     }
     out.obs_begin.push_back(static_cast<std::uint32_t>(out.cell.size()));
   }

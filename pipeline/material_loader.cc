@@ -80,7 +80,8 @@ std::vector<double> FitCached(const MaterialSpec& m, const std::filesystem::path
                               TableCache* tables, ExplainLog* log) {
   // The key: table content + model + every option that can change the result (canonical
   // JSON of the fitter's defaults, fit/options.h): new defaults never reuse an old entry.
-  const SampleOptions sample_options;
+  SampleOptions sample_options;
+  sample_options.budget = DefaultFitBudget();  // as brdfit fit
   const FitOptions fit_options;
   Fnv1a64 h;
   h.Add(InputContentKey(m.fit_table.string()));

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "fit/fitter.h"
+#include "fit/fast_cbrt.h"
 #include "fit/metrics.h"
 #include "fit/samples.h"
 #include "fit_test_util.h"
@@ -168,6 +169,24 @@ TEST(Metrics, FitCostEqualsMetricForMatchingLoss) {
     ASSERT_FALSE(r.Failed()) << r.message;
     const double metric = loss == LossKind::kLog ? r.metrics.log_rmse : r.metrics.cbrt_rmse;
     EXPECT_NEAR(r.final_cost / (metric * metric), 1.0, 1e-9) << ToString(loss);
+  }
+}
+
+// FastCbrt (the metrics' cube root) against libm's over the range the metrics meet (the guard
+// 1e-5 up to 1e300), log-uniformly, and at exact cubes.
+TEST(Metrics, FastCbrtMatchesLibm) {
+  std::uint64_t state = 12345;
+  double worst = 0;
+  for (int i = 0; i < 200000; ++i) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    const double u = static_cast<double>(state >> 11) * 0x1.0p-53;
+    const double x = std::pow(10.0, -5.0 + 305.0 * u);
+    const double ref = std::cbrt(x);
+    worst = std::max(worst, std::abs(FastCbrt(x) - ref) / ref);
+  }
+  EXPECT_LT(worst, 4 * std::numeric_limits<double>::epsilon()) << worst;
+  for (const double r : {0.05, 1.0, 2.0, 3.0, 10.0, 1e50}) {
+    EXPECT_NEAR(FastCbrt(r * r * r) / r, 1.0, 4 * std::numeric_limits<double>::epsilon()) << r;
   }
 }
 

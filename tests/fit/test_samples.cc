@@ -102,7 +102,11 @@ TEST(Samples, MirrorCellSwapsThetaIAndThetaOAndKeepsModelValue) {
     for (std::uint32_t ob = s.obs_begin[k]; ob < s.obs_begin[k + 1]; ++ob) {
       const Geometry own = MakeGeometry(g.CellCentre(s.cell[ob]), 0.0);
       EXPECT_NEAR(own.cos_i, s.cos_i[ob], 1e-12);
-      EXPECT_NEAR(own.cos_o, s.cos_o[ob], 1e-12);
+      // The observation's cos theta_o: its sample's, swapped for the mirror cell.
+      int ih, id, ip;
+      g.Unindex(s.cell[ob], &ih, &id, &ip);
+      const bool mirror = ip >= g.n_phi_d / 2;  // the second half of phi_d (n_phi_d even)
+      EXPECT_NEAR(own.cos_o, mirror ? s.geometry[k].cos_i : s.geometry[k].cos_o, 1e-12);
       double a[3], b[3];
       m->eval(p.data(), own, a);
       m->eval(p.data(), s.geometry[k], b);
@@ -141,7 +145,12 @@ TEST(Samples, CountsCutoffAndMaskedCells) {
     EXPECT_TRUE(t.valid[s.cell[ob]]);
     EXPECT_TRUE(std::isfinite(s.value[3 * ob + 1]));
     EXPECT_GE(s.cos_i[ob], cut - 1e-12);
-    EXPECT_GE(s.cos_o[ob], cut - 1e-12);
+  }
+  // theta_o inside the cut-off too: every sample's geometry (its cells have theta_i and theta_o
+  // of the sample, one way round or the other).
+  for (std::size_t k = 0; k < s.NumSamples(); ++k) {
+    EXPECT_GE(s.geometry[k].cos_o, cut - 1e-12);
+    EXPECT_GE(s.geometry[k].cos_i, cut - 1e-12);
   }
   EXPECT_GT(masked, 0u);
 }
@@ -226,6 +235,125 @@ TEST(Samples, SubsampleKeepsTotalWeight) {
   EXPECT_LE(sub.NumSamples(), 2048u + 2 * 90);
   const Samples same = Subsample(sub, 1u << 30, 1);
   EXPECT_EQ(same.cell, sub.cell);
+}
+
+// SelectBudget on the full samples must give exactly what PrepareSamples builds for the budget
+// itself (the fitter uses it so that the metric set's geometry is computed once): the oracle is
+// the direct preparation, compared array for array, bit for bit. The table has holes, cells
+// whose mirror alone is valid, a negative value and odd / even phi_d counts.
+TEST(Samples, SelectBudgetEqualsDirectPreparation) {
+  for (const Grid g : {Grid::Merl(), Grid{30, 20, 61, ThetaHMapping::kLinear}}) {
+    Table t = SynthModel("lambert+ggx", Params("lambert+ggx", {}), g);
+    for (std::size_t i = 0; i < g.NumCells(); i += 7) t.valid[i] = 0;
+    for (std::size_t i = 3; i < g.NumCells(); i += 101) t.Value(i)[1] = -0.01;
+    for (const bool pair : {true, false}) {
+      for (const char* text : {"stride:1", "stride:2", "stride:5", "stride:32", "stride:500",
+                               "random:3000",
+                               "random:100000000"}) {
+        SampleOptions full;
+        full.pair_mirrors = pair;
+        full.seed = 9;
+        SampleOptions sub = full;
+        sub.budget = Budget::Parse(text);
+        const Samples direct = PrepareSamples(t, sub);
+        // From a full set with its geometry stored and from one without (the metric set).
+        const GeometryStorage storage =
+            text[0] == 's' ? GeometryStorage::kStored : GeometryStorage::kOnDemand;
+        const Samples selected =
+            SelectBudget(PrepareSamples(t, full, storage), sub.budget, sub.seed);
+        SCOPED_TRACE(std::string(text) + (pair ? " paired" : " unpaired"));
+        ASSERT_GT(direct.NumSamples(), 0u);
+        EXPECT_EQ(selected.cell, direct.cell);
+        EXPECT_EQ(selected.obs_begin, direct.obs_begin);
+        EXPECT_EQ(selected.value, direct.value);
+        EXPECT_EQ(selected.weight, direct.weight);
+        EXPECT_EQ(selected.cos_i, direct.cos_i);
+        EXPECT_EQ(selected.total_weight, direct.total_weight);
+        EXPECT_TRUE(selected.counts == direct.counts);
+        EXPECT_TRUE(selected.options == direct.options);
+        ASSERT_EQ(selected.geometry.size(), direct.geometry.size());
+        for (std::size_t s = 0; s < direct.geometry.size(); ++s) {
+          ASSERT_EQ(std::memcmp(&selected.geometry[s], &direct.geometry[s], sizeof(Geometry)), 0)
+              << s;
+        }
+      }
+    }
+  }
+}
+
+// Geometry computed on demand (metric sets) is the stored one, bit for bit, sample for sample.
+TEST(Samples, OnDemandGeometryEqualsStored) {
+  for (const Grid g : {Grid::Merl(), Grid{30, 20, 61, ThetaHMapping::kLinear}}) {
+    Table t = SynthModel("lambert", Params("lambert", {}), g);
+    for (std::size_t i = 0; i < g.NumCells(); i += 5) t.valid[i] = 0;
+    for (const bool pair : {true, false}) {
+      SampleOptions o;
+      o.pair_mirrors = pair;
+      const Samples stored = PrepareSamples(t, o);
+      const Samples lazy = PrepareSamples(t, o, GeometryStorage::kOnDemand);
+      EXPECT_TRUE(lazy.geometry.empty());
+      ASSERT_EQ(lazy.NumSamples(), stored.NumSamples());
+      EXPECT_EQ(lazy.cell, stored.cell);
+      EXPECT_EQ(lazy.weight, stored.weight);
+      for (std::size_t s = 0; s < stored.NumSamples(); ++s) {
+        const Geometry a = SampleGeometry(lazy, s);
+        ASSERT_EQ(std::memcmp(&a, &stored.geometry[s], sizeof(Geometry)), 0) << s;
+      }
+    }
+  }
+}
+
+// The metric set built consuming the table (values moved, not copied) holds the same
+// observations as PrepareSamples of the full budget, and the table is left empty.
+TEST(Samples, MetricSamplesEqualFullPreparation) {
+  Table t = SynthModel("lambert+ggx", Params("lambert+ggx", {}), Grid::Merl(), 0.05, 0.1, 3);
+  SampleOptions o;
+  o.budget = Budget::Parse("stride:32");  // ignored: the metric set is every cell
+  SampleOptions full = o;
+  full.budget = Budget{};
+  const Samples direct = PrepareSamples(t, full);
+  Table consumed = t;
+  const Samples metric = PrepareMetricSamples(std::move(consumed), o);
+  EXPECT_TRUE(consumed.rgb.empty());
+  EXPECT_TRUE(metric.value.empty());
+  EXPECT_TRUE(metric.geometry.empty());
+  ASSERT_EQ(metric.NumObservations(), direct.NumObservations());
+  EXPECT_EQ(metric.cell, direct.cell);
+  EXPECT_EQ(metric.weight, direct.weight);
+  EXPECT_EQ(metric.cos_i, direct.cos_i);
+  EXPECT_TRUE(metric.counts == direct.counts);
+  for (std::size_t ob = 0; ob < direct.NumObservations(); ++ob) {
+    ASSERT_EQ(std::memcmp(metric.Value(ob), &direct.value[3 * ob], 3 * sizeof(double)), 0) << ob;
+  }
+}
+
+// A stride beyond the grid's phi_d half row keeps one bin pair per row (the default stride:32
+// on a small grid), not none.
+TEST(Samples, LargeStrideKeepsOneBinPerRow) {
+  const Grid g{20, 20, 16, ThetaHMapping::kLinear};
+  const Table t = SynthModel("lambert", Params("lambert", {}), g);
+  SampleOptions o;
+  o.budget = Budget::Parse("stride:32");
+  const Samples s = PrepareSamples(t, o);
+  ASSERT_GT(s.NumSamples(), 0u);
+  // Per (theta_h, theta_d) row: samples kept and their weight, against the full set's.
+  auto rows = [&](const Samples& x) {
+    std::map<int, std::pair<int, double>> out;
+    for (std::size_t k = 0; k < x.NumSamples(); ++k) {
+      int ih, id, ip;
+      g.Unindex(x.cell[x.obs_begin[k]], &ih, &id, &ip);
+      auto& r = out[ih * g.n_theta_d + id];
+      ++r.first;
+      for (std::uint32_t o = x.obs_begin[k]; o < x.obs_begin[k + 1]; ++o) r.second += x.weight[o];
+    }
+    return out;
+  };
+  const auto kept = rows(s), all = rows(PrepareSamples(t, SampleOptions{}));
+  EXPECT_GT(kept.size(), all.size() / 2);
+  for (const auto& [row, r] : kept) {
+    EXPECT_EQ(r.first, 1) << row;
+    EXPECT_NEAR(r.second / all.at(row).second, 1.0, 1e-12) << row;  // the row keeps its weight
+  }
 }
 
 TEST(Budget, ParsesAndRejects) {

@@ -1,0 +1,160 @@
+// Whole-command time and peak memory of `brdfit fit` (issue 18): what a user waits for, from
+// process start to exit, with the report's stage breakdown (load, prepare, initializer, solve,
+// metrics) beside it.
+//
+//   bench_fit_cli [--repeats 5] [--model lambert+ggx] [--args "--budget full"]
+//                 [--brdfit PATH] [--batch 0|1] [--batch-models a,b,..] [--jobs 2]
+//
+// Writes, in a scratch folder removed at exit, the six bench tables as users hold them: the
+// synthetic Lambert + GGX table of bench_fit (.h5) and five MERL NBRDF proxies tabulated on the
+// MERL grid as MERL .binary files (when ../shared/data/merl_nbrdf.zip is present). Each is
+// fitted --repeats times by `brdfit fit T --model M -o fits.h5 --force -q ARGS` (one thread);
+// the medians of wall time and child peak RSS (wait4 ru_maxrss, as /usr/bin/time -v) are
+// printed with the medians of the stage times the report records, the fit's log_rmse and
+// rendered PSNR / median luminance error. --batch 1 also times the 100-material batch of the
+// issue: `brdfit fit nbrdf:all --model <batch-models> -j <jobs>`, once.
+// --brdfit PATH times another build (before / after comparisons on the same tables).
+#include <fmt/core.h>
+
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench/bench_tables.h"
+#include "bench/child_process.h"
+#include "io/fit_report.h"
+#include "io/hdf5_table.h"
+#include "io/merl.h"
+#include "io/nbrdf.h"
+
+namespace {
+
+using namespace brdfit;
+namespace fs = std::filesystem;
+
+const fs::path kZip = fs::path(BRDFIT_SHARED_DATA) / "merl_nbrdf.zip";
+const std::vector<std::string> kNbrdf = {"gold-metallic-paint", "blue-acrylic", "pink-felt",
+                                         "chrome", "specular-black-phenolic"};
+
+std::vector<std::string> SplitArgs(const std::string& s) {
+  std::vector<std::string> out;
+  std::istringstream in(s);
+  std::string a;
+  while (in >> a) out.push_back(a);
+  return out;
+}
+
+// The bench tables as files: {label, path}.
+std::vector<std::pair<std::string, fs::path>> WriteTables(const fs::path& dir) {
+  std::vector<std::pair<std::string, fs::path>> out;
+  const fs::path synth = dir / "synthetic-lambert-ggx.h5";
+  WriteHdf5Table(bench::SyntheticLambertGgxTable(), synth);
+  out.emplace_back("synthetic (h5)", synth);
+  if (!fs::exists(kZip)) {
+    fmt::print(stderr, "{} not found: the MERL proxies are skipped\n", kZip.string());
+    return out;
+  }
+  for (const std::string& name : kNbrdf) {
+    const fs::path p = dir / (name + ".binary");
+    WriteMerl(TabulateNbrdf(ReadNbrdf(kZip, name), Grid::Merl(), 1).table, p);
+    out.emplace_back(name, p);
+  }
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int repeats = 5, jobs = 2;
+  bool batch = false;
+  std::string exe = BRDFIT_EXE, model = "lambert+ggx", extra;
+  std::string batch_models = "lambert+ggx,lambert+cook-torrance,lambert+ggx+ggx,ue4";
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string a = argv[i], v = argv[i + 1];
+    if (a == "--repeats") {
+      repeats = std::max(1, std::stoi(v));
+    } else if (a == "--model") {
+      model = v;
+    } else if (a == "--args") {
+      extra = v;
+    } else if (a == "--brdfit") {
+      exe = v;
+    } else if (a == "--batch") {
+      batch = v == "1";
+    } else if (a == "--batch-models") {
+      batch_models = v;
+    } else if (a == "--jobs") {
+      jobs = std::max(1, std::stoi(v));
+    } else {
+      fmt::print(stderr, "unknown option {}\n", a);
+      return 2;
+    }
+  }
+  const fs::path dir = fs::temp_directory_path() / fmt::format("brdfit-bench-fit-{}", ::getpid());
+  fs::create_directories(dir);
+  const auto tables = WriteTables(dir);
+  const double load_before = bench::LoadAverage();
+  fmt::print("brdfit fit T --model {} {} -q, one thread; medians of {} runs; {}\n", model, extra,
+             repeats, exe);
+  fmt::print(
+      "| table | wall s | CPU s | peak RSS MB | load ms | prepare ms | init ms | solve ms | "
+      "metrics ms (CPU) | log_rmse | PSNR dB | median lum. err. |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  int failures = 0;
+  for (const auto& [label, path] : tables) {
+    std::vector<double> wall, cpu, rss, load, prep, init, solve, metrics, metrics_cpu;
+    FitMetrics last;
+    for (int k = 0; k < repeats; ++k) {
+      const fs::path out = dir / "fits.h5";
+      std::vector<std::string> args = {"fit", path.string(), "--model", model, "-o",
+                                       out.string(), "--force", "-q"};
+      for (const auto& a : SplitArgs(extra)) args.push_back(a);
+      const bench::ChildRun run = bench::RunChild(exe, args, 600, dir / "fit.log");
+      if (run.exit_code != 0) {
+        fmt::print(stderr, "{}: brdfit fit exited {} (log {})\n", label, run.exit_code,
+                   (dir / "fit.log").string());
+        ++failures;
+        break;
+      }
+      wall.push_back(run.seconds);
+      cpu.push_back(run.cpu_seconds);
+      rss.push_back(run.peak_rss_mb);
+      const std::vector<FitReportEntry> entries = ReadFitReport(out);
+      const FitResult& r = entries.front().result;
+      load.push_back(r.times.load);
+      prep.push_back(r.times.prepare);
+      init.push_back(r.times.init);
+      solve.push_back(r.times.solve);
+      metrics.push_back(r.times.metrics);
+      metrics_cpu.push_back(r.times.metrics_cpu);
+      last = r.metrics;
+    }
+    if (wall.empty()) continue;
+    using bench::Median;
+    fmt::print("| {} | {:.3f} | {:.3f} | {:.0f} | {:.0f} | {:.0f} | {:.0f} | {:.0f} | {:.0f} ({:.0f}) "
+               "| {:.5f} | {:.2f} | {:.1f} % |\n",
+               label, Median(wall), Median(cpu), Median(rss), Median(load), Median(prep),
+               Median(init), Median(solve), Median(metrics), Median(metrics_cpu), last.log_rmse,
+               last.rendered.psnr_db,
+               100 * last.rendered.median_rel_error);
+    std::fflush(stdout);
+  }
+  if (batch && fs::exists(kZip)) {
+    setenv("BRDFIT_NBRDF_ZIP", kZip.c_str(), 1);
+    const bench::ChildRun run =
+        bench::RunChild(exe,
+                        {"fit", "nbrdf:all", "--model", batch_models, "-j", std::to_string(jobs),
+                         "-o", (dir / "batch.h5").string(), "-q"},
+                        3600, dir / "batch.log");
+    fmt::print("\nbatch: brdfit fit nbrdf:all --model {} -j {}: {:.1f} s, peak RSS {:.0f} MB, "
+               "exit {}\n",
+               batch_models, jobs, run.seconds, run.peak_rss_mb, run.exit_code);
+    if (run.exit_code != 0) ++failures;
+  }
+  fmt::print("load average: {:.2f} before, {:.2f} after (2 cores)\n", load_before,
+             bench::LoadAverage());
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  return failures == 0 ? 0 : 1;
+}
