@@ -71,3 +71,21 @@ def test_main_thread_runs_while_a_fit_runs(small_table):
     gaps = [b - a for a, b in zip(stamps, stamps[1:])]
     assert span[0] > 0.02, "the fit is too short to tell"
     assert max(gaps) < 0.5 * span[0], (max(gaps), span[0])
+
+
+def test_nbrdf_fit_equals_cli_json(cli, tmp_path):
+    """A measured-material proxy on the MERL grid (the archive is third-party data, not in the
+    repository: skipped without it)."""
+    import os
+    import pytest
+    zip_path = os.environ.get("BRDFIT_NBRDF_ZIP", "")
+    if not os.path.isfile(zip_path):
+        pytest.skip(f"no NBRDF archive at BRDFIT_NBRDF_ZIP='{zip_path}' (../shared/data)")
+    name = "nbrdf:gold-metallic-paint"
+    out_json = tmp_path / "fit.json"
+    cli("fit", name, "--model", "lambert+ggx", "--budget", "stride:32", "-o", tmp_path / "f.h5",
+        "--json", out_json, "--quiet")
+    table = brdfit.load(name)
+    assert table.shape == (90, 90, 180) and table.input == name
+    r = brdfit.fit(table, model="lambert+ggx", budget="stride:32")
+    assert r.json == out_json.read_text()
