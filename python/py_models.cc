@@ -13,7 +13,18 @@
 
 namespace brdfit::python {
 
+std::vector<double> ParamsOfChecked(const ModelInfo& model, py::handle params);
+
 std::vector<double> ParamsOf(const ModelInfo& model, py::handle params) {
+  try {
+    return ParamsOfChecked(model, params);
+  } catch (const py::cast_error&) {
+    throw py::type_error("params of " + model.name +
+                         ": expected a dict {name: number} or a sequence of numbers");
+  }
+}
+
+std::vector<double> ParamsOfChecked(const ModelInfo& model, py::handle params) {
   std::vector<double> p = model.DefaultParams();
   if (params.is_none()) {
   } else if (py::isinstance<py::dict>(params)) {

@@ -68,14 +68,19 @@ Provenance ProvenanceOf(const py::dict& d) {
   Provenance p;
   for (auto [key, value] : d) {
     const std::string k = py::str(key);
-    if (k == "source") p.source = value.cast<std::string>();
-    else if (k == "generator") p.generator = value.cast<std::string>();
-    else if (k == "model") p.model = value.cast<std::string>();
-    else if (k == "parameters_json") p.parameters_json = value.cast<std::string>();
-    else if (k == "seed") p.seed = value.cast<std::uint64_t>();
-    else if (k == "noise") p.noise = value.cast<double>();
-    else if (k == "missing_fraction") p.missing_fraction = value.cast<double>();
-    else throw InputError("provenance: unknown key '" + k + "'");
+    try {
+      if (k == "source") p.source = value.cast<std::string>();
+      else if (k == "generator") p.generator = value.cast<std::string>();
+      else if (k == "model") p.model = value.cast<std::string>();
+      else if (k == "parameters_json") p.parameters_json = value.cast<std::string>();
+      else if (k == "seed") p.seed = value.cast<std::uint64_t>();
+      else if (k == "noise") p.noise = value.cast<double>();
+      else if (k == "missing_fraction") p.missing_fraction = value.cast<double>();
+      else throw InputError("provenance: unknown key '" + k + "'");
+    } catch (const py::cast_error&) {
+      throw py::type_error("provenance['" + k + "']: wrong type (seed: int >= 0; noise, "
+                           "missing_fraction: float; the others: str)");
+    }
   }
   return p;
 }

@@ -51,3 +51,15 @@ def test_bad_arrays_and_params_raise(small_table):
         brdfit.factor(small_table, res=2)
     with pytest.raises(brdfit.OutputError):
         small_table.save("/nonexistent-dir/t.h5")
+
+
+def test_wrong_types_raise_type_error():
+    m = brdfit.model("lambert+ggx")
+    with pytest.raises(TypeError):
+        m.eval("x", [0, 0, 1], [0, 0, 1])
+    with pytest.raises(TypeError):
+        brdfit.Table.from_arrays(np.zeros((2, 2, 2, 3)), np.ones((2, 2, 2)), provenance={"seed": -1})
+    with pytest.raises(TypeError):
+        brdfit.fit(None)
+    with pytest.raises(brdfit.InputError):
+        brdfit.fit(brdfit.synth("lambert+ggx", grid=(4, 4, 8)), model="auto")  # five fits
