@@ -105,7 +105,9 @@ nlohmann::json MetricsJson(const FitMetrics& m, const RenderedError& rendered, d
 nlohmann::json SourceJson(const fs::path& file, const Table& t) {
   const Provenance& p = t.provenance;
   const std::string name = file.string();
-  return {{"file", IsNbrdfInput(name) ? name : fs::absolute(file).string()},
+  // As given, as fit reports record their sources: relative to the working directory of the
+  // run, never made absolute (an output names no path the user did not give; issue 16).
+  return {{"file", name},
           {"grid",
            {{"n_theta_h", t.grid.n_theta_h},
             {"n_theta_d", t.grid.n_theta_d},
