@@ -29,6 +29,7 @@
 #include "io/output_policy.h"
 #include "io/table_io.h"
 #include "pipeline/factor_export.h"
+#include "pipeline/factor_settings.h"
 #include "pipeline/inputs.h"
 #include "report/report_inputs.h"
 
@@ -45,7 +46,7 @@ constexpr bool kDefaultRefine = false;
 // Without an explicit form (--param, --diffuse, --rank, --refine, --refine-loss), every form
 // of factor/factor_choice.h is tried and the one the rendered metric prefers is kept.
 constexpr bool kDefaultAutoForm = true;
-constexpr int kMaxRefineIterations = 10000;
+using pipeline::kMaxRefineIterations;
 
 struct FactorCliOptions {
   std::vector<std::string> files;
@@ -104,7 +105,9 @@ nlohmann::json MetricsJson(const FitMetrics& m, const RenderedError& rendered, d
 nlohmann::json SourceJson(const fs::path& file, const Table& t) {
   const Provenance& p = t.provenance;
   const std::string name = file.string();
-  return {{"file", IsNbrdfInput(name) ? name : fs::absolute(file).string()},
+  // As given, as fit reports record their sources: relative to the working directory of the
+  // run, never made absolute (an output names no path the user did not give; issue 16).
+  return {{"file", name},
           {"grid",
            {{"n_theta_h", t.grid.n_theta_h},
             {"n_theta_d", t.grid.n_theta_d},
@@ -127,33 +130,9 @@ std::string OutputStem(const std::string& file, const std::string& suffix) {
 
 // Validates everything that can be checked before any work: options, inputs, output names.
 FactorOptions CheckOptions(const FactorCliOptions& o) {
-  FactorOptions f;
-  f.param = FactorParamFromString(o.param);
-  f.resolution = o.resolution;
-  f.lambda = o.lambda;
-  f.weighting = FromString<FactorWeighting>(o.weighting);
-  if (!(o.max_theta_deg > 0 && o.max_theta_deg <= 90)) {
-    throw InputError(fmt::format("--max-theta {} outside (0, 90]", o.max_theta_deg));
-  }
-  f.max_theta = o.max_theta_deg * kPi / 180;
-  if (o.resolution < 4 || o.resolution > 1024) {
-    throw InputError(fmt::format("--res {} outside [4, 1024]", o.resolution));
-  }
-  if (!(o.lambda > 0) || !std::isfinite(o.lambda)) {
-    throw InputError(fmt::format("--lambda {} must be a positive number", o.lambda));
-  }
-  if (o.rank < 1 || o.rank > kMaxFactorRank) {
-    throw InputError(fmt::format("--rank {} outside [1, {}]", o.rank, kMaxFactorRank));
-  }
-  if (o.refine_iterations < 1 || o.refine_iterations > kMaxRefineIterations) {
-    throw InputError(fmt::format("--refine-iterations {} outside [1, {}]", o.refine_iterations,
-                                 kMaxRefineIterations));
-  }
-  f.diffuse = o.diffuse;
-  f.rank = o.rank;
-  f.refine = o.refine;
-  f.refine_iterations = o.refine_iterations;
-  f.refine_loss = FromString<RefineLoss>(o.refine_loss);
+  const FactorOptions f = pipeline::MakeFactorOptions(
+      {o.param, o.resolution, o.lambda, o.weighting, o.max_theta_deg, o.diffuse, o.rank, o.refine,
+       o.refine_iterations, o.refine_loss});
   std::map<std::string, std::string> stems;
   const std::vector<std::string> inputs = pipeline::ExpandInputs(o.files);
   std::vector<PlannedOutput> outputs;

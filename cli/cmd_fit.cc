@@ -30,6 +30,7 @@
 #include "io/nbrdf.h"
 #include "io/output_policy.h"
 #include "pipeline/batch_fit.h"
+#include "pipeline/fit_settings.h"
 #include "pipeline/inputs.h"
 
 namespace brdfit::cli {
@@ -41,18 +42,8 @@ struct FitCliOptions {
   std::vector<std::string> files;
   std::vector<std::string> models = {"auto"};
   std::string diffuse = "lambert";
-  std::string loss;  // empty: not given (kDefaultLoss; --model auto: each candidate's own)
-  bool no_cosine = false;
-  std::string robust = "none";
-  double robust_scale = FitOptions{}.robust_scale;
-  double cutoff = SampleOptions{}.cutoff_deg;
-  std::string weighting = "bin-measure";
-  std::string budget = DefaultFitBudget().ToString();
-  std::uint64_t seed = 1;
-  int multistart = 1;
-  int max_iterations = FitOptions{}.max_iterations;
+  pipeline::FitSettings fit;  // --loss ... --threads (pipeline/fit_settings.h)
   int jobs = 1;
-  int threads = 1;
   bool force = false;
   std::string out = "fits.h5";
   std::string json;
@@ -174,27 +165,8 @@ int RunFit(const FitCliOptions& o) {
   req.inputs = pipeline::ExpandInputs(o.files);
   if (req.inputs.empty()) throw InputError("no input files");
   if (o.jobs < 1 || o.jobs > 256) throw InputError("--jobs must be in [1, 256]");
-  if (o.threads < 1 || o.threads > 256) throw InputError("--threads must be in [1, 256]");
-  if (o.multistart < 1 || o.multistart > 1000)
-    throw InputError("--multistart must be in [1, 1000]");
-  if (o.max_iterations < 1) throw InputError("--max-iterations must be >= 1");
-  SampleOptions& so = req.samples;
-  so.cutoff_deg = o.cutoff;
-  so.weighting = WeightingFromString(o.weighting);
-  so.budget = Budget::Parse(o.budget);
-  so.seed = o.seed;
-  FitOptions& fo = req.fit;
-  fo.loss = o.loss.empty() ? kDefaultLoss : LossKindFromString(o.loss);
-  fo.cosine = !o.no_cosine;
-  fo.robust = RobustKindFromString(o.robust);
-  fo.robust_scale = o.robust_scale;
-  if (!(fo.robust_scale > 0)) throw InputError("--robust-scale must be positive");
-  fo.multistart = o.multistart;
-  fo.max_iterations = o.max_iterations;
-  fo.threads = o.threads;
-  fo.seed = o.seed;
-  if (!(so.cutoff_deg > 0 && so.cutoff_deg <= 90)) throw InputError("--cutoff must be in (0, 90]");
-  req.models = pipeline::ResolveModelRuns(o.models, o.diffuse, !o.loss.empty());
+  pipeline::ApplyFitSettings(o.fit, &req.samples, &req.fit);
+  req.models = pipeline::ResolveModelRuns(o.models, o.diffuse, !o.fit.loss.empty());
   req.report = o.out;
   req.force = o.force;
   req.timings = !o.no_timings;
@@ -293,30 +265,30 @@ Registrar reg{
                      "diffuse lobe added to bare specular names: ggx -> lambert+ggx (none: fit "
                      "names as given)")
           ->capture_default_str();
-      sub.add_option("--loss", o->loss,
+      sub.add_option("--loss", o->fit.loss,
                      "rel (default) | logratio | log (Low 2012 E2) | cbrt | l2; with --model "
                      "auto, unset: each candidate's own loss");
-      sub.add_flag("--no-cosine", o->no_cosine, "leave cos(theta_i) out of the loss");
-      sub.add_option("--robust", o->robust, "none | huber | cauchy")->capture_default_str();
-      sub.add_option("--robust-scale", o->robust_scale, "robust loss scale, in loss units")
+      sub.add_flag("--no-cosine", o->fit.no_cosine, "leave cos(theta_i) out of the loss");
+      sub.add_option("--robust", o->fit.robust, "none | huber | cauchy")->capture_default_str();
+      sub.add_option("--robust-scale", o->fit.robust_scale, "robust loss scale, in loss units")
           ->capture_default_str();
-      sub.add_option("--cutoff", o->cutoff, "angle cut-off on theta_i and theta_o, degrees")
+      sub.add_option("--cutoff", o->fit.cutoff, "angle cut-off on theta_i and theta_o, degrees")
           ->capture_default_str();
-      sub.add_option("--weighting", o->weighting, "cell weights: bin-measure | uniform")
+      sub.add_option("--weighting", o->fit.weighting, "cell weights: bin-measure | uniform")
           ->capture_default_str();
-      sub.add_option("--budget", o->budget,
+      sub.add_option("--budget", o->fit.budget,
                      "samples fitted: full | stride:K (every K-th phi_d bin) | random:N "
                      "(N stratified samples); metrics always use every cell; the default "
                      "renders as well as full in a quarter of the time (docs/fitting.md)")
           ->capture_default_str();
-      sub.add_option("--seed", o->seed, "seed of random budgets and subsets")
+      sub.add_option("--seed", o->fit.seed, "seed of random budgets and subsets")
           ->capture_default_str();
-      sub.add_option("--multistart", o->multistart, "LM runs from the best N initializer points")
+      sub.add_option("--multistart", o->fit.multistart, "LM runs from the best N initializer points")
           ->capture_default_str();
-      sub.add_option("--max-iterations", o->max_iterations, "per LM run")->capture_default_str();
+      sub.add_option("--max-iterations", o->fit.max_iterations, "per LM run")->capture_default_str();
       sub.add_option("-j,--jobs", o->jobs, "fits in parallel (over files and models)")
           ->capture_default_str();
-      sub.add_option("--threads", o->threads, "Ceres threads per fit")->capture_default_str();
+      sub.add_option("--threads", o->fit.threads, "Ceres threads per fit")->capture_default_str();
       sub.add_flag("--force", o->force, "redo fits already in the report");
       sub.add_option("-o,--out", o->out, "HDF5 report (docs/formats.md)")->capture_default_str();
       sub.add_option("--json", o->json,

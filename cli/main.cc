@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
   CLI::App app{
       "brdfit: fit analytic models to tabulated isotropic BRDFs, factor them, preview "
       "and report.\nRun 'brdfit <command> --help' for a command's options and examples."};
-  app.set_version_flag("--version", "brdfit 0.1.0");
+  app.set_version_flag("--version", "brdfit " BRDFIT_VERSION);  // CMake project version
   app.require_subcommand(1);
   std::map<CLI::App*, RunFn> runs;
   for (auto& spec : Commands()) {

@@ -47,7 +47,7 @@ def read_layers(root):
         words = m.group(2).split()
         below, mode = [], None
         for w in words:
-            if w in ("LAYERS", "LIBS", "EXECUTABLE"):
+            if w in ("LAYERS", "LIBS", "EXECUTABLE", "PYMODULE"):
                 mode = w
             elif mode == "LAYERS":
                 below.append(w)

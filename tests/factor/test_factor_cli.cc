@@ -73,6 +73,17 @@ TEST_F(FactorCli, WritesTexturesAndSidecar) {
   EXPECT_NE(r.out.find("product"), std::string::npos) << r.out;
 }
 
+// The sidecar names the table as it was given: a relative input stays relative (an absolute
+// path of the machine that wrote it was a known defect, issue 16).
+TEST_F(FactorCli, SidecarKeepsARelativeSourceAsGiven) {
+  const std::string cmd = "cd '" + dir_.string() + "' && '" + BRDFIT_EXE +
+                          "' factor product.h5 --res 8 --param halfdiff -o out -q >/dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  nlohmann::json sidecar;
+  LoadFactoredBrdf(dir_ / "out" / "product.factor.json", &sidecar);
+  EXPECT_EQ(sidecar["source"]["file"], "product.h5");
+}
+
 // The default tries every candidate of factor/factor_choice.h and keeps the one the rule picks
 // (checked here from the recorded scores, independently of ChooseFactorization); an option that
 // names the form turns the choice off.

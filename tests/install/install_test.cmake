@@ -1,0 +1,41 @@
+# cmake -DBUILD= -DSOURCE= -DSCRATCH= -DVERSION= [-DPYTHON= -DPYDIR=] -P install_test.cmake
+# (tests/install/CMakeLists.txt): install, build the consumer against the prefix, run it.
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
+  endif()
+  set(OUT "${out}" PARENT_SCOPE)
+endfunction()
+
+file(REMOVE_RECURSE ${SCRATCH})
+set(prefix ${SCRATCH}/prefix)
+run(${CMAKE_COMMAND} --install ${BUILD} --prefix ${prefix})
+foreach(f include/brdfit/core/table.h include/brdfit/pipeline/inputs.h lib/libbrdfit_fit.a
+          bin/brdfit lib/cmake/brdfit/brdfitConfig.cmake lib/cmake/brdfit/brdfitConfigVersion.cmake)
+  if(NOT EXISTS ${prefix}/${f})
+    message(FATAL_ERROR "cmake --install did not install ${f}")
+  endif()
+endforeach()
+# The consumer asks for this version: brdfitConfigVersion.cmake must accept it.
+run(${CMAKE_COMMAND} -S ${SOURCE} -B ${SCRATCH}/build -G Ninja -DCMAKE_BUILD_TYPE=Release
+    -DCMAKE_PREFIX_PATH=${prefix} -DBRDFIT_VERSION=${VERSION})
+run(${CMAKE_COMMAND} --build ${SCRATCH}/build)
+run(${SCRATCH}/build/consumer ${SCRATCH}/table.h5)
+message(STATUS "consumer: ${OUT}")
+if(NOT OUT MATCHES "recovered")
+  message(FATAL_ERROR "the consumer did not report a recovered fit: ${OUT}")
+endif()
+run(${prefix}/bin/brdfit --version)
+if(NOT OUT STREQUAL "brdfit ${VERSION}\n")
+  message(FATAL_ERROR "installed brdfit --version printed '${OUT}', expected 'brdfit ${VERSION}'")
+endif()
+if(PYTHON)
+  set(ENV{PYTHONPATH} ${prefix}/${PYDIR})
+  # (no ';' in the code: CMake would split the argument there)
+  run(${PYTHON} -c "import brdfit
+print(brdfit.__version__ if brdfit.__file__.startswith('${prefix}/') else 'imported ' + brdfit.__file__)")
+  if(NOT OUT STREQUAL "${VERSION}\n")
+    message(FATAL_ERROR "installed brdfit.__version__ is '${OUT}', expected '${VERSION}'")
+  endif()
+endif()
