@@ -80,8 +80,9 @@ class KillResume : public ::testing::Test {
   std::vector<std::string> FitArgs(const std::vector<std::string>& tables, const fs::path& out) {
     std::vector<std::string> a = {"fit"};
     a.insert(a.end(), tables.begin(), tables.end());
-    for (const char* s : {"--model", "ggx,ward", "--multistart", "2", "--no-timings",
-                          "--no-progress"}) {
+    // --budget full: fits slow enough (tens of ms each) that a kill lands between checkpoints.
+    for (const char* s : {"--model", "ggx,ward", "--multistart", "2", "--budget", "full",
+                          "--no-timings", "--no-progress"}) {
       a.push_back(s);
     }
     a.insert(a.end(), {"--json", (out.parent_path() / "fits.json").string(), "-o", out.string()});
