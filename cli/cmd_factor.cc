@@ -18,6 +18,7 @@
 #include "core/error.h"
 #include "core/file_stem.h"
 #include "core/model_choice.h"
+#include "core/provenance.h"
 #include "factor/factor.h"
 #include "factor/factor_choice.h"
 #include "factor/factor_form.h"
@@ -108,6 +109,7 @@ nlohmann::json SourceJson(const fs::path& file, const Table& t) {
   // As given, as fit reports record their sources: relative to the working directory of the
   // run, never made absolute (an output names no path the user did not give; issue 16).
   return {{"file", name},
+          {"hash", TableContentHash(t)},
           {"grid",
            {{"n_theta_h", t.grid.n_theta_h},
             {"n_theta_d", t.grid.n_theta_d},
@@ -282,8 +284,13 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
       }
       const FitMetrics m = ScoreFactorization(table, r.brdf, metric_samples);
       const std::string stem = OutputStem(file, o.suffix);
+      const RunProvenance run = CurrentRunProvenance(true);
       nlohmann::json extra = {{"source", SourceJson(file, table)},
-                              {"metrics", MetricsJson(m, re, ln_rmse)}};
+                              {"metrics", MetricsJson(m, re, ln_rmse)},
+                              {"provenance",
+                               {{"brdfit_version", run.version},
+                                {"command_line", run.command_line},
+                                {"created", run.created}}}};
       if (!choice.is_null()) extra["choice"] = choice;
       if (!ranks.is_null()) extra["ranks"] = ranks;
       const FactorPaths paths = SaveFactorization(r, o.out_dir, stem, extra);

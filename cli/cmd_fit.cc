@@ -208,9 +208,9 @@ int RunFit(const FitCliOptions& o) {
   // `--json -`: the parameters are the standard output; the table goes to stderr.
   const bool json_to_stdout = o.json == "-";
   if (json_to_stdout) {
-    fmt::print("{}", FitParamsJson(run.all));
+    fmt::print("{}", FitParamsJson(run.all, !o.no_timings));
   } else if (!o.json.empty() && !(run.all.empty() && !run.input_errors.empty())) {
-    WriteTextAtomically(o.json, FitParamsJson(run.all));
+    WriteTextAtomically(o.json, FitParamsJson(run.all, !o.no_timings));
   }
 
   if (!o.quiet) {
@@ -294,7 +294,8 @@ Registrar reg{
       sub.add_option("--json", o->json,
                      "also write the parameters as JSON (- for standard output)");
       sub.add_flag("--no-timings", o->no_timings,
-                   "leave timings out of the report (byte-identical reruns)");
+                   "leave timings, the command line and the date out of the report and JSON "
+                   "(byte-identical reruns)");
       sub.add_flag("-q,--quiet", o->quiet, "no table, no progress bar");
       sub.add_flag("--no-progress", o->no_progress, "no progress bar");
       sub.footer(

@@ -11,6 +11,7 @@
 #include "cli/command.h"
 #include "cli/demo.h"
 #include "cli/interrupt.h"
+#include "core/provenance.h"
 #include "core/error.h"
 
 namespace brdfit::cli {
@@ -44,6 +45,7 @@ int CheckStdout(int code) {
 int main(int argc, char** argv) {
   using namespace brdfit::cli;
   InstallInterruptHandler();  // before any thread: they all inherit the blocked signals
+  brdfit::SetCommandLine(argc, argv);  // provenance of every output (core/provenance.h)
   CLI::App app{
       "brdfit: fit analytic models to tabulated isotropic BRDFs, factor them, preview "
       "and report.\nRun 'brdfit <command> --help' for a command's options and examples."};

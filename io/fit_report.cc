@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "core/metrics.h"
+#include "core/provenance.h"
 #include "io/hdf5_util.h"
 #include "io/metrics_json.h"
 #include "io/model_params.h"
@@ -95,6 +96,7 @@ void WriteEntry(const H5::Group& g, const FitReportEntry& e, bool timings) {
   WriteStringAttr(g, "termination", r.termination);
   WriteIntAttr(g, "chosen", e.chosen ? 1 : 0);
   WriteStringAttr(g, "choice", e.choice);
+  if (!e.source_hash.empty()) WriteStringAttr(g, "source_hash", e.source_hash);
   WriteIntAttr(g, "iterations", r.iterations);
   WriteIntAttr(g, "starts", r.starts);
   DoubleAttr(g, "init_cost", r.init_cost);
@@ -260,6 +262,7 @@ class Reader : public hdf5::Reader {
       e.chosen = chosen == 1;
     }
     if (g.attrExists("choice")) e.choice = String(g, where, "choice");
+    if (g.attrExists("source_hash")) e.source_hash = String(g, where, "source_hash");
     r.iterations = SmallCount(g, where, "iterations");
     r.starts = SmallCount(g, where, "starts");
     r.init_cost = NonNegative(g, where, "init_cost");
@@ -409,6 +412,10 @@ void WriteFitReport(std::vector<FitReportEntry> entries, const fs::path& path,
         WriteStringAttr(f, "format", kFitReportFormat);
         WriteIntAttr(f, "format_version", kFitReportVersion);
         WriteStringAttr(f, "metrics_definition", MetricsDefinition());
+        const RunProvenance run = CurrentRunProvenance(include_timings);
+        WriteStringAttr(f, "brdfit_version", run.version);
+        if (!run.command_line.empty()) WriteStringAttr(f, "command_line", run.command_line);
+        if (!run.created.empty()) WriteStringAttr(f, "created", run.created);
         H5::Group root = f.openGroup("/");
         H5::Group g = MakeGroup(root, "entries");
         for (std::size_t i = 0; i < entries.size(); ++i) {
@@ -426,7 +433,7 @@ std::vector<FitReportEntry> ReadFitReport(const fs::path& path) {
   }
 }
 
-std::string FitParamsJson(std::vector<FitReportEntry> entries) {
+std::string FitParamsJson(std::vector<FitReportEntry> entries, bool run_details) {
   SortEntries(entries);
   nlohmann::ordered_json fits = nlohmann::ordered_json::array();
   for (const FitReportEntry& e : entries) {
@@ -451,12 +458,18 @@ std::string FitParamsJson(std::vector<FitReportEntry> entries) {
     j["chosen"] = e.chosen;
     if (e.chosen) j["choice"] = e.choice;
     j["options"] = nlohmann::ordered_json::parse(e.options.empty() ? "{}" : e.options);
+    if (!e.source_hash.empty()) j["source_hash"] = e.source_hash;
     fits.push_back(j);
   }
   nlohmann::ordered_json root;
   root["format"] = "brdfit-fit-params";
   root["format_version"] = 1;
   root["fits"] = fits;
+  const RunProvenance run = CurrentRunProvenance(run_details);
+  nlohmann::ordered_json prov = {{"brdfit_version", run.version}};
+  if (!run.command_line.empty()) prov["command_line"] = run.command_line;
+  if (!run.created.empty()) prov["created"] = run.created;
+  root["provenance"] = prov;
   // Strings come from file names and from reports written elsewhere: bytes that are not UTF-8
   // become U+FFFD instead of throwing json::type_error 316 (fuzz_fit_report; a table named
   // "caf\xe9.binary" made `brdfit fit --json` fail after fitting).

@@ -44,13 +44,18 @@ struct FitReportEntry {
   // (core/model_choice.h; set by pipeline/batch_fit.h before writing), and why.
   bool chosen = false;
   std::string choice;  // the reason, for the chosen entry; empty otherwise
+  // The table's content hash (core/provenance.h TableContentHash); empty in reports written
+  // before brdfit 0.1.0 recorded it.
+  std::string source_hash;
 };
 
 // Sorts entries by (source, model, options): the order of a report does not depend on the order
 // in which fits finished.
 void SortEntries(std::vector<FitReportEntry>& entries);
 
-// Writes atomically. include_timings = false leaves out every /timing group.
+// Writes atomically, with the run's provenance (core/provenance.h) as root attributes:
+// brdfit_version always; command_line and created unless include_timings is false, which also
+// leaves out every /timing group (byte-identical reruns).
 void WriteFitReport(std::vector<FitReportEntry> entries, const std::filesystem::path& path,
                     bool include_timings = true);
 
@@ -62,8 +67,9 @@ std::vector<FitReportEntry> ReadFitReport(const std::filesystem::path& path);
 //  "rel_l2", "weighting", "cutoff_deg", "rendered": {"psnr_db", "psnr_srgb_db",
 //  "median_rel_error", "p95_rel_error", "ok", "problem" if not ok} (when computed, i.e. not for
 //  a failed fit; io/metrics_json.h, docs/accuracy.md)}, "chosen": bool, "choice": "why" (chosen
-//  fits only), "options": {...}},
-//  ...]} in report order, no timings: deterministic.
-std::string FitParamsJson(std::vector<FitReportEntry> entries);
+//  fits only), "options": {...}, "source_hash" (when known)},
+//  ...], "provenance": {"brdfit_version", "command_line", "created" (the last two only with
+//  run_details)}} in report order, no timings: deterministic without run_details.
+std::string FitParamsJson(std::vector<FitReportEntry> entries, bool run_details = false);
 
 }  // namespace brdfit

@@ -15,6 +15,7 @@
 
 #include "core/error.h"
 #include "core/model_choice.h"
+#include "core/provenance.h"
 #include "fit/fitter.h"
 #include "models/registry.h"
 #include "pipeline/inputs.h"
@@ -44,6 +45,7 @@ struct InputState {
   std::optional<PreparedTable> prepared;
   std::string error;  // InputError message if loading failed
   double load_ms = 0, prepare_ms = 0;
+  std::string content_hash;  // core/provenance.h TableContentHash
   std::atomic<int> remaining{0};
 };
 
@@ -197,6 +199,7 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
           try {
             auto t0 = Clock::now();
             Table table = LoadInput(input);
+            st.content_hash = TableContentHash(table);
             st.load_ms = MsSince(t0);
             t0 = Clock::now();
             st.prepared.emplace(PrepareTable(std::move(table), req.samples, req.fit));
@@ -221,7 +224,8 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
         }
         r.times.load = st.load_ms;
         r.times.prepare = st.prepare_ms;
-        FitReportEntry e{input, report::MaterialName(input), t.options, std::move(r), false, {}};
+        FitReportEntry e{input, report::MaterialName(input), t.options, std::move(r), false, {}, {}};
+        e.source_hash = st.content_hash;
         std::lock_guard<std::mutex> lock(mu);
         result.fresh.push_back(std::move(e));
         if (!write_error && MsSince(last_write) > 5000) {

@@ -153,9 +153,30 @@ FactorPaths SaveFactorization(const Factorization& r, const std::filesystem::pat
   files.sidecar = DescribeFactorization(r);
   files.sidecar.update(extra, /*merge_objects=*/true);
   files.diffuse = r.brdf.diffuse();
+  // Provenance in every texture's header too (docs/formats.md): an EXR copied away from its
+  // sidecar still says what made it.
+  ExrAttributes provenance;
+  if (extra.contains("provenance") && extra["provenance"].is_object()) {
+    for (const auto& [key, value] : extra["provenance"].items()) {
+      if (value.is_string()) provenance["brdfit:" + key] = value.get<std::string>();
+    }
+  }
+  if (extra.contains("source") && extra["source"].is_object()) {
+    const nlohmann::json& src = extra["source"];
+    if (src.contains("file") && src["file"].is_string()) {
+      provenance["brdfit:source"] = src["file"].get<std::string>();
+    }
+    if (src.contains("hash") && src["hash"].is_string()) {
+      provenance["brdfit:source_hash"] = src["hash"].get<std::string>();
+    }
+  }
+  auto attributes = [&](const FactorTextureSpec& t) {
+    ExrAttributes a = TextureAttributes(r, t);
+    a.insert(provenance.begin(), provenance.end());
+    return a;
+  };
   for (const FactorTerm& t : r.brdf.terms()) {
-    files.terms.push_back(
-        {{t.p, TextureAttributes(r, spec.p)}, {t.q, TextureAttributes(r, spec.q)}});
+    files.terms.push_back({{t.p, attributes(spec.p)}, {t.q, attributes(spec.q)}});
   }
   const FactorPaths paths = FactorFilePaths(dir, stem, r.brdf.rank());
   WriteFactorFiles(paths, std::move(files));

@@ -13,7 +13,9 @@ namespace brdfit {
 
 // Writes <dir>/<stem>.p.exr, .q.exr (then .p2.exr, .q2.exr, ... for every further term) and
 // .factor.json, with the diffuse value and rank in the sidecar. `extra` members (e.g.
-// "source", "metrics") are merged into the sidecar. Returns the paths written.
+// "source", "metrics", "provenance") are merged into the sidecar; the string members of
+// "provenance" and the source's "file" and "hash" also go into every EXR header (as
+// brdfit:<member>, brdfit:source, brdfit:source_hash). Returns the paths written.
 FactorPaths SaveFactorization(const Factorization& r, const std::filesystem::path& dir,
                               const std::string& stem,
                               const nlohmann::json& extra = nlohmann::json::object());

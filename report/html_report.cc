@@ -14,6 +14,7 @@
 
 #include "io/atomic_file.h"
 #include "core/error.h"
+#include "core/provenance.h"
 #include "report/report_charts.h"
 #include "report/rendered_colors.h"
 
@@ -292,10 +293,16 @@ class Page {
     Bench();
     for (const Material& m : report_.materials) MaterialSection(m);
     Renders();
+    // Provenance (core/provenance.h): version, command line, date.
+    const RunProvenance run = CurrentRunProvenance(true);
+    std::string made = "Made by brdfit " + HtmlEscape(run.version);
+    if (!run.created.empty()) made += " on " + HtmlEscape(run.created);
+    if (!run.command_line.empty()) made += ": <code>" + HtmlEscape(run.command_line) + "</code>";
     body_ += fmt::format(
-        "<footer class=\"muted\"><p>Made by brdfit. Plots drawn by Chart.js 3 (MIT licence, "
-        "chartjs.org), inlined from Debian's libjs-chart.js; the page loads nothing from the "
-        "network.</p></footer>\n");
+        "<footer class=\"muted\"><p id=\"provenance\">{}.</p><p>Plots drawn by Chart.js 3 (MIT "
+        "licence, chartjs.org), inlined from Debian's libjs-chart.js; the page loads nothing "
+        "from the network.</p></footer>\n",
+        made);
     std::string out;
     out += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
     out += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";

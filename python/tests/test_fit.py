@@ -1,4 +1,7 @@
-"""brdfit.fit: the CLI's fit, bit for bit, and parameter recovery on a synthetic table."""
+"""brdfit.fit: the CLI's fit, bit for bit, and parameter recovery on a synthetic table.
+
+The CLI runs with --no-timings: its JSON then carries the version but not the command line or
+the date (core/provenance.h), as the module's does."""
 import json
 from concurrent.futures import ThreadPoolExecutor
 
@@ -11,7 +14,7 @@ FIT_ARGS = dict(model="lambert+ggx", loss="rel", budget="stride:4")
 def test_fit_equals_cli_json(cli, small_table_file, tmp_path):
     out_json = tmp_path / "fit.json"
     cli("fit", small_table_file, "--model", "lambert+ggx", "--loss", "rel", "--budget", "stride:4",
-        "-o", tmp_path / "fits.h5", "--json", out_json, "--quiet")
+        "-o", tmp_path / "fits.h5", "--json", out_json, "--quiet", "--no-timings")
     r = brdfit.fit(brdfit.load(str(small_table_file)), **FIT_ARGS)
     # The JSON holds no timings (io/fit_report.h FitParamsJson): the whole text must agree.
     assert r.json == out_json.read_text()
@@ -26,7 +29,7 @@ def test_default_names_resolve_as_the_cli(cli, small_table_file, tmp_path):
     # `--model ggx` is lambert+ggx under the default --diffuse lambert; loss defaults to rel.
     out_json = tmp_path / "fit.json"
     cli("fit", small_table_file, "--model", "ggx", "--budget", "stride:4", "-o",
-        tmp_path / "fits.h5", "--json", out_json, "--quiet")
+        tmp_path / "fits.h5", "--json", out_json, "--quiet", "--no-timings")
     r = brdfit.fit(brdfit.load(str(small_table_file)), model="ggx", budget="stride:4")
     assert r.model == "lambert+ggx"
     assert r.json == out_json.read_text()
@@ -84,7 +87,7 @@ def test_nbrdf_fit_equals_cli_json(cli, tmp_path):
     name = "nbrdf:gold-metallic-paint"
     out_json = tmp_path / "fit.json"
     cli("fit", name, "--model", "lambert+ggx", "--budget", "stride:32", "-o", tmp_path / "f.h5",
-        "--json", out_json, "--quiet")
+        "--json", out_json, "--quiet", "--no-timings")
     table = brdfit.load(name)
     assert table.shape == (90, 90, 180) and table.input == name
     r = brdfit.fit(table, model="lambert+ggx", budget="stride:32")

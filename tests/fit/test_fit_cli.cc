@@ -13,6 +13,7 @@
 #include "fit/fitter.h"
 #include "fit_test_util.h"
 #include "core/error.h"
+#include "core/provenance.h"
 #include "io/fit_report.h"
 #include "io/table_io.h"
 
@@ -142,7 +143,7 @@ TEST(FitReport, RoundTripKeepsEveryField) {
   const Table t = SynthModel("lambert+ggx", Params("lambert+ggx", {}), SmallGrid(), 0.05, 0.1, 2);
   FitReportEntry e{"dir/t.binary", "t", "{\"loss\":\"log\"}",
                    FitTable("lambert+ggx", t, SampleOptions{}, FitOptions{}), true,
-                   "best rendered score"};
+                   "best rendered score", TableContentHash(t)};
   e.result.times.load = 12.5;
   const fs::path p =
       fs::temp_directory_path() / ("brdfit_report_" + std::to_string(::getpid()) + ".h5");
@@ -154,6 +155,8 @@ TEST(FitReport, RoundTripKeepsEveryField) {
   EXPECT_EQ(back[0].options, e.options);
   EXPECT_TRUE(back[0].chosen);
   EXPECT_EQ(back[0].choice, e.choice);
+  EXPECT_EQ(back[0].source_hash, e.source_hash);
+  EXPECT_TRUE(back[0].source_hash.starts_with("t64:"));
   EXPECT_EQ(b.model, a.model);
   EXPECT_EQ(b.params, a.params);
   EXPECT_EQ(b.param_names, a.param_names);
