@@ -12,6 +12,7 @@
 #include "cli/demo.h"
 #include "cli/interrupt.h"
 #include "core/error.h"
+#include "core/version.h"
 
 namespace brdfit::cli {
 std::vector<CommandSpec>& Commands() {
@@ -47,7 +48,7 @@ int main(int argc, char** argv) {
   CLI::App app{
       "brdfit: fit analytic models to tabulated isotropic BRDFs, factor them, preview "
       "and report.\nRun 'brdfit <command> --help' for a command's options and examples."};
-  app.set_version_flag("--version", "brdfit 0.1.0");
+  app.set_version_flag("--version", std::string("brdfit ") + brdfit::kBrdfitVersion);
   app.require_subcommand(1);
   std::map<CLI::App*, RunFn> runs;
   for (auto& spec : Commands()) {
