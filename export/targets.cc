@@ -9,6 +9,9 @@ namespace brdfit::exports {
 
 namespace {
 
+// 1 / ((1.5 - 1) / (1.5 + 1))^2: the specularColorFactor of F0 = 1 at glTF's default ior 1.5.
+constexpr double kSpecularColorPerF0 = 25.0;
+
 double Max(const Rgb& v) {
   return std::max({v[0], v[1], v[2]});
 }
@@ -81,15 +84,16 @@ GltfPbr ToGltf(const LobeMaterial& m) {
     return g;
   }
   NoteMasking(m, Masking::kHeightCorrelated, "glTF", &f);
-  // ior 0 makes KHR_materials_ior's ((ior - 1)/(ior + 1))^2 = 1, so specularColor is F0 itself.
-  g.ior_ext = true;
-  g.ior = 0;
+  // The default ior 1.5 gives ((ior - 1)/(ior + 1))^2 = 0.04, so specularColor = 25 F0 puts F0
+  // itself under KHR_materials_specular's min(0.04 specularColor, 1) (specularColorFactor has
+  // no upper bound). KHR_materials_ior's ior = 0 would do the same, but three.js documents ior
+  // in [1, 2.333]: the default ior is what every viewer reads alike.
   g.specular_ext = true;
   if (m.fresnel == LobeFresnel::kSchlick) {
     // Fr = F0 + (1 - F0)(1 - v.h)^5 with w = 1 is the fit's lobe; the diffuse is weighted by
     // 1 - max(Fr) in glTF and by 1 in the fit: matched at normal incidence.
     g.specular_factor = 1;
-    g.specular_color = m.spec;
+    for (int c = 0; c < 3; ++c) g.specular_color[c] = kSpecularColorPerF0 * m.spec[c];
     const double f0 = std::min(Max(m.spec), 0.999);
     g.base_color = DiffuseOver(m.kd, f0, "glTF base colour", &f);
     f.approximations.push_back(fmt::format(
@@ -109,7 +113,9 @@ GltfPbr ToGltf(const LobeMaterial& m) {
     w = 1;
   }
   g.specular_factor = w;
-  for (int c = 0; c < 3; ++c) g.specular_color[c] = w > 0 ? std::min(m.spec[c] / w, 1.0) : 1.0;
+  for (int c = 0; c < 3; ++c) {
+    g.specular_color[c] = kSpecularColorPerF0 * (w > 0 ? std::min(m.spec[c] / w, 1.0) : 1.0);
+  }
   if (!Grey(m.spec)) {
     f.approximations.push_back(fmt::format(
         "coloured ks = {}: glTF's Fresnel rises to white at grazing, so the channels below the "

@@ -19,6 +19,7 @@ struct Fidelity {
 // glTF 2.0 metallic-roughness (Appendix B) with KHR_materials_specular and KHR_materials_ior:
 // dielectric = (1 - w max(Fr)) baseColor / pi + w Fr D V, Fr = f0 + (1 - f0)(1 - v.h)^5,
 // f0 = min(((ior - 1)/(ior + 1))^2 specularColor, 1), w = specularFactor; V height-correlated.
+// The default ior 1.5 is kept (0.04 specularColor = F0), so ior_ext stays false.
 struct GltfPbr {
   Rgb base_color{};
   double metallic = 0;
