@@ -22,6 +22,8 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
+from node_tools import ensure_tools
+
 FORMATS = {"gltf": ".gltf", "glb": ".glb", "mitsuba": ".xml", "pbrt": ".pbrt"}
 PBRT_DIRECTIVES = {"LookAt", "Camera", "Film", "Sampler", "Integrator", "WorldBegin",
                    "LightSource", "MakeNamedMaterial", "NamedMaterial", "AttributeBegin",
@@ -199,22 +201,15 @@ def main():
         fail("the pbrt check passed an undefined material")
 
     # The Khronos glTF-Validator.
-    node, npm = shutil.which("node"), shutil.which("npm")
-    if not node or not npm:
-        print("SKIP glTF-Validator: node/npm not installed (scripts/setup-deps.sh installs them)")
+    tools = os.path.join(o.work, "..", "node-tools")
+    status, why = ensure_tools(o.tools, tools)
+    if status == "failed":
+        fail(why)
+        return 1
+    if status == "absent":
+        print("SKIP glTF-Validator: " + why)
         return 1 if failures else 77
-    tools = os.path.join(o.work, "..", "gltf-tools")
-    os.makedirs(tools, exist_ok=True)
-    for f in ("package.json", "package-lock.json", "validate.cjs"):
-        shutil.copy(os.path.join(o.tools, f), tools)
-    lock = json.load(open(os.path.join(o.tools, "package-lock.json")))
-    want = lock["packages"]["node_modules/gltf-validator"]["version"]
-    have_file = os.path.join(tools, "node_modules", "gltf-validator", "package.json")
-    if not os.path.exists(have_file) or json.load(open(have_file))["version"] != want:
-        r = run([npm, "ci", "--no-audit", "--no-fund"], cwd=tools)
-        if r.returncode != 0:
-            fail(f"npm ci in {tools}: {r.stdout}{r.stderr}")
-            return 1
+    node = shutil.which("node")
     r = run([node, os.path.join(tools, "validate.cjs")] + gltfs)
     print(r.stdout, end="")
     if r.returncode != 0:
