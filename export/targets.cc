@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace brdfit::exports {
 
@@ -17,6 +18,13 @@ double Max(const Rgb& v) {
 }
 bool Grey(const Rgb& v) {
   return Max(v) - std::min({v[0], v[1], v[2]}) <= 1e-9 * Max(v);
+}
+
+// A Fresnel that is f0 = ks / max ks at normal incidence and 1 at grazing: the weakest
+// channel's factor at grazing, max ks / min ks.
+double GrazingFactor(const Rgb& ks) {
+  const double lo = std::min({ks[0], ks[1], ks[2]});
+  return lo > 0 ? Max(ks) / lo : std::numeric_limits<double>::infinity();
 }
 
 std::string Fmt3(const Rgb& v) {
@@ -119,8 +127,8 @@ GltfPbr ToGltf(const LobeMaterial& m) {
   if (!Grey(m.spec)) {
     f.approximations.push_back(fmt::format(
         "coloured ks = {}: glTF's Fresnel rises to white at grazing, so the channels below the "
-        "largest are exact at normal incidence only",
-        Fmt3(m.spec)));
+        "largest are exact at normal incidence only (up to {:.4g} times too bright at grazing)",
+        Fmt3(m.spec), GrazingFactor(m.spec)));
   }
   g.base_color = DiffuseOver(m.kd, w, "glTF base colour", &f);
   return g;
@@ -165,8 +173,9 @@ PbrtMix ToPbrt(const LobeMaterial& m) {
   if (!Grey(ks)) {
     f.approximations.push_back(fmt::format(
         "coloured ks = {}: pbrt-v4's conductor Fresnel (eta = 1, k from reflectance) rises to "
-        "white at grazing, so the channels below the largest are exact at normal incidence only",
-        Fmt3(ks)));
+        "white at grazing, so the channels below the largest are exact at normal incidence only "
+        "(up to {:.4g} times too bright at grazing)",
+        Fmt3(ks), GrazingFactor(ks)));
   }
   p.diffuse_reflectance = DiffuseOver(m.kd, a, "pbrt-v4 diffuse reflectance", &f);
   return p;
