@@ -88,6 +88,9 @@ ExportOutcome WriteExport(const FitReportEntry& entry, const std::string& fits_p
         o.written.push_back(out);
       } else {
         const fs::path bin = fs::path(out).replace_extension(".bin");
+        if (bin == out) {
+          throw OutputError(out, "a .gltf output named .bin would be its own buffer (-o x.gltf)");
+        }
         const GltfFiles f = BuildGltf(g, p, bin.filename().string());
         WriteBytesAtomically(bin, f.bin.data(), f.bin.size());
         WriteTextAtomically(out, f.json);
