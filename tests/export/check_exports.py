@@ -191,7 +191,7 @@ def main():
         fail(f"an absent model: exit {r.returncode}, {r.stderr!r}")
     r = run([o.brdfit, "export", o.fits, "--format", "gltf", "--material", "red-phenolic",
              "-o", os.path.join(o.work, "x.bin")])
-    if r.returncode != 2 or "own buffer" not in r.stderr:
+    if r.returncode != 2 or "same file" not in r.stderr:
         fail(f"a .gltf named .bin: exit {r.returncode}, {r.stderr!r}")
     # Planted defects.
     good_xml = open(os.path.join(o.golden, "gold-metallic-paint.xml")).read()
