@@ -24,7 +24,6 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <random>
-#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -143,11 +142,12 @@ std::string MitsubaValue(const std::string& xml, const std::string& plugin, cons
                          const std::string& name) {
   const std::size_t at = xml.find("<bsdf type=\"" + plugin + "\"");
   EXPECT_NE(at, std::string::npos) << plugin;
-  const std::regex re("<" + tag + " name=\"" + name + "\" value=\"([^\"]*)\"");
-  std::smatch m;
-  const std::string rest = xml.substr(at);
-  EXPECT_TRUE(std::regex_search(rest, m, re)) << plugin << " " << name;
-  return m.size() > 1 ? m[1].str() : "";
+  const std::string key = "<" + tag + " name=\"" + name + "\" value=\"";
+  const std::size_t k = at == std::string::npos ? at : xml.find(key, at);
+  EXPECT_NE(k, std::string::npos) << plugin << " " << name;
+  if (k == std::string::npos) return "";
+  const std::size_t begin = k + key.size(), end = xml.find('"', begin);
+  return xml.substr(begin, end - begin);
 }
 Rgb ParseRgb(const std::string& s) {
   Rgb v{};
