@@ -123,8 +123,7 @@ void PrintSummary(std::FILE* out, const std::vector<FitReportEntry>& entries) {
         lum.push_back(e.result.metrics.rendered.median_rel_error);
       }
     }
-    const std::string psnr =
-        p.empty() ? "-" : fmt::format("{:.2f}/{:.2f}", mean(p), MedianOf(p));
+    const std::string psnr = p.empty() ? "-" : fmt::format("{:.2f}/{:.2f}", mean(p), MedianOf(p));
     const std::string med = lum.empty() ? "-" : fmt::format("{:.1f}%", 100 * MedianOf(lum));
     fmt::print(out, "{:<26} {:<8} {:>5} {:>15} {:>8} {:>9.5f}/{:<9.5f} {:>9.1f} {:>6} {:>6}\n",
                model, loss, fits, psnr, med, mean(l), MedianOf(l), MedianOf(t), chosen, failed);
@@ -186,9 +185,8 @@ int RunFit(const FitCliOptions& o) {
     state->on_disk = entries;
     ++state->writes;
   };
-  SetInterruptHook([state, report = o.out](int sig, int drained) {
-    OnInterrupt(*state, report, sig, drained);
-  });
+  SetInterruptHook(
+      [state, report = o.out](int sig, int drained) { OnInterrupt(*state, report, sig, drained); });
   const HookReset reset_hook;
   const OutputLock report_lock(o.out);
 
@@ -262,8 +260,9 @@ Registrar reg{
           ->delimiter(',')
           ->capture_default_str();
       sub.add_option("--diffuse", o->diffuse,
-                     "diffuse lobe added to bare specular names: ggx -> lambert+ggx (none: fit "
-                     "names as given)")
+                     "diffuse lobe added to bare specular names (lambert, oren-nayar, burley): "
+                     "ggx -> lambert+ggx; a name without that sum in the catalog is refused "
+                     "(none: fit names as given)")
           ->capture_default_str();
       sub.add_option("--loss", o->fit.loss,
                      "rel (default) | logratio | log (Low 2012 E2) | cbrt | l2; with --model "

@@ -447,6 +447,12 @@ std::string FitParamsJson(std::vector<FitReportEntry> entries, bool run_details)
     nlohmann::ordered_json params = nlohmann::ordered_json::object();
     for (std::size_t i = 0; i < r.params.size(); ++i) params[r.param_names[i]] = r.params[i];
     j["params"] = params;
+    // The parameters that ended on one of their bounds, by name (the HDF5 entry's at_bound).
+    nlohmann::ordered_json at_bound = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < r.params.size() && i < r.at_bound.size(); ++i) {
+      if (r.at_bound[i]) at_bound.push_back(r.param_names[i]);
+    }
+    j["at_bound"] = at_bound;
     j["metrics"] = {{"log_rmse", r.metrics.log_rmse},
                     {"cbrt_rmse", r.metrics.cbrt_rmse},
                     {"rel_l2", r.metrics.rel_l2},

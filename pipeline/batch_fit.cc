@@ -1,15 +1,17 @@
 #include "pipeline/batch_fit.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cctype>
 #include <chrono>
 #include <exception>
-#include <memory>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <set>
+#include <string_view>
 #include <thread>
 #include <tuple>
 
@@ -61,13 +63,39 @@ std::vector<FitReportEntry> ReadKept(const fs::path& report, bool force) {
   }
 }
 
+// The diffuse bodies `--diffuse` may name, and the single models that carry a diffuse term of
+// their own (ue4's (1 - m) base / pi): neither is a bare specular name.
+constexpr std::array<std::string_view, 3> kDiffuseModels = {"lambert", "oren-nayar", "burley"};
+constexpr std::array<std::string_view, 1> kOwnDiffuseModels = {"ue4"};
+
+bool IsDiffuseModel(std::string_view name) {
+  return std::find(kDiffuseModels.begin(), kDiffuseModels.end(), name) != kDiffuseModels.end();
+}
+
+// A name without a diffuse lobe: one specular lobe or a sum of them ("ggx", "ggx+ggx").
+bool IsBareSpecular(const std::string& name) {
+  const std::string first = name.substr(0, name.find('+'));
+  return !IsDiffuseModel(first) && std::find(kOwnDiffuseModels.begin(), kOwnDiffuseModels.end(),
+                                             first) == kOwnDiffuseModels.end();
+}
+
+// The specular parts S of the catalog's "diffuse+S" sums, for the error message.
+std::string SpecularPartsOf(const std::string& diffuse) {
+  std::string out;
+  for (const std::string& k : FittableModels()) {
+    if (k.rfind(diffuse + "+", 0) == 0)
+      out += (out.empty() ? "" : ", ") + k.substr(diffuse.size() + 1);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<std::string> ResolveModelNames(const std::vector<std::string>& requested,
                                            const std::string& diffuse) {
-  if (diffuse != "none" && diffuse != "lambert" && !IsFittable(diffuse)) {
+  if (diffuse != "none" && !IsDiffuseModel(diffuse)) {
     throw InputError("--diffuse '" + diffuse +
-                     "' is not a model (expected none or a diffuse model)");
+                     "' is not a diffuse model (expected none, lambert, oren-nayar or burley)");
   }
   std::vector<std::string> out;
   for (const std::string& n : requested) {
@@ -84,7 +112,18 @@ std::vector<std::string> ResolveModelNames(const std::vector<std::string>& reque
       name = base;
       for (int k = 1; k < lobes; ++k) name += "+" + base;
     }
-    if (diffuse != "none" && IsFittable(diffuse + "+" + name)) name = diffuse + "+" + name;
+    // Every bare specular name gets the diffuse lobe, or is refused: fitting it alone would
+    // silently drop the diffuse part of the material (issue 15 item 5).
+    if (diffuse != "none" && IsBareSpecular(name)) {
+      if (IsFittable(diffuse + "+" + name)) {
+        name = diffuse + "+" + name;
+      } else if (IsFittable(name)) {
+        throw InputError("model '" + n + "' with --diffuse " + diffuse + ": the catalog has no " +
+                         diffuse + "+" + name + " (" + diffuse +
+                         "+ pairs with: " + SpecularPartsOf(diffuse) + "); --diffuse none fits " +
+                         name + " without a diffuse lobe");
+      }
+    }
     if (!IsFittable(name)) {
       std::string known;
       for (const auto& k : FittableModels()) known += (known.empty() ? "" : ", ") + k;
@@ -165,7 +204,7 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
     return planned_keys.count({e.source, e.result.model, e.options}) > 0;
   });
 
-  std::mutex mu;  // guards result, progress, checkpoints and write_error
+  std::mutex mu;                   // guards result, progress, checkpoints and write_error
   std::exception_ptr write_error;  // a failed checkpoint's OutputError
   auto last_write = Clock::now();
   auto write_report = [&](bool final) {

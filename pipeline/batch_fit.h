@@ -26,8 +26,8 @@ namespace brdfit::pipeline {
 
 // One model to fit to every input, under the request's loss or its own.
 struct ModelRun {
-  std::string model;              // registry name (ResolveModelNames)
-  std::optional<LossKind> loss;   // nullopt: BatchFitRequest::fit.loss
+  std::string model;             // registry name (ResolveModelNames)
+  std::optional<LossKind> loss;  // nullopt: BatchFitRequest::fit.loss
   bool operator==(const ModelRun&) const = default;
 };
 
@@ -38,10 +38,8 @@ struct ModelRun {
 // lowers the median luminance error most (8.8 % -> 7.4 %); a sixth pair buys 0.3 dB for 20 %
 // more time.
 inline const std::vector<ModelRun> kAutoCandidates = {
-    {"lambert+ggx+ggx", LossKind::kRel},
-    {"lambert+abc", LossKind::kLogRatio},
-    {"lambert+ggx-f0", LossKind::kLogRatio},
-    {"lambert+abc", LossKind::kRel},
+    {"lambert+ggx+ggx", LossKind::kRel},     {"lambert+abc", LossKind::kLogRatio},
+    {"lambert+ggx-f0", LossKind::kLogRatio}, {"lambert+abc", LossKind::kRel},
     {"burley+ggx", LossKind::kRel},
 };
 
@@ -83,9 +81,11 @@ void MarkChosenFits(std::vector<FitReportEntry>& entries);
 
 // Model names as `brdfit fit --model` takes them: "NAME:N" is N lobes of NAME
 // ("lafortune:2" -> "lafortune+lafortune"); then, with diffuse D other than "none", a name N
-// becomes "D+N" when the catalog has it (measured materials have a diffuse part). Names that
-// already include a diffuse lobe, diffuse models, and names without a "D+N" entry stay as
-// given; duplicates are dropped. Throws InputError for an unknown name or diffuse model.
+// becomes "D+N" (measured materials have a diffuse part); D is lambert, oren-nayar or burley.
+// Names that already include a diffuse lobe, diffuse models and ue4 (its own diffuse term)
+// stay as given; a bare specular name without a "D+N" entry in the catalog is an InputError
+// (never fitted without its diffuse lobe unless D is "none"); duplicates are dropped. Throws
+// InputError for an unknown name or diffuse model.
 std::vector<std::string> ResolveModelNames(const std::vector<std::string>& requested,
                                            const std::string& diffuse);
 

@@ -17,6 +17,11 @@ PACKAGES=(
 if [[ "${BRDFIT_WITH_CLANG:-0}" == 1 ]]; then
   PACKAGES+=(clang libclang-rt-14-dev)
 fi
+# node + npm for the Khronos glTF-Validator of tests/export (pinned in tools/gltf/package-lock.json,
+# installed by the test with `npm ci`): Debian's, unless a node with npm is already installed.
+if ! command -v npm >/dev/null 2>&1; then
+  PACKAGES+=(nodejs npm)
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -1,0 +1,70 @@
+// `brdfit export FITS --format gltf|glb|mitsuba|pbrt [--material NAME] [--model NAME] -o OUT`:
+// one fit of a fit report or JSON parameters as a glTF 2.0 asset, a Mitsuba 3 scene or a pbrt-v4
+// scene (export/, docs/exports.md). What the target cannot express exactly is said in the file
+// and on stderr.
+#include <fmt/core.h>
+
+#include <filesystem>
+#include <string>
+
+#include "cli/command.h"
+#include "export/write_export.h"
+#include "io/fit_params_json.h"
+#include "io/output_policy.h"
+
+namespace brdfit::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ExportOptions {
+  std::string fits, format, material, model, out;
+  bool quiet = false;
+};
+
+int RunExport(const ExportOptions& o) {
+  const exports::Format format = exports::FormatFromString(o.format);
+  std::vector<PlannedOutput> outs = {{o.out, "-o"}};
+  if (format == exports::Format::kGltf) {
+    outs.push_back({fs::path(o.out).replace_extension(".bin"), "-o (its .bin)"});
+  }
+  CheckOutputs({o.fits}, outs);
+  const std::vector<FitReportEntry> entries = ReadFitsAnyFormat(o.fits);
+  const FitReportEntry& e = exports::SelectEntry(entries, o.material, o.model, format);
+  const exports::ExportOutcome r = exports::WriteExport(e, o.fits, format, o.out);
+  for (const std::string& a : r.fidelity.approximations) {
+    fmt::print(stderr, "brdfit: export: approximate: {}\n", a);
+  }
+  if (!o.quiet) {
+    std::string files;
+    for (const auto& p : r.written) files += (files.empty() ? "" : ", ") + p.string();
+    fmt::print("{} {} ({}) -> {} [{}]\n", e.material, e.result.model, e.source, files,
+               r.fidelity.Exact() ? "exact" : "approximate");
+  }
+  return kExitOk;
+}
+
+Registrar reg{
+    "export", "Write a fitted material for glTF 2.0, Mitsuba 3 or pbrt-v4 (a sphere scene with it)",
+    [](CLI::App& sub) {
+      auto o = std::make_shared<ExportOptions>();
+      sub.add_option("fits", o->fits, "fit report (.h5) or JSON parameters of brdfit fit")
+          ->required();
+      sub.add_option("--format", o->format, "gltf (.gltf + .bin) | glb | mitsuba | pbrt")
+          ->required();
+      sub.add_option("--material", o->material, "material to export (when the fits hold several)");
+      sub.add_option("--model", o->model,
+                     "fit to export (default: the one exact for the target, lambert+ggx-hc; "
+                     "lambert+ggx for mitsuba; else the chosen fit)");
+      sub.add_option("-o,--out", o->out, "output file")->required();
+      sub.add_flag("-q,--quiet", o->quiet, "no summary line");
+      sub.footer(
+          "Exit codes: 0 ok, 2 bad input or output. Exportable models: lambert+ggx-hc, "
+          "lambert+ggx, lambert+ggx-f0, ue4; docs/exports.md has the mappings.\n"
+          "Examples:\n  brdfit fit gold.binary --model ggx-hc --json fits.json\n"
+          "  brdfit export fits.json --format glb -o gold.glb");
+      return [o] { return RunExport(*o); };
+    }};
+
+}  // namespace
+}  // namespace brdfit::cli

@@ -1,0 +1,69 @@
+#include "export/lobe_material.h"
+
+#include <string_view>
+
+#include "core/error.h"
+
+namespace brdfit::exports {
+
+namespace {
+
+double Param(const FitResult& fit, std::string_view name) {
+  for (std::size_t i = 0; i < fit.param_names.size(); ++i) {
+    if (fit.param_names[i] == name) return fit.params[i];
+  }
+  throw InputError("fit of " + fit.model + " has no parameter " + std::string(name));
+}
+
+Rgb Triple(const FitResult& fit, const std::string& prefix) {
+  return {Param(fit, prefix + "_r"), Param(fit, prefix + "_g"), Param(fit, prefix + "_b")};
+}
+
+}  // namespace
+
+const char* ExportableModels() {
+  return "lambert+ggx-hc, lambert+ggx, lambert+ggx-f0, ue4";
+}
+
+bool IsExportable(const std::string& model) {
+  return model == "lambert+ggx-hc" || model == "lambert+ggx" || model == "lambert+ggx-f0" ||
+         model == "ue4";
+}
+
+LobeMaterial FromFit(const FitResult& fit) {
+  if (fit.Failed()) throw InputError("the fit of " + fit.model + " failed: nothing to export");
+  if (!IsExportable(fit.model)) {
+    throw InputError("model " + fit.model + " cannot be exported (exportable: " +
+                     ExportableModels() + "; fit one of those, e.g. --model lambert+ggx-hc)");
+  }
+  LobeMaterial m;
+  m.model = fit.model;
+  if (fit.model == "ue4") {
+    m.ue4 = true;
+    m.base = Triple(fit, "base");
+    m.metallic = Param(fit, "metallic");
+    m.alpha = Param(fit, "alpha");
+    m.masking = Masking::kSchlickSmithUe4;
+    m.fresnel = LobeFresnel::kSchlick;
+    for (int c = 0; c < 3; ++c) {
+      m.kd[c] = (1 - m.metallic) * m.base[c];
+      m.spec[c] = 0.04 * (1 - m.metallic) + m.base[c] * m.metallic;
+    }
+    return m;
+  }
+  m.kd = Triple(fit, "lambert.kd");
+  if (fit.model == "lambert+ggx-f0") {
+    m.spec = Triple(fit, "ggx-f0.f0");
+    m.alpha = Param(fit, "ggx-f0.alpha");
+    m.masking = Masking::kHeightCorrelated;
+    m.fresnel = LobeFresnel::kSchlick;
+  } else {
+    const std::string lobe = fit.model == "lambert+ggx" ? "ggx" : "ggx-hc";
+    m.spec = Triple(fit, lobe + ".ks");
+    m.alpha = Param(fit, lobe + ".alpha");
+    m.masking = lobe == "ggx" ? Masking::kSeparable : Masking::kHeightCorrelated;
+  }
+  return m;
+}
+
+}  // namespace brdfit::exports

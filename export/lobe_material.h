@@ -1,0 +1,45 @@
+// A fit as "Lambert + one GGX lobe", the form every export target is built from
+// (docs/exports.md): which fitted models can be exported and what their parameters mean.
+#pragma once
+
+#include <array>
+#include <string>
+
+#include "core/result.h"
+
+namespace brdfit::exports {
+
+using Rgb = std::array<double, 3>;
+
+// How the source's GGX lobe masks: brdfit's ggx (separable Smith, Walter 2007 eq. 34 squared),
+// ggx-hc / ggx-f0 (height-correlated, Heitz 2014 eq. 99), ue4 (Schlick-Smith, Karis 2013 eq. 4).
+enum class Masking { kSeparable, kHeightCorrelated, kSchlickSmithUe4 };
+
+// The source's Fresnel: none (ks has it folded in: a constant weight, NOT F0), or Schlick's
+// with a per-channel F0.
+enum class LobeFresnel { kFoldedIntoKs, kSchlick };
+
+//   f_r = kd / pi + spec D_GGX(alpha) G / (4 cos_i cos_o)                 (kFoldedIntoKs)
+//   f_r = kd / pi + F_Schlick(spec, cos_d) D_GGX(alpha) G / (4 cos_i cos_o) (kSchlick)
+// and, for ue4, its own metallic-roughness parameters (diffuse (1 - m) base / pi, F0 =
+// mix(0.04, base, m)), which kd and spec restate without the Schlick-Smith G.
+struct LobeMaterial {
+  std::string model;  // registry name of the source fit
+  Rgb kd{};           // Lambert albedo (f_d = kd / pi)
+  Rgb spec{};         // ks (kFoldedIntoKs) or F0 (kSchlick)
+  double alpha = 0;   // GGX alpha (glTF / Blender roughness = sqrt(alpha))
+  Masking masking = Masking::kSeparable;
+  LobeFresnel fresnel = LobeFresnel::kFoldedIntoKs;
+  bool ue4 = false;  // then base and metallic hold its own parameters
+  Rgb base{};
+  double metallic = 0;
+};
+
+// The models export reads, comma-separated, for messages.
+const char* ExportableModels();
+bool IsExportable(const std::string& model);
+
+// Throws InputError for a failed fit or a model outside ExportableModels().
+LobeMaterial FromFit(const FitResult& fit);
+
+}  // namespace brdfit::exports

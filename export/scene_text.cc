@@ -1,0 +1,109 @@
+#include "export/scene_text.h"
+
+#include <fmt/core.h>
+
+namespace brdfit::exports {
+
+namespace {
+
+// Text safe inside an XML comment and a pbrt '#' comment: printable ASCII, no "--".
+std::string CommentSafe(const std::string& s) {
+  std::string out;
+  for (const char ch : s) {
+    const unsigned char c = static_cast<unsigned char>(ch);
+    const char keep = c >= 0x20 && c < 0x7f ? ch : '?';
+    if (keep == '-' && !out.empty() && out.back() == '-') out += ' ';
+    out += keep;
+  }
+  if (!out.empty() && out.back() == '-') out += ' ';
+  return out;
+}
+
+// A string value for pbrt ("..." without quotes or newlines).
+std::string PbrtString(const std::string& s) {
+  std::string out;
+  for (const char ch : s) {
+    const unsigned char c = static_cast<unsigned char>(ch);
+    out += c >= 0x20 && c < 0x7f && ch != '"' && ch != '\\' ? ch : '_';
+  }
+  return out;
+}
+
+std::string Rgb3(const Rgb& v, const char* sep) {
+  return fmt::format("{:.9g}{}{:.9g}{}{:.9g}", v[0], sep, v[1], sep, v[2]);
+}
+
+}  // namespace
+
+std::string MitsubaScene(const MitsubaBlend& b, const Provenance& p) {
+  std::string s = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<!--\n";
+  for (const std::string& line : p.Lines()) s += "  " + CommentSafe(line) + "\n";
+  s +=
+      "  Material: blendbsdf(weight w) of diffuse(R) and roughconductor(ggx, alpha,\n"
+      "  material=none, specular_reflectance S) = (1 - w) R / pi + w S D G1 G1 / (4 cos_i cos_o).\n"
+      "  Render: mitsuba -m scalar_rgb this.xml (docs/exports.md)\n-->\n";
+  s += "<scene version=\"3.0.0\">\n";
+  s += "  <integrator type=\"path\">\n    <integer name=\"max_depth\" value=\"3\"/>\n"
+       "  </integrator>\n";
+  s += "  <sensor type=\"perspective\">\n    <float name=\"fov\" value=\"30\"/>\n"
+       "    <transform name=\"to_world\">\n"
+       "      <lookat origin=\"0, 0, 4.2\" target=\"0, 0, 0\" up=\"0, 1, 0\"/>\n"
+       "    </transform>\n"
+       "    <sampler type=\"independent\">\n      <integer name=\"sample_count\" value=\"64\"/>\n"
+       "    </sampler>\n"
+       "    <film type=\"hdrfilm\">\n      <integer name=\"width\" value=\"256\"/>\n"
+       "      <integer name=\"height\" value=\"256\"/>\n    </film>\n  </sensor>\n";
+  s += fmt::format(
+      "  <bsdf type=\"blendbsdf\" id=\"brdfit-material\">\n"
+      "    <float name=\"weight\" value=\"{:.9g}\"/>\n"
+      "    <bsdf type=\"diffuse\">\n      <rgb name=\"reflectance\" value=\"{}\"/>\n    </bsdf>\n"
+      "    <bsdf type=\"roughconductor\">\n"
+      "      <string name=\"distribution\" value=\"ggx\"/>\n"
+      "      <float name=\"alpha\" value=\"{:.9g}\"/>\n"
+      "      <string name=\"material\" value=\"none\"/>\n"
+      "      <rgb name=\"specular_reflectance\" value=\"{}\"/>\n    </bsdf>\n  </bsdf>\n",
+      b.weight, Rgb3(b.diffuse_reflectance, ", "), b.alpha, Rgb3(b.specular_reflectance, ", "));
+  s += "  <shape type=\"sphere\">\n    <ref id=\"brdfit-material\"/>\n  </shape>\n";
+  s += "  <emitter type=\"directional\">\n    <vector name=\"direction\" value=\"-1, -1, -1\"/>\n"
+       "    <rgb name=\"irradiance\" value=\"3, 3, 3\"/>\n  </emitter>\n";
+  s += "</scene>\n";
+  return s;
+}
+
+std::string PbrtScene(const PbrtMix& m, const Provenance& p, const std::string& image_name) {
+  std::string s;
+  for (const std::string& line : p.Lines()) s += "# " + CommentSafe(line) + "\n";
+  s += "# Material: mix(amount a) of diffuse(R) and conductor(reflectance r, roughness alpha,\n"
+       "# remaproughness false) = (1 - a) R / pi + a F_r D G / (4 cos_i cos_o).\n"
+       "# Render: pbrt this.pbrt (docs/exports.md)\n\n";
+  s += "LookAt 0 0 4.2  0 0 0  0 1 0\n";
+  s += "Camera \"perspective\" \"float fov\" [ 30 ]\n";
+  s += fmt::format(
+      "Film \"rgb\" \"integer xresolution\" [ 256 ] \"integer yresolution\" [ 256 ]\n"
+      "    \"string filename\" [ \"{}\" ]\n",
+      PbrtString(image_name));
+  s += "Sampler \"zsobol\" \"integer pixelsamples\" [ 64 ]\n";
+  s += "Integrator \"volpath\" \"integer maxdepth\" [ 3 ]\n\n";
+  s += "WorldBegin\n\n";
+  s += "LightSource \"distant\" \"point3 from\" [ 1 1 1 ] \"point3 to\" [ 0 0 0 ]\n"
+       "    \"rgb L\" [ 3 3 3 ]\n\n";
+  s += fmt::format(
+      "MakeNamedMaterial \"brdfit-diffuse\" \"string type\" [ \"diffuse\" ]\n"
+      "    \"rgb reflectance\" [ {} ]\n",
+      Rgb3(m.diffuse_reflectance, " "));
+  s += fmt::format(
+      "MakeNamedMaterial \"brdfit-specular\" \"string type\" [ \"conductor\" ]\n"
+      "    \"rgb reflectance\" [ {} ]\n"
+      "    \"float roughness\" [ {:.9g} ] \"bool remaproughness\" [ false ]\n",
+      Rgb3(m.conductor_reflectance, " "), m.roughness);
+  s += fmt::format(
+      "MakeNamedMaterial \"brdfit-material\" \"string type\" [ \"mix\" ]\n"
+      "    \"string materials\" [ \"brdfit-diffuse\" \"brdfit-specular\" ]\n"
+      "    \"float amount\" [ {:.9g} ]\n\n",
+      m.amount);
+  s += "AttributeBegin\n  NamedMaterial \"brdfit-material\"\n"
+       "  Shape \"sphere\" \"float radius\" [ 1 ]\nAttributeEnd\n";
+  return s;
+}
+
+}  // namespace brdfit::exports

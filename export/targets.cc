@@ -1,0 +1,184 @@
+#include "export/targets.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace brdfit::exports {
+
+namespace {
+
+// 1 / ((1.5 - 1) / (1.5 + 1))^2: the specularColorFactor of F0 = 1 at glTF's default ior 1.5.
+constexpr double kSpecularColorPerF0 = 25.0;
+
+double Max(const Rgb& v) {
+  return std::max({v[0], v[1], v[2]});
+}
+bool Grey(const Rgb& v) {
+  return Max(v) - std::min({v[0], v[1], v[2]}) <= 1e-9 * Max(v);
+}
+
+// A Fresnel that is f0 = ks / max ks at normal incidence and 1 at grazing: the weakest
+// channel's factor at grazing, max ks / min ks.
+double GrazingFactor(const Rgb& ks) {
+  const double lo = std::min({ks[0], ks[1], ks[2]});
+  return lo > 0 ? Max(ks) / lo : std::numeric_limits<double>::infinity();
+}
+
+std::string Fmt3(const Rgb& v) {
+  return fmt::format("({:.4g}, {:.4g}, {:.4g})", v[0], v[1], v[2]);
+}
+
+// kd / (1 - w), clipped to 1 (an albedo), noting the clip.
+Rgb DiffuseOver(const Rgb& kd, double w, const char* what, Fidelity* f) {
+  Rgb out{};
+  bool clipped = false;
+  for (int c = 0; c < 3; ++c) {
+    const double v = w < 1 ? kd[c] / (1 - w) : (kd[c] > 0 ? 2.0 : 0.0);
+    out[c] = std::min(v, 1.0);
+    clipped = clipped || v > 1;
+  }
+  if (clipped) {
+    f->approximations.push_back(fmt::format(
+        "{} kd / (1 - {:.4g}) exceeds 1 for kd = {}: clipped to 1 (the diffuse part is darker)",
+        what, w, Fmt3(kd)));
+  }
+  return out;
+}
+
+void NoteMasking(const LobeMaterial& m, Masking target, const char* target_name, Fidelity* f) {
+  if (m.masking == target) return;
+  const char* src = m.masking == Masking::kSeparable          ? "separable Smith G (brdfit ggx)"
+                    : m.masking == Masking::kHeightCorrelated ? "height-correlated Smith G"
+                                                              : "Schlick-Smith G (ue4)";
+  const char* dst = target == Masking::kSeparable ? "separable" : "height-correlated";
+  f->approximations.push_back(fmt::format(
+      "{} masks with {} Smith G, the fit with {}: same alpha exported, the lobe differs towards "
+      "grazing (fit lambert+{} for an exact export)",
+      target_name, dst, src, target == Masking::kSeparable ? "ggx" : "ggx-hc"));
+}
+
+// The constant-weight lobe an F0 lobe is nearest to at normal incidence, for targets without
+// a Schlick Fresnel on a free weight.
+Rgb ConstantWeight(const LobeMaterial& m, const char* target_name, Fidelity* f) {
+  if (m.fresnel == LobeFresnel::kFoldedIntoKs) return m.spec;
+  f->approximations.push_back(fmt::format(
+      "{}: the fit's Schlick Fresnel (F0 = {}) is exported as a constant weight F0 (no rise "
+      "towards grazing)",
+      target_name, Fmt3(m.spec)));
+  if (m.ue4) {
+    f->approximations.push_back(
+        "ue4's base colour and metallic are exported as Lambert kd = (1 - m) base and F0 = "
+        "mix(0.04, base, m)");
+  }
+  return m.spec;
+}
+
+}  // namespace
+
+GltfPbr ToGltf(const LobeMaterial& m) {
+  GltfPbr g;
+  g.roughness = std::sqrt(std::max(m.alpha, 0.0));
+  Fidelity& f = g.fidelity;
+  if (m.ue4) {
+    // Karis 2013 is glTF's own parameterization: base colour, metallic, roughness = sqrt(alpha).
+    g.base_color = m.base;
+    g.metallic = m.metallic;
+    NoteMasking(m, Masking::kHeightCorrelated, "glTF", &f);
+    f.approximations.push_back(
+        "glTF weights the dielectric diffuse by (1 - F) (Appendix B fresnel_mix), ue4 does not");
+    return g;
+  }
+  NoteMasking(m, Masking::kHeightCorrelated, "glTF", &f);
+  // The default ior 1.5 gives ((ior - 1)/(ior + 1))^2 = 0.04, so specularColor = 25 F0 puts F0
+  // itself under KHR_materials_specular's min(0.04 specularColor, 1) (specularColorFactor has
+  // no upper bound). KHR_materials_ior's ior = 0 would do the same, but three.js documents ior
+  // in [1, 2.333]: the default ior is what every viewer reads alike.
+  g.specular_ext = true;
+  if (m.fresnel == LobeFresnel::kSchlick) {
+    // Fr = F0 + (1 - F0)(1 - v.h)^5 with w = 1 is the fit's lobe; the diffuse is weighted by
+    // 1 - max(Fr) in glTF and by 1 in the fit: matched at normal incidence.
+    g.specular_factor = 1;
+    for (int c = 0; c < 3; ++c) g.specular_color[c] = kSpecularColorPerF0 * m.spec[c];
+    const double f0 = std::min(Max(m.spec), 0.999);
+    g.base_color = DiffuseOver(m.kd, f0, "glTF base colour", &f);
+    f.approximations.push_back(fmt::format(
+        "glTF weights the diffuse by 1 - max(Fr) (the fit by 1): base colour = kd / (1 - {:.4g}), "
+        "exact at normal incidence, darker towards grazing",
+        f0));
+    return g;
+  }
+  // ks has Fresnel folded in: a constant weight, not F0. Fr = 1 for the largest channel
+  // (specularColor = ks / max ks), so w max(Fr) = w = max ks and the diffuse weight 1 - w is
+  // constant: exact for a grey ks; a coloured ks is exact at normal incidence and whitens
+  // towards grazing in its other channels.
+  double w = Max(m.spec);
+  if (w > 1) {
+    f.approximations.push_back(
+        fmt::format("max ks = {:.4g} > 1: glTF's specular factor is clipped to 1", w));
+    w = 1;
+  }
+  g.specular_factor = w;
+  for (int c = 0; c < 3; ++c) {
+    g.specular_color[c] = kSpecularColorPerF0 * (w > 0 ? std::min(m.spec[c] / w, 1.0) : 1.0);
+  }
+  if (!Grey(m.spec)) {
+    f.approximations.push_back(fmt::format(
+        "coloured ks = {}: glTF's Fresnel rises to white at grazing, so the channels below the "
+        "largest are exact at normal incidence only (up to {:.4g} times too bright at grazing)",
+        Fmt3(m.spec), GrazingFactor(m.spec)));
+  }
+  g.base_color = DiffuseOver(m.kd, w, "glTF base colour", &f);
+  return g;
+}
+
+MitsubaBlend ToMitsuba(const LobeMaterial& m) {
+  MitsubaBlend b;
+  Fidelity& f = b.fidelity;
+  b.alpha = m.alpha;
+  NoteMasking(m, Masking::kSeparable, "Mitsuba 3 roughconductor", &f);
+  const Rgb ks = ConstantWeight(m, "Mitsuba 3", &f);
+  // (1 - w) R / pi + w S lobe with R = kd / (1 - w), S = ks / w; w splits the two so that both
+  // reflectances stay in [0, 1] when kd + ks <= 1.
+  const double kd_max = Max(m.kd), ks_max = Max(ks);
+  b.weight = ks_max + kd_max > 0 ? ks_max / (ks_max + kd_max) : 0.5;
+  for (int c = 0; c < 3; ++c) b.specular_reflectance[c] = b.weight > 0 ? ks[c] / b.weight : 0;
+  b.diffuse_reflectance = DiffuseOver(m.kd, b.weight, "Mitsuba diffuse reflectance", &f);
+  if (Max(b.specular_reflectance) > 1) {
+    f.approximations.push_back(
+        "kd + ks exceeds 1: the specular_reflectance is above 1 (exact in Mitsuba's RGB "
+        "variants, clipped by its spectral ones)");
+  }
+  return b;
+}
+
+PbrtMix ToPbrt(const LobeMaterial& m) {
+  PbrtMix p;
+  Fidelity& f = p.fidelity;
+  p.roughness = m.alpha;
+  NoteMasking(m, Masking::kHeightCorrelated, "pbrt-v4 conductor", &f);
+  const Rgb ks = ConstantWeight(m, "pbrt-v4", &f);
+  // The conductor's Fresnel is at most 1: its reflectance is ks / max ks (pbrt clamps to
+  // 0.9999, so F >= 0.9999 for a grey ks) and the mix amount carries max ks.
+  double a = Max(ks);
+  if (a > 1) {
+    f.approximations.push_back(
+        fmt::format("max ks = {:.4g} > 1: pbrt-v4's mix amount is clipped to 1", a));
+    a = 1;
+  }
+  p.amount = a;
+  for (int c = 0; c < 3; ++c) p.conductor_reflectance[c] = a > 0 ? std::min(ks[c] / a, 1.0) : 1.0;
+  if (!Grey(ks)) {
+    f.approximations.push_back(fmt::format(
+        "coloured ks = {}: pbrt-v4's conductor Fresnel (eta = 1, k from reflectance) rises to "
+        "white at grazing, so the channels below the largest are exact at normal incidence only "
+        "(up to {:.4g} times too bright at grazing)",
+        Fmt3(ks), GrazingFactor(ks)));
+  }
+  p.diffuse_reflectance = DiffuseOver(m.kd, a, "pbrt-v4 diffuse reflectance", &f);
+  return p;
+}
+
+}  // namespace brdfit::exports

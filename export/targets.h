@@ -1,0 +1,59 @@
+// A LobeMaterial in each target renderer's own parameters, with what the target cannot express
+// (docs/exports.md has the formulas and the tables; tests/export checks them against the
+// targets' documented BSDFs).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "export/lobe_material.h"
+
+namespace brdfit::exports {
+
+// What did not carry over exactly; empty = exact (up to the noted tolerance of the target).
+struct Fidelity {
+  std::vector<std::string> approximations;
+  bool Exact() const { return approximations.empty(); }
+};
+
+// glTF 2.0 metallic-roughness (Appendix B) with KHR_materials_specular and KHR_materials_ior:
+// dielectric = (1 - w max(Fr)) baseColor / pi + w Fr D V, Fr = f0 + (1 - f0)(1 - v.h)^5,
+// f0 = min(((ior - 1)/(ior + 1))^2 specularColor, 1), w = specularFactor; V height-correlated.
+// The default ior 1.5 is kept (0.04 specularColor = F0), so ior_ext stays false.
+struct GltfPbr {
+  Rgb base_color{};
+  double metallic = 0;
+  double roughness = 0;  // sqrt(alpha)
+  bool specular_ext = false;
+  double specular_factor = 1;
+  Rgb specular_color{1, 1, 1};
+  bool ior_ext = false;
+  double ior = 1.5;
+  Fidelity fidelity;
+};
+GltfPbr ToGltf(const LobeMaterial& m);
+
+// Mitsuba 3: blendbsdf(weight) of diffuse(reflectance) and roughconductor(ggx, alpha,
+// material="none", specular_reflectance): (1 - w) R / pi + w S D G1 G1 / (4 cos_i cos_o).
+struct MitsubaBlend {
+  double weight = 0;
+  Rgb diffuse_reflectance{};
+  Rgb specular_reflectance{};
+  double alpha = 0;
+  Fidelity fidelity;
+};
+MitsubaBlend ToMitsuba(const LobeMaterial& m);
+
+// pbrt-v4: mix(amount) of diffuse(reflectance) and conductor(reflectance, roughness = alpha,
+// remaproughness false): (1 - a) R / pi + a F_conductor D G / (4 cos_i cos_o), G
+// height-correlated; reflectance r gives eta = 1, k = 2 sqrt(r) / sqrt(1 - r), r <= 0.9999.
+struct PbrtMix {
+  double amount = 0;
+  Rgb diffuse_reflectance{};
+  Rgb conductor_reflectance{};
+  double roughness = 0;
+  Fidelity fidelity;
+};
+PbrtMix ToPbrt(const LobeMaterial& m);
+
+}  // namespace brdfit::exports

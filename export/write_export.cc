@@ -1,0 +1,122 @@
+#include "export/write_export.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+#include "export/gltf.h"
+#include "export/lobe_material.h"
+#include "export/provenance.h"
+#include "export/scene_text.h"
+#include "io/atomic_file.h"
+
+namespace brdfit::exports {
+
+namespace fs = std::filesystem;
+
+Format FormatFromString(const std::string& s) {
+  if (s == "gltf") return Format::kGltf;
+  if (s == "glb") return Format::kGlb;
+  if (s == "mitsuba") return Format::kMitsuba;
+  if (s == "pbrt") return Format::kPbrt;
+  throw InputError("--format '" + s + "': expected gltf, glb, mitsuba or pbrt");
+}
+
+const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
+                                  const std::string& material, const std::string& model,
+                                  Format format) {
+  std::vector<std::string> materials;
+  for (const auto& e : entries) {
+    if (std::find(materials.begin(), materials.end(), e.material) == materials.end()) {
+      materials.push_back(e.material);
+    }
+  }
+  std::string list;
+  for (const auto& m : materials) list += (list.empty() ? "" : ", ") + m;
+  if (material.empty() && materials.size() > 1) {
+    throw InputError("the fits hold several materials (" + list + "): choose one with --material");
+  }
+  std::vector<const FitReportEntry*> of;
+  for (const auto& e : entries) {
+    if ((material.empty() || e.material == material) && !e.result.Failed()) of.push_back(&e);
+  }
+  if (of.empty()) {
+    throw InputError(material.empty() ? std::string("no successful fit to export")
+                                      : "no successful fit of material '" + material +
+                                            "' (materials: " + list + ")");
+  }
+  std::string models;
+  for (const auto* e : of) models += (models.empty() ? "" : ", ") + e->result.model;
+  if (!model.empty()) {
+    for (const auto* e : of) {
+      if (e->result.model == model) return *e;
+    }
+    throw InputError("no fit of model '" + model + "' (fitted: " + models + ")");
+  }
+  const std::string exact = format == Format::kMitsuba ? "lambert+ggx" : "lambert+ggx-hc";
+  for (const auto* e : of) {
+    if (e->result.model == exact) return *e;
+  }
+  for (const auto* e : of) {
+    if (e->chosen && IsExportable(e->result.model)) return *e;
+  }
+  const FitReportEntry* best = nullptr;
+  for (const auto* e : of) {
+    if (!IsExportable(e->result.model)) continue;
+    if (!best || e->result.metrics.log_rmse < best->result.metrics.log_rmse) best = e;
+  }
+  if (!best) {
+    throw InputError("none of the fits (" + models + ") can be exported: fit one of " +
+                     std::string(ExportableModels()) + " (" + exact + " is exact for this target)");
+  }
+  return *best;
+}
+
+ExportOutcome WriteExport(const FitReportEntry& entry, const std::string& fits_path, Format format,
+                          const fs::path& out) {
+  const LobeMaterial m = FromFit(entry.result);
+  ExportOutcome o;
+  switch (format) {
+    case Format::kGltf:
+    case Format::kGlb: {
+      const GltfPbr g = ToGltf(m);
+      o.fidelity = g.fidelity;
+      const Provenance p = ProvenanceOf(entry, fits_path, "glTF 2.0", g.fidelity);
+      if (format == Format::kGlb) {
+        const GltfFiles f = BuildGltf(g, p, "");
+        const std::vector<std::uint8_t> glb = PackGlb(f);
+        WriteBytesAtomically(out, glb.data(), glb.size());
+        o.written.push_back(out);
+      } else {
+        const fs::path bin = fs::path(out).replace_extension(".bin");
+        if (bin == out) {
+          throw OutputError(out, "a .gltf output named .bin would be its own buffer (-o x.gltf)");
+        }
+        const GltfFiles f = BuildGltf(g, p, bin.filename().string());
+        WriteBytesAtomically(bin, f.bin.data(), f.bin.size());
+        WriteTextAtomically(out, f.json);
+        o.written = {out, bin};
+      }
+      break;
+    }
+    case Format::kMitsuba: {
+      const MitsubaBlend b = ToMitsuba(m);
+      o.fidelity = b.fidelity;
+      WriteTextAtomically(out,
+                          MitsubaScene(b, ProvenanceOf(entry, fits_path, "Mitsuba 3", b.fidelity)));
+      o.written.push_back(out);
+      break;
+    }
+    case Format::kPbrt: {
+      const PbrtMix x = ToPbrt(m);
+      o.fidelity = x.fidelity;
+      const std::string image = fs::path(out).filename().replace_extension(".exr").string();
+      WriteTextAtomically(
+          out, PbrtScene(x, ProvenanceOf(entry, fits_path, "pbrt-v4", x.fidelity), image));
+      o.written.push_back(out);
+      break;
+    }
+  }
+  return o;
+}
+
+}  // namespace brdfit::exports

@@ -1,0 +1,127 @@
+#include "io/fit_params_json.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/error.h"
+#include "io/input_file.h"
+#include "io/model_params.h"
+#include "models/registry.h"
+
+namespace brdfit {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+double Number(const fs::path& p, const nlohmann::json& j, const char* key,
+              const std::string& where) {
+  if (!j.contains(key)) return 0;
+  if (!j[key].is_number()) throw InputError(p, where + "." + key + " is not a number");
+  return j[key].get<double>();
+}
+
+std::string String(const fs::path& p, const nlohmann::json& j, const char* key,
+                   const std::string& where) {
+  if (!j.contains(key)) return "";
+  if (!j[key].is_string()) throw InputError(p, where + "." + key + " is not a string");
+  return j[key].get<std::string>();
+}
+
+FitReportEntry Entry(const fs::path& p, const nlohmann::ordered_json& f, const std::string& where) {
+  if (!f.is_object()) throw InputError(p, where + " is not an object");
+  FitReportEntry e;
+  const nlohmann::json fj = f;
+  e.source = String(p, fj, "source", where);
+  e.material = String(p, fj, "material", where);
+  FitResult& r = e.result;
+  r.model = String(p, fj, "model", where);
+  r.message = String(p, fj, "message", where);
+  const std::string status = String(p, fj, "status", where);
+  r.status = status == "converged"        ? FitStatus::kConverged
+             : status == "no_convergence" ? FitStatus::kNoConvergence
+                                          : FitStatus::kFailed;
+  if (f.contains("params")) {
+    if (!f["params"].is_object()) throw InputError(p, where + ".params is not an object");
+    for (const auto& [name, value] : f["params"].items()) {
+      if (!value.is_number()) throw InputError(p, where + ".params." + name + " is not a number");
+      r.param_names.push_back(name);
+      r.params.push_back(value.get<double>());
+    }
+  }
+  r.at_bound.assign(r.params.size(), false);
+  if (fj.contains("at_bound") && fj["at_bound"].is_array()) {
+    for (const auto& n : fj["at_bound"]) {
+      for (std::size_t i = 0; i < r.param_names.size(); ++i) {
+        if (n.is_string() && n.get<std::string>() == r.param_names[i]) r.at_bound[i] = true;
+      }
+    }
+  }
+  if (!r.Failed()) {
+    const ModelInfo* m = FindModel(r.model);
+    if (!m) throw InputError(p, where + ".model '" + r.model + "' is not a registered model");
+    std::string bad = CheckModelParamNames(*m, r.param_names);
+    if (bad.empty()) bad = CheckModelParams(r.model, r.params);
+    if (!bad.empty()) throw InputError(p, where + ".params are not the model's: " + bad);
+  }
+  if (fj.contains("metrics") && fj["metrics"].is_object()) {
+    const nlohmann::json& m = fj["metrics"];
+    const std::string w = where + ".metrics";
+    r.metrics.ok = !r.Failed();
+    r.metrics.log_rmse = Number(p, m, "log_rmse", w);
+    r.metrics.cbrt_rmse = Number(p, m, "cbrt_rmse", w);
+    r.metrics.rel_l2 = Number(p, m, "rel_l2", w);
+    r.metrics.weighting = String(p, m, "weighting", w);
+    r.metrics.cutoff_deg = Number(p, m, "cutoff_deg", w);
+    if (m.contains("rendered") && m["rendered"].is_object()) {
+      const nlohmann::json& re = m["rendered"];
+      RenderedError& out = r.metrics.rendered;
+      out.ok = re.value("ok", false);
+      out.problem = String(p, re, "problem", w + ".rendered");
+      out.psnr_db = Number(p, re, "psnr_db", w + ".rendered");
+      out.psnr_srgb_db = Number(p, re, "psnr_srgb_db", w + ".rendered");
+      out.median_rel_error = Number(p, re, "median_rel_error", w + ".rendered");
+      out.p95_rel_error = Number(p, re, "p95_rel_error", w + ".rendered");
+      out.num_lights = 1;  // computed (io/metrics_json.h RenderedErrorComputed)
+    }
+  }
+  e.chosen = fj.value("chosen", false);
+  e.choice =
+      fj.contains("choice") && fj["choice"].is_string() ? fj["choice"].get<std::string>() : "";
+  return e;
+}
+
+}  // namespace
+
+std::vector<FitReportEntry> ReadFitParamsJson(const fs::path& path) {
+  const std::vector<char> bytes = ReadWholeFile(path);
+  const auto j = nlohmann::ordered_json::parse(bytes.begin(), bytes.end(), nullptr, false);
+  if (j.is_discarded() || !j.is_object()) throw InputError(path, "not a JSON object");
+  if (!j.contains("format") || j["format"] != "brdfit-fit-params") {
+    throw InputError(path, "not brdfit fit parameters (\"format\" is not \"brdfit-fit-params\")");
+  }
+  if (!j.contains("fits") || !j["fits"].is_array()) {
+    throw InputError(path, "\"fits\" is missing or not an array");
+  }
+  std::vector<FitReportEntry> out;
+  for (std::size_t i = 0; i < j["fits"].size(); ++i) {
+    out.push_back(Entry(path, j["fits"][i], fmt::format("fits[{}]", i)));
+  }
+  return out;
+}
+
+std::vector<FitReportEntry> ReadFitsAnyFormat(const fs::path& path) {
+  CheckInputFile(path);
+  const std::vector<char> head = ReadFilePrefix(path, 8);
+  static const char kHdf5Signature[] = "\x89HDF\r\n\x1a\n";
+  if (head.size() == 8 && std::equal(head.begin(), head.end(), kHdf5Signature)) {
+    return ReadFitReport(path);
+  }
+  return ReadFitParamsJson(path);
+}
+
+}  // namespace brdfit
