@@ -12,32 +12,23 @@
 // `brdfit compare OLD NEW`, each --repeats times, and prints the median wall times. A run over
 // --timeout seconds is killed and shown as "> T".
 #include <fmt/core.h>
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
-#include <cstring>
 #include <filesystem>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "bench/bench_tables.h"
+#include "bench/child_process.h"
 #include "io/fit_report.h"
 #include "io/hdf5_table.h"
 #include "models/registry.h"
-
-extern char** environ;
 
 namespace {
 
 using namespace brdfit;
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 std::vector<FitReportEntry> ManyFits(const fs::path& table, int n, double worse) {
   const char* models[] = {"lambert+ggx", "lambert+beckmann", "lambert+ward"};
@@ -92,39 +83,14 @@ std::vector<FitReportEntry> ManyFits(const fs::path& table, int n, double worse)
 // Seconds of one run, or a negative number if it exceeded the timeout (killed) or failed.
 double TimeRun(const std::string& exe, const std::vector<std::string>& args, double timeout_s,
                const fs::path& log) {
-  std::vector<std::string> argv_s = {exe};
-  argv_s.insert(argv_s.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : argv_s) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&fa, 1, 2);
-  pid_t pid = -1;
-  const auto t0 = Clock::now();
-  const int rc = posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) {
-    fmt::print(stderr, "cannot start {}: {}\n", exe, std::strerror(rc));
-    std::exit(2);
-  }
-  int status = 0;
-  while (waitpid(pid, &status, WNOHANG) == 0) {
-    if (std::chrono::duration<double>(Clock::now() - t0).count() > timeout_s) {
-      kill(pid, SIGKILL);
-      waitpid(pid, &status, 0);
-      return -1;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+  const bench::ChildRun run = bench::RunChild(exe, args, timeout_s, log);
+  if (run.timed_out) return -1;
   // compare exits 1 on the planted regressions: only a crash or exit 2 is a failure.
-  if (!WIFEXITED(status) || WEXITSTATUS(status) > 1) {
-    fmt::print(stderr, "{} failed (status {}); log {}\n", args[0], status, log.string());
+  if (run.exit_code > 1) {
+    fmt::print(stderr, "{} failed (exit {}); log {}\n", args[0], run.exit_code, log.string());
     return -2;
   }
-  return s;
+  return run.seconds;
 }
 
 std::string Median(std::vector<double> t, double timeout_s) {
