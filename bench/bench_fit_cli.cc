@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
   fs::create_directories(dir);
   const auto tables = WriteTables(dir);
   const double load_before = bench::LoadAverage();
-  fmt::print("brdfit fit T --model {} {} -q, one thread; medians of {} runs; {}\n", model, extra,
+  fmt::print("brdfit fit T --model {} {} -q (one thread unless --threads is given); medians of {} runs; {}\n", model, extra,
              repeats, exe);
   fmt::print(
       "| table | wall s | CPU s | peak RSS MB | load ms | prepare ms | init ms | solve ms | "

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <ctime>
 #include <memory>
+#include <thread>
 
 #include "fit/grid_init.h"
 #include "fit/metrics.h"
@@ -263,11 +264,23 @@ FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& lo
   // 3. Metrics on the metric set.
   t0 = Clock::now();
   c0 = ThreadCpuMs();
-  std::vector<double> pred(3 * metric.NumSamples());
-  for (std::size_t s = 0; s < metric.NumSamples(); ++s) {
-    ops.eval(r.params.data(), SampleGeometry(metric, s), &pred[3 * s]);
-  }
-  r.metrics = ComputeMetricsPerSample(metric, pred);
+  // The model at every sample of the metric set, then the metrics, both shared by --threads
+  // (each sample's prediction is independent; the metrics' sums are chunked: same bits).
+  const std::size_t ns = metric.NumSamples();
+  std::vector<double> pred(3 * ns);
+  const int n_threads = static_cast<int>(
+      std::clamp<std::size_t>(static_cast<std::size_t>(std::max(opt.threads, 1)), 1,
+                              std::max<std::size_t>(ns / 4096, 1)));
+  auto predict = [&](int t) {
+    for (std::size_t s = ns * t / n_threads; s < ns * (t + 1) / n_threads; ++s) {
+      ops.eval(r.params.data(), SampleGeometry(metric, s), &pred[3 * s]);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < n_threads; ++t) pool.emplace_back(predict, t);
+  predict(0);
+  for (auto& th : pool) th.join();
+  r.metrics = ComputeMetricsPerSample(metric, pred, opt.threads);
   r.times.metrics = MsSince(t0);
   r.times.metrics_cpu = ThreadCpuMs() - c0;
   if (!r.metrics.ok) {

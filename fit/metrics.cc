@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <thread>
+#include <vector>
 
 #include "fit/fast_cbrt.h"
 #include "fit/loss.h"
@@ -24,9 +26,60 @@ double LogDifference(double a, double b) {
   return GuardedLog1p(a) - GuardedLog1p(b);
 }
 
-// predicted(o) returns the 3 predictions of observation o; observations are visited in order.
+// The sums of one range of samples.
+struct Partial {
+  double log_sum = 0, cbrt_sum = 0, num = 0, den = 0;
+  double worst = -1;  // largest |ln-error| of a cell, and where
+  std::size_t worst_obs = 0;
+  const double* worst_pred = nullptr;
+  bool nonfinite = false;
+};
+
+// Samples per chunk. The chunks (not the threads) fix the order of the floating-point sums, so
+// the metrics are the same bits whatever the number of threads.
+constexpr std::size_t kChunkSamples = 8192;
+
+// predicted(o, s) returns the 3 predictions of observation o of sample s.
 template <class Predicted>
-FitMetrics Score(const Samples& samples, Predicted predicted) {
+Partial ScoreRange(const Samples& samples, std::size_t s_begin, std::size_t s_end,
+                   const Predicted& predicted) {
+  Partial p;
+  for (std::size_t s = s_begin; s < s_end; ++s) {
+    for (std::uint32_t o = samples.obs_begin[s]; o < samples.obs_begin[s + 1]; ++o) {
+      const double* f_rgb = predicted(o, s);
+      if (!(std::isfinite(f_rgb[0]) && std::isfinite(f_rgb[1]) && std::isfinite(f_rgb[2]))) {
+        p.nonfinite = true;
+        return p;
+      }
+      const double w = samples.weight[o];
+      const double c = samples.cos_i[o];
+      const double* measured = samples.Value(o);
+      double cell_worst = 0;
+      for (int ch = 0; ch < 3; ++ch) {
+        const double f = f_rgb[ch];
+        const double v = measured[ch];
+        // The measured side is recomputed at each call rather than stored (48 bytes per
+        // observation; docs/reliability.md, "Memory").
+        const double dl = LogDifference(f * c, v * c);
+        const double dc = MetricCbrt(f * c) - MetricCbrt(v * c);
+        p.log_sum += w * dl * dl;
+        p.cbrt_sum += w * dc * dc;
+        p.num += w * c * c * (f - v) * (f - v);
+        p.den += w * c * c * v * v;
+        cell_worst = std::max(cell_worst, std::abs(dl));
+      }
+      if (cell_worst > p.worst) {
+        p.worst = cell_worst;
+        p.worst_obs = o;
+        p.worst_pred = f_rgb;
+      }
+    }
+  }
+  return p;
+}
+
+template <class Predicted>
+FitMetrics Score(const Samples& samples, const Predicted& predicted, int threads) {
   const std::size_t n = samples.NumObservations();
   FitMetrics m;
   m.weighting = ToString(samples.options.weighting);
@@ -37,39 +90,41 @@ FitMetrics Score(const Samples& samples, Predicted predicted) {
     m.problem = "no samples to score";
     return m;
   }
-  double log_sum = 0, cbrt_sum = 0, num = 0, den = 0;
-  double worst = -1;
-  for (std::size_t o = 0; o < n; ++o) {
-    const double* f_rgb = predicted(o);
-    if (!(std::isfinite(f_rgb[0]) && std::isfinite(f_rgb[1]) && std::isfinite(f_rgb[2]))) {
-      m.worst = WorstCell{};  // nothing of the partial sums is reported
-      m.problem = "non-finite prediction";
-      return m;
+  const std::size_t ns = samples.NumSamples();
+  const std::size_t n_chunks = (ns + kChunkSamples - 1) / kChunkSamples;
+  std::vector<Partial> parts(n_chunks);
+  auto run = [&](std::size_t first, std::size_t step) {
+    for (std::size_t k = first; k < n_chunks; k += step) {
+      parts[k] = ScoreRange(samples, k * kChunkSamples, std::min(ns, (k + 1) * kChunkSamples),
+                            predicted);
     }
-    const double w = samples.weight[o];
-    const double c = samples.cos_i[o];
-    const double* measured = samples.Value(o);
-    double cell_worst = 0;
-    for (int ch = 0; ch < 3; ++ch) {
-      const double f = f_rgb[ch];
-      const double v = measured[ch];
-      // The measured side is recomputed at each call rather than stored (48 bytes per
-      // observation; docs/reliability.md, "Memory").
-      const double dl = LogDifference(f * c, v * c);
-      const double dc = MetricCbrt(f * c) - MetricCbrt(v * c);
-      log_sum += w * dl * dl;
-      cbrt_sum += w * dc * dc;
-      num += w * c * c * (f - v) * (f - v);
-      den += w * c * c * v * v;
-      cell_worst = std::max(cell_worst, std::abs(dl));
-    }
-    if (cell_worst > worst) {
-      worst = cell_worst;
-      m.worst.cell = samples.cell[o];
-      m.worst.log_error = cell_worst;
+  };
+  const std::size_t n_threads =
+      std::clamp<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), 1, n_chunks);
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < n_threads; ++t) pool.emplace_back(run, t, n_threads);
+  run(0, n_threads);
+  for (auto& th : pool) th.join();
+
+  if (std::any_of(parts.begin(), parts.end(), [](const Partial& p) { return p.nonfinite; })) {
+    m.problem = "non-finite prediction";  // nothing of the partial sums is reported
+    return m;
+  }
+  // Combined in chunk order; the first largest error wins, as in one pass.
+  double log_sum = 0, cbrt_sum = 0, num = 0, den = 0, worst = -1;
+  for (const Partial& p : parts) {
+    log_sum += p.log_sum;
+    cbrt_sum += p.cbrt_sum;
+    num += p.num;
+    den += p.den;
+    if (p.worst > worst) {
+      worst = p.worst;
+      m.worst.cell = samples.cell[p.worst_obs];
+      m.worst.log_error = p.worst;
+      const double* measured = samples.Value(p.worst_obs);
       for (int ch = 0; ch < 3; ++ch) {
         m.worst.measured[ch] = measured[ch];
-        m.worst.predicted[ch] = f_rgb[ch];
+        m.worst.predicted[ch] = p.worst_pred[ch];
       }
     }
   }
@@ -99,23 +154,22 @@ FitMetrics Score(const Samples& samples, Predicted predicted) {
 
 }  // namespace
 
-FitMetrics ComputeMetrics(const Samples& samples, std::span<const double> predicted_rgb) {
+FitMetrics ComputeMetrics(const Samples& samples, std::span<const double> predicted_rgb,
+                          int threads) {
   if (predicted_rgb.size() != 3 * samples.NumObservations()) {
     throw std::invalid_argument("ComputeMetrics: expected 3 predictions per observation");
   }
-  return Score(samples, [&](std::size_t o) { return &predicted_rgb[3 * o]; });
+  return Score(
+      samples, [&](std::size_t o, std::size_t) { return &predicted_rgb[3 * o]; }, threads);
 }
 
-FitMetrics ComputeMetricsPerSample(const Samples& samples, std::span<const double> per_sample_rgb) {
+FitMetrics ComputeMetricsPerSample(const Samples& samples, std::span<const double> per_sample_rgb,
+                                   int threads) {
   if (per_sample_rgb.size() != 3 * samples.NumSamples()) {
     throw std::invalid_argument("ComputeMetricsPerSample: expected 3 predictions per sample");
   }
-  // Observations are stored sample by sample: advance s as o leaves its range.
-  std::size_t s = 0;
-  return Score(samples, [&](std::size_t o) {
-    while (o >= samples.obs_begin[s + 1]) ++s;
-    return &per_sample_rgb[3 * s];
-  });
+  return Score(
+      samples, [&](std::size_t, std::size_t s) { return &per_sample_rgb[3 * s]; }, threads);
 }
 
 }  // namespace brdfit

@@ -12,13 +12,16 @@
 namespace brdfit {
 
 // predicted_rgb: 3 values per observation of `samples` (see ExpandToObservations).
-// Throws std::invalid_argument if the size does not match.
-FitMetrics ComputeMetrics(const Samples& samples, std::span<const double> predicted_rgb);
+// Throws std::invalid_argument if the size does not match. `threads` share the pass; the result
+// is the same bits for any number of threads (fixed chunks, summed in order).
+FitMetrics ComputeMetrics(const Samples& samples, std::span<const double> predicted_rgb,
+                          int threads = 1);
 
 // The same metrics (bit-identical) from 3 predictions per *sample*: an observation takes its
 // sample's prediction (a cell and its phi_d mirror share one model evaluation), so no
 // per-observation copy is made (22 MB on a full MERL table). Throws std::invalid_argument if
 // the size does not match.
-FitMetrics ComputeMetricsPerSample(const Samples& samples, std::span<const double> per_sample_rgb);
+FitMetrics ComputeMetricsPerSample(const Samples& samples, std::span<const double> per_sample_rgb,
+                                   int threads = 1);
 
 }  // namespace brdfit
