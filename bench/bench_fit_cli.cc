@@ -95,8 +95,9 @@ int main(int argc, char** argv) {
   fs::create_directories(dir);
   const auto tables = WriteTables(dir);
   const double load_before = bench::LoadAverage();
-  fmt::print("brdfit fit T --model {} {} -q (one thread unless --threads is given); medians of {} runs; {}\n", model, extra,
-             repeats, exe);
+  fmt::print("brdfit fit T --model {} {} -q (one thread unless --threads is given); medians of {} "
+             "runs; {}\n",
+             model, extra, repeats, exe);
   fmt::print(
       "| table | wall s | CPU s | peak RSS MB | load ms | prepare ms | init ms | solve ms | "
       "metrics ms (CPU) | log_rmse | PSNR dB | median lum. err. |\n"
