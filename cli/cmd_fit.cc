@@ -287,7 +287,8 @@ Registrar reg{
       sub.add_option("--max-iterations", o->fit.max_iterations, "per LM run")->capture_default_str();
       sub.add_option("-j,--jobs", o->jobs, "fits in parallel (over files and models)")
           ->capture_default_str();
-      sub.add_option("--threads", o->fit.threads, "Ceres threads per fit")->capture_default_str();
+      sub.add_option("--threads", o->fit.threads,
+                     "threads per fit: Ceres' and the metric pass's (same results for any count)")->capture_default_str();
       sub.add_flag("--force", o->force, "redo fits already in the report");
       sub.add_option("-o,--out", o->out, "HDF5 report (docs/formats.md)")->capture_default_str();
       sub.add_option("--json", o->json,
