@@ -288,7 +288,8 @@ Registrar reg{
       sub.add_option("-j,--jobs", o->jobs, "fits in parallel (over files and models)")
           ->capture_default_str();
       sub.add_option("--threads", o->fit.threads,
-                     "threads per fit: Ceres' and the metric pass's (same results for any count)")->capture_default_str();
+                     "threads per fit: Ceres' and the metric pass's (same results for any count)")
+          ->capture_default_str();
       sub.add_flag("--force", o->force, "redo fits already in the report");
       sub.add_option("-o,--out", o->out, "HDF5 report (docs/formats.md)")->capture_default_str();
       sub.add_option("--json", o->json,
