@@ -85,8 +85,6 @@ PreparedTable PrepareTable(Table&& table, const SampleOptions& sample_options,
   PreparedTable t;
   t.rendered = PrepareRenderedReference(table);
   t.metric_own = PrepareMetricSamples(std::move(table), sample_options);
-  t.metric_own.options = sample_options;
-  t.metric_own.options.budget = Budget{};
   t.fit = SelectBudget(t.metric_own, sample_options.budget, sample_options.seed);
   t.has_own_metric = true;
   t.loss = PrepareLoss(t.fit, fit_options);
