@@ -44,6 +44,7 @@ struct FitReportEntry {
   // (core/model_choice.h; set by pipeline/batch_fit.h before writing), and why.
   bool chosen = false;
   std::string choice;  // the reason, for the chosen entry; empty otherwise
+  bool timed = false;  // set by ReadFitReport: the entry had a /timing group
 };
 
 // Sorts entries by (source, model, options): the order of a report does not depend on the order
