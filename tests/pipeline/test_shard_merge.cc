@@ -286,6 +286,33 @@ TEST_F(ShardCli, MergeKeepsIdenticalDuplicatesOnceAndRefusesConflicts) {
   EXPECT_NE(log.find("--shard '3/3'"), std::string::npos) << log;
 }
 
+// Every report a fit writes reads back, so that it resumes and merges: an ABC fit of
+// nbrdf:black-fabric ended one ulp beyond abc.c's upper bound (exp(log 10)), and its rerun and
+// merge refused the report (fit/fit_engine.cc clamps into the bounds).
+TEST_F(ShardCli, AFitOnItsUpperBoundResumesAndMerges) {
+  const fs::path zip = fs::path(BRDFIT_SHARED_DATA) / "merl_nbrdf.zip";
+  if (!fs::exists(zip)) GTEST_SKIP() << zip << " is absent: the NBRDF case is not tested";
+  const std::string env = "BRDFIT_NBRDF_ZIP='" + zip.string() + "'";
+  const std::string fit = "fit nbrdf:black-fabric --model abc --no-timings --no-progress -q -o ";
+  std::string log;
+  ASSERT_EQ(Run(fit + P("bf.h5"), &log, env), 0) << log;
+  const std::vector<FitReportEntry> e = ReadFitReport(dir_ / "bf.h5");
+  ASSERT_EQ(e.size(), 1u);
+  const ModelInfo* m = FindModel(e[0].result.model);
+  ASSERT_NE(m, nullptr);
+  bool on_bound = false;
+  for (std::size_t k = 0; k < e[0].result.params.size(); ++k) {
+    on_bound = on_bound || e[0].result.params[k] == m->params[k].upper;
+  }
+  EXPECT_TRUE(on_bound) << "the case no longer ends on a bound: pick another";
+  const std::string first = ReadAll(dir_ / "bf.h5");
+  ASSERT_EQ(Run(fit.substr(0, fit.find(" -q ")) + " -o " + P("bf.h5"), &log, env), 0) << log;
+  EXPECT_NE(log.find("0 fits, 1 skipped"), std::string::npos) << log;
+  EXPECT_TRUE(ReadAll(dir_ / "bf.h5") == first);
+  ASSERT_EQ(Run("merge " + P("m.h5") + " " + P("bf.h5"), &log), 0) << log;
+  EXPECT_TRUE(ReadAll(dir_ / "m.h5") == ReadAll(dir_ / "bf.h5"));
+}
+
 // The recipe of docs/scale.md: GNU parallel runs the shards, brdfit merge joins them.
 TEST_F(ShardCli, GnuParallelShardsMergeToTheUnshardedReport) {
   if (std::system("command -v parallel >/dev/null 2>&1") != 0) {
