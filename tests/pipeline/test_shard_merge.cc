@@ -372,5 +372,26 @@ TEST_F(ShardCli, JobLogGetsOneLinePerFinishedFitAndSummaries) {
   EXPECT_NE(last.find("ETA 0s"), std::string::npos) << err;
 }
 
+// stderr a terminal (a pseudo-terminal from util-linux script(1)): the bar, redrawn in place,
+// shows the rate and the ETA.
+TEST_F(ShardCli, TerminalBarShowsRateAndEta) {
+  if (std::system("command -v script >/dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "script(1) (util-linux) is absent: no pseudo-terminal to test the bar on";
+  }
+  std::string a = "'" + std::string(BRDFIT_EXE) + "' fit";
+  for (const auto& t : tables_) a += " '" + t + "'";
+  a += " --model ggx,ward --budget full -o " + P("fits.h5");
+  const std::string cmd = "BRDFIT_NO_PROGRESS= script -qec \"" + a + "\" /dev/null > " +
+                          P("tty.txt") + " 2>&1 < /dev/null";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << ReadAll(dir_ / "tty.txt");
+  const std::string out = ReadAll(dir_ / "tty.txt");
+  const std::regex bar(R"(\r\x1b\[2Kfitting \[[#.]{24}\] (\d+)/10 [0-9.e+]+/s, elapsed \S+, ETA \S+ )");
+  const auto n = std::distance(std::sregex_iterator(out.begin(), out.end(), bar),
+                               std::sregex_iterator());
+  EXPECT_GE(n, 9) << out;  // a redraw after every finished fit but the first start
+  EXPECT_NE(out.find("fitting [########################] 10/10"), std::string::npos) << out;
+  EXPECT_EQ(out.find(" done: "), std::string::npos) << "job-log lines on a terminal";
+}
+
 }  // namespace
 }  // namespace brdfit
