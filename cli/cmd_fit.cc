@@ -207,6 +207,7 @@ int RunFit(const FitCliOptions& o) {
     std::lock_guard<std::mutex> lock(state->bar_mu);
     if (!state->bar) {
       state->bar = std::make_unique<Progress>(planned, "fitting", !o.no_progress && !o.quiet);
+      state->bar->CountFinishes();  // parallel fits end out of order: req.on_fit_done
     }
     state->bar->Step(label);
   });

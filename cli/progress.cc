@@ -89,7 +89,6 @@ void Progress::Step(const std::string& label) {
 
 void Progress::Finish(const std::string& label, const std::string& note) {
   if (mode_ == Mode::kOff) return;
-  explicit_finish_ = true;
   if (mode_ == Mode::kLog) {
     Finished(label, note);
     return;

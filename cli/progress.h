@@ -13,8 +13,8 @@
 //   Progress bar(total, "fitting");
 //   for (...) { bar.Step(label); ... }     // an item starts; the previous one is finished
 //   bar.Done();  // also on destruction
-// Callers whose items finish out of order (parallel fits) call Finish(label) as each item
-// finishes; Step then only starts items.
+// Callers whose items finish out of order (parallel fits) call CountFinishes() first, then
+// Finish(label) as each item finishes; Step then only starts items.
 #pragma once
 
 #include <chrono>
@@ -31,6 +31,7 @@ class Progress {
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
 
+  void CountFinishes() { explicit_finish_ = true; }  // items end by Finish, not by the next Step
   void Step(const std::string& label);  // starts item number started+1, labelled
   // The item `label` finished (`note`, e.g. its status, in parentheses in the log line).
   void Finish(const std::string& label, const std::string& note = "");
@@ -50,7 +51,7 @@ class Progress {
   std::size_t total_, started_ = 0, finished_ = 0;
   std::string what_, label_;
   Mode mode_;
-  bool explicit_finish_ = false;  // Finish was called: Step does not finish items
+  bool explicit_finish_ = false;  // CountFinishes: Step does not finish items
   bool pending_ = false;          // Step-only callers: label_ started, not yet finished
   double interval_s_ = 60, last_summary_s_ = 0;
   std::chrono::steady_clock::time_point start_;
