@@ -40,9 +40,10 @@ int RunMerge(const MergeCliOptions& o) {
   for (const FitReportEntry& e : m.entries) chosen += e.chosen;
   WriteFitReport(m.entries, o.out, m.timed && !o.no_timings);
   if (!o.quiet) {
-    fmt::print("{} fits from {} parts ({} read, {} identical duplicates kept once), {} chosen; "
-               "report {}\n",
-               n, parts.size(), m.read, m.duplicates, chosen, o.out);
+    fmt::print(
+        "{} fits from {} parts ({} read, {} identical duplicates kept once), {} chosen; "
+        "report {}\n",
+        n, parts.size(), m.read, m.duplicates, chosen, o.out);
   }
   return kExitOk;
 }

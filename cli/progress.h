@@ -32,7 +32,7 @@ class Progress {
   Progress& operator=(const Progress&) = delete;
 
   void CountFinishes() { explicit_finish_ = true; }  // items end by Finish, not by the next Step
-  void Step(const std::string& label);  // starts item number started+1, labelled
+  void Step(const std::string& label);               // starts item number started+1, labelled
   // The item `label` finished (`note`, e.g. its status, in parentheses in the log line).
   void Finish(const std::string& label, const std::string& note = "");
   void Clear();  // erases the bar (call before printing to stdout); the next Step redraws it

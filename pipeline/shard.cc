@@ -72,8 +72,7 @@ std::vector<bool> ShardMembership(const std::vector<std::string>& inputs,
     const std::string& mb = b.run < nr ? runs[b.run].model : std::string();
     const std::string& oa = a.run < nr ? runs[a.run].options : std::string();
     const std::string& ob = b.run < nr ? runs[b.run].options : std::string();
-    return std::tie(inputs[a.input], ma, oa, a.input) <
-           std::tie(inputs[b.input], mb, ob, b.input);
+    return std::tie(inputs[a.input], ma, oa, a.input) < std::tie(inputs[b.input], mb, ob, b.input);
   });
   // Least-loaded shard first; ties: the lowest index.
   using Load = std::pair<std::int64_t, int>;

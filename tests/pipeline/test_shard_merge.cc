@@ -46,8 +46,8 @@ TEST(ShardSpec, ParsesIOverNAndRefusesTheRest) {
   EXPECT_EQ(s.index, 2);
   EXPECT_EQ(s.count, 7);
   EXPECT_TRUE(pipeline::ParseShard("0/1").Whole());
-  for (const char* bad : {"", "3", "7/7", "8/7", "-1/3", "1/0", "a/3", "1/3x", "1/", "/3",
-                          "0/1000000"}) {
+  for (const char* bad :
+       {"", "3", "7/7", "8/7", "-1/3", "1/0", "a/3", "1/3x", "1/", "/3", "0/1000000"}) {
     EXPECT_THROW(pipeline::ParseShard(bad), InputError) << bad;
   }
 }
@@ -85,8 +85,8 @@ TEST(ShardMembership, PartitionsTheWorkListAndBalancesItsCost) {
         }
       }
       for (int o : owners) EXPECT_EQ(o, 1) << n_inputs << " inputs, " << n << " shards";
-      const int spread = *std::max_element(load.begin(), load.end()) -
-                         *std::min_element(load.begin(), load.end());
+      const int spread =
+          *std::max_element(load.begin(), load.end()) - *std::min_element(load.begin(), load.end());
       EXPECT_LE(spread, n_inputs >= n ? unit_max : run_max)
           << n_inputs << " inputs, " << n << " shards";
     }
@@ -148,8 +148,8 @@ class ShardCli : public ::testing::Test {
   // `brdfit ARGS` through the shell, stdout and stderr to a log; the exit code.
   int Run(const std::string& args, std::string* log = nullptr, const std::string& env = "") {
     const fs::path l = dir_ / "cli.log";
-    const std::string cmd = env + " '" + std::string(BRDFIT_EXE) + "' " + args + " > '" +
-                            l.string() + "' 2>&1";
+    const std::string cmd =
+        env + " '" + std::string(BRDFIT_EXE) + "' " + args + " > '" + l.string() + "' 2>&1";
     const int status = std::system(cmd.c_str());
     if (log) *log = ReadAll(l);
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -182,10 +182,10 @@ TEST_F(ShardCli, ShardedAndMergedEqualsUnshardedByteForByte) {
     std::size_t fits = 0;
     for (int i = 0; i < n; ++i) {
       const std::string part = "shard-" + std::to_string(n) + "-" + std::to_string(i) + ".h5";
-      ASSERT_EQ(Run(FitArgs("--shard " + std::to_string(i) + "/" + std::to_string(n) + " -o " +
-                            P(part)),
-                    &log),
-                0)
+      ASSERT_EQ(
+          Run(FitArgs("--shard " + std::to_string(i) + "/" + std::to_string(n) + " -o " + P(part)),
+              &log),
+          0)
           << log;
       if (!fs::exists(dir_ / part)) continue;  // 7 shards of 15 fits: none is empty, but allow
       const std::vector<FitReportEntry> e = ReadFitReport(dir_ / part);
@@ -225,9 +225,8 @@ TEST_F(ShardCli, MergeKeepsIdenticalDuplicatesOnceAndRefusesConflicts) {
   const std::string ref = ReadAll(dir_ / "ref.h5");
 
   // Identical duplicates (the whole report and both shards): kept once.
-  ASSERT_EQ(Run("merge " + P("m.h5") + " " + P("s0.h5") + " " + P("ref.h5") + " " + P("s1.h5"),
-                &log),
-            0)
+  ASSERT_EQ(
+      Run("merge " + P("m.h5") + " " + P("s0.h5") + " " + P("ref.h5") + " " + P("s1.h5"), &log), 0)
       << log;
   EXPECT_NE(log.find("15 fits from 3 parts (30 read, 15 identical duplicates"), std::string::npos)
       << log;
@@ -250,9 +249,8 @@ TEST_F(ShardCli, MergeKeepsIdenticalDuplicatesOnceAndRefusesConflicts) {
     EXPECT_GT(same->result.times.solve, 0);
     EXPECT_EQ(same->result.times.solve, t.result.times.solve);
   }
-  ASSERT_EQ(Run("merge --no-timings " + P("mnt.h5") + " " + P("timed.h5") + " " + P("ref.h5"),
-                &log),
-            0)
+  ASSERT_EQ(
+      Run("merge --no-timings " + P("mnt.h5") + " " + P("timed.h5") + " " + P("ref.h5"), &log), 0)
       << log;
   EXPECT_TRUE(ReadAll(dir_ / "mnt.h5") == ref);
 
@@ -262,9 +260,9 @@ TEST_F(ShardCli, MergeKeepsIdenticalDuplicatesOnceAndRefusesConflicts) {
   e[0].result.final_cost = 1.5 * e[0].result.final_cost + 1e-3;
   WriteFitReport(e, dir_ / "bad.h5", false);
   const std::string s0 = ReadAll(dir_ / "s0.h5"), bad = ReadAll(dir_ / "bad.h5");
-  EXPECT_EQ(Run("merge " + P("c.h5") + " " + P("s0.h5") + " " + P("ref.h5") + " " + P("bad.h5"),
-                &log),
-            2);
+  EXPECT_EQ(
+      Run("merge " + P("c.h5") + " " + P("s0.h5") + " " + P("ref.h5") + " " + P("bad.h5"), &log),
+      2);
   EXPECT_NE(log.find("conflicting fits of " + e[0].source), std::string::npos) << log;
   EXPECT_NE(log.find((dir_ / "ref.h5").string() + " and " + (dir_ / "bad.h5").string()),
             std::string::npos)
@@ -321,10 +319,12 @@ TEST_F(ShardCli, GnuParallelShardsMergeToTheUnshardedReport) {
   }
   std::string log;
   ASSERT_EQ(Run(FitArgs("-o " + P("ref.h5")), &log), 0) << log;
-  const std::string fit = "'" + std::string(BRDFIT_EXE) + "' " +
-                          FitArgs("--shard {}/3 -o " + P("part-{}.h5"));
-  const std::string cmd = "cd '" + dir_.string() + "' && parallel --will-cite --halt now,fail=1 "
-                          "--jobs 2 " + fit + " ::: 0 1 2 > parallel.log 2>&1";
+  const std::string fit =
+      "'" + std::string(BRDFIT_EXE) + "' " + FitArgs("--shard {}/3 -o " + P("part-{}.h5"));
+  const std::string cmd = "cd '" + dir_.string() +
+                          "' && parallel --will-cite --halt now,fail=1 "
+                          "--jobs 2 " +
+                          fit + " ::: 0 1 2 > parallel.log 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << ReadAll(dir_ / "parallel.log");
   ASSERT_EQ(Run("merge " + P("merged.h5") + " " + P("part-0.h5") + " " + P("part-1.h5") + " " +
                     P("part-2.h5"),
@@ -386,9 +386,10 @@ TEST_F(ShardCli, TerminalBarShowsRateAndEta) {
                           P("tty.txt") + " 2>&1 < /dev/null";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << ReadAll(dir_ / "tty.txt");
   const std::string out = ReadAll(dir_ / "tty.txt");
-  const std::regex bar(R"(\r\x1b\[2Kfitting \[[#.]{24}\] (\d+)/10 [0-9.e+]+/s, elapsed \S+, ETA \S+ )");
-  const auto n = std::distance(std::sregex_iterator(out.begin(), out.end(), bar),
-                               std::sregex_iterator());
+  const std::regex bar(
+      R"(\r\x1b\[2Kfitting \[[#.]{24}\] (\d+)/10 [0-9.e+]+/s, elapsed \S+, ETA \S+ )");
+  const auto n =
+      std::distance(std::sregex_iterator(out.begin(), out.end(), bar), std::sregex_iterator());
   EXPECT_GE(n, 9) << out;  // a redraw after every finished fit but the first start
   EXPECT_NE(out.find("fitting [########################] 10/10"), std::string::npos) << out;
   EXPECT_EQ(out.find(" done: "), std::string::npos) << "job-log lines on a terminal";
