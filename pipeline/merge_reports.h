@@ -8,7 +8,8 @@
 //    their results are identical (everything the report stores but timings and choice marks,
 //    compared as the bytes of the entry written alone); a conflict otherwise (InputError
 //    naming both files).
-//  * Of identical duplicates, the first part's entry (with its timings) is kept.
+//  * Of identical duplicates, the first part's entry (with its timings) is kept. When some
+//    kept entry has timings the merged report has timings (zeros for entries without).
 #pragma once
 
 #include <cstddef>

@@ -254,6 +254,20 @@ TEST_F(ShardCli, MergeKeepsIdenticalDuplicatesOnceAndRefusesConflicts) {
       << log;
   EXPECT_TRUE(ReadAll(dir_ / "mnt.h5") == ref);
 
+  // A shard killed after some of its fits (its last checkpoint: a report holding them, marks
+  // as written) resumes: the rerun skips them and ends with the uninterrupted shard's report.
+  {
+    std::vector<FitReportEntry> some = ReadFitReport(dir_ / "s0.h5");
+    ASSERT_GE(some.size(), 2u);
+    some.resize(some.size() / 2);
+    WriteFitReport(some, dir_ / "killed.h5", false);
+    std::string rerun = FitArgs("--shard 0/2 -o " + P("killed.h5"));
+    rerun.replace(rerun.find(" -q "), 4, " ");
+    ASSERT_EQ(Run(rerun, &log), 0) << log;
+    EXPECT_NE(log.find(std::to_string(some.size()) + " skipped"), std::string::npos) << log;
+    EXPECT_TRUE(ReadAll(dir_ / "killed.h5") == ReadAll(dir_ / "s0.h5"));
+  }
+
   // A conflict: one fit of s1 with another result.
   std::vector<FitReportEntry> e = ReadFitReport(dir_ / "s1.h5");
   ASSERT_FALSE(e.empty());
