@@ -249,8 +249,8 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
         }
         r.times.load = st.load_ms;
         r.times.prepare = st.prepare_ms;
-        FitReportEntry e{input,        report::MaterialName(input), t.options, std::move(r),
-                         /*chosen=*/false, /*choice=*/{},          /*timed=*/false};
+        FitReportEntry e{input, report::MaterialName(input), t.options, std::move(r),
+                         /*chosen=*/false, /*choice=*/{}, /*timed=*/false};
         std::lock_guard<std::mutex> lock(mu);
         if (req.on_fit_done) req.on_fit_done(e);
         result.fresh.push_back(std::move(e));
