@@ -44,6 +44,7 @@ struct FitCliOptions {
   std::string diffuse = "lambert";
   pipeline::FitSettings fit;  // --loss ... --threads (pipeline/fit_settings.h)
   int jobs = 1;
+  std::string shard;  // "I/N" (pipeline/shard.h); empty: the whole batch
   bool force = false;
   std::string out = "fits.h5";
   std::string json;
@@ -170,6 +171,7 @@ int RunFit(const FitCliOptions& o) {
   req.force = o.force;
   req.timings = !o.no_timings;
   req.jobs = o.jobs;
+  if (!o.shard.empty()) req.shard = pipeline::ParseShard(o.shard);
   const std::size_t num_inputs = req.inputs.size();
 
   // Before any work: every input file is there (a missing one is exit 2 with no report
@@ -189,12 +191,21 @@ int RunFit(const FitCliOptions& o) {
       [state, report = o.out](int sig, int drained) { OnInterrupt(*state, report, sig, drained); });
   const HookReset reset_hook;
   const OutputLock report_lock(o.out);
+  // In a job log, one line per finished fit (cli/progress.h).
+  req.on_fit_done = [&](const FitReportEntry& e) {
+    std::lock_guard<std::mutex> lock(state->bar_mu);
+    if (state->bar) {
+      state->bar->Finish(e.source + " " + e.result.model + " " + LossOf(e),
+                         ToString(e.result.status));
+    }
+  };
 
   // The progress bar counts the fits still to make: the report may already hold some.
   const auto run = pipeline::RunBatchFit(req, [&](std::size_t planned, const std::string& label) {
     std::lock_guard<std::mutex> lock(state->bar_mu);
     if (!state->bar) {
       state->bar = std::make_unique<Progress>(planned, "fitting", !o.no_progress && !o.quiet);
+      state->bar->CountFinishes();  // parallel fits end out of order: req.on_fit_done
     }
     state->bar->Step(label);
   });
@@ -215,6 +226,12 @@ int RunFit(const FitCliOptions& o) {
     std::FILE* table_out = json_to_stdout ? stderr : stdout;
     if (!run.fresh.empty()) PrintTable(table_out, run.fresh);
     if (num_inputs > 1 && !run.fresh.empty()) PrintSummary(table_out, run.fresh);
+    if (!req.shard.Whole()) {
+      fmt::print(table_out, "shard {}/{}: {} of {} fits of the batch (merge the shards' "
+                            "reports with brdfit merge)\n",
+                 req.shard.index, req.shard.count, run.skipped + run.planned,
+                 run.skipped + run.planned + run.other_shards);
+    }
     fmt::print(table_out, "{} fits, {} skipped{}; report {}{}\n", run.fresh.size(), run.skipped,
                run.skipped ? " (already in the report with the same options; --force redoes "
                              "them)"
@@ -290,6 +307,10 @@ Registrar reg{
       sub.add_option("--threads", o->fit.threads,
                      "threads per fit: Ceres' and the metric pass's (same results for any count)")
           ->capture_default_str();
+      sub.add_option("--shard", o->shard,
+                     "I/N: fit only the I-th of N cost-balanced slices of the (table x model) "
+                     "work list, for N processes or machines (docs/scale.md); merge their "
+                     "reports with brdfit merge");
       sub.add_flag("--force", o->force, "redo fits already in the report");
       sub.add_option("-o,--out", o->out, "HDF5 report (docs/formats.md)")->capture_default_str();
       sub.add_option("--json", o->json,
@@ -308,7 +329,8 @@ Registrar reg{
           "  brdfit fit gold.binary --model ggx --budget random:4000 --json gold.json\n"
           "  brdfit fit gold.binary --model ggx --json - | jq '.fits[0].params'\n"
           "  brdfit fit gold.binary --model ggx:2,lafortune:3 --loss cbrt --multistart 4\n"
-          "  brdfit fit nbrdf:all --model ggx,beckmann,ward -j 2 -o nbrdf-fits.h5");
+          "  brdfit fit nbrdf:all --model ggx,beckmann,ward -j 2 -o nbrdf-fits.h5\n"
+          "  brdfit fit nbrdf:all --model auto --shard 3/8 -o shard-3.h5");
       return [o] { return RunFit(*o); };
     }};
 

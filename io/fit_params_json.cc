@@ -38,6 +38,7 @@ FitReportEntry Entry(const fs::path& p, const nlohmann::ordered_json& f, const s
   const nlohmann::json fj = f;
   e.source = String(p, fj, "source", where);
   e.material = String(p, fj, "material", where);
+  if (fj.contains("source_hash")) e.source_hash = String(p, fj, "source_hash", where);
   FitResult& r = e.result;
   r.model = String(p, fj, "model", where);
   r.message = String(p, fj, "message", where);

@@ -351,6 +351,7 @@ class Reader : public hdf5::Reader {
     c.selected = Count(sg, sw, "selected");
 
     if (g.nameExists("timing")) {
+      e.timed = true;
       const std::string tw = where + "/timing";
       const H5::Group tg = Group(g, where, "timing");
       r.times.load = NonNegative(tg, tw, "load_ms");

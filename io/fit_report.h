@@ -47,6 +47,7 @@ struct FitReportEntry {
   // The table's content hash (core/provenance.h TableContentHash); empty in reports written
   // before brdfit 0.1.0 recorded it.
   std::string source_hash;
+  bool timed = false;  // set by ReadFitReport: the entry had a /timing group
 };
 
 // Sorts entries by (source, model, options): the order of a report does not depend on the order

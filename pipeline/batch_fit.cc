@@ -89,6 +89,18 @@ std::string SpecularPartsOf(const std::string& diffuse) {
   return out;
 }
 
+// MarkChosenFits, then no mark on the sources split over shards.
+void MarkShardChosenFits(std::vector<FitReportEntry>& entries,
+                         const std::set<std::string>& split_sources) {
+  MarkChosenFits(entries);
+  if (split_sources.empty()) return;
+  for (FitReportEntry& e : entries) {
+    if (!split_sources.count(e.source)) continue;
+    e.chosen = false;
+    e.choice.clear();
+  }
+}
+
 }  // namespace
 
 std::vector<std::string> ResolveModelNames(const std::vector<std::string>& requested,
@@ -182,12 +194,28 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
     if (!e.result.Failed()) done.insert({e.source, e.result.model, e.options});
   }
   BatchFitResult result;
+  // The shard's slice of the work list, before resuming: it never depends on what is done.
+  std::vector<ShardRun> shard_runs;
+  for (std::size_t k = 0; k < req.models.size(); ++k) {
+    shard_runs.push_back({req.models[k].model, run_options[k]});
+  }
+  const std::vector<bool> in_shard = ShardMembership(inputs, shard_runs, req.shard);
+  std::set<std::string> split_sources;  // sources with fits in this shard and in others
   std::vector<Task> tasks;
   std::vector<std::unique_ptr<InputState>> states;
   for (std::size_t f = 0; f < inputs.size(); ++f) {
     states.push_back(std::make_unique<InputState>());
+    const auto row = in_shard.begin() + static_cast<std::ptrdiff_t>(f * req.models.size());
+    const auto n_in = std::count(row, row + static_cast<std::ptrdiff_t>(req.models.size()), true);
+    if (n_in > 0 && n_in < static_cast<std::ptrdiff_t>(req.models.size())) {
+      split_sources.insert(inputs[f]);
+    }
     for (std::size_t k = 0; k < req.models.size(); ++k) {
       const std::string& m = req.models[k].model;
+      if (!in_shard[f * req.models.size() + k]) {
+        ++result.other_shards;
+        continue;
+      }
       if (done.count({inputs[f], m, run_options[k]})) {
         ++result.skipped;
         continue;
@@ -213,7 +241,7 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
     // Nothing fitted (every input unreadable) and no report before: none is written.
     std::error_code ec;
     if (final && all.empty() && !fs::exists(req.report, ec)) return;
-    MarkChosenFits(all);
+    MarkShardChosenFits(all, split_sources);
     const std::size_t entries = all.size();
     WriteFitReport(std::move(all), req.report, req.timings);
     if (req.on_report_written) req.on_report_written(entries);  // reliability hook
@@ -263,9 +291,11 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
         }
         r.times.load = st.load_ms;
         r.times.prepare = st.prepare_ms;
-        FitReportEntry e{input, report::MaterialName(input), t.options, std::move(r), false, {}, {}};
-        e.source_hash = st.content_hash;
+        FitReportEntry e{input, report::MaterialName(input), t.options, std::move(r),
+                         /*chosen=*/false, /*choice=*/{}, /*source_hash=*/st.content_hash,
+                         /*timed=*/false};
         std::lock_guard<std::mutex> lock(mu);
+        if (req.on_fit_done) req.on_fit_done(e);
         result.fresh.push_back(std::move(e));
         if (!write_error && MsSince(last_write) > 5000) {
           // A checkpoint that cannot be written (a full disk) ends the run: no fit after it
@@ -298,7 +328,7 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
   write_report(true);
   result.all = kept;
   result.all.insert(result.all.end(), result.fresh.begin(), result.fresh.end());
-  MarkChosenFits(result.all);
+  MarkShardChosenFits(result.all, split_sources);
   SortEntries(result.all);
   // The fresh entries carry the same marks as in the report.
   result.fresh.clear();

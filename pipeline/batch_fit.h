@@ -21,6 +21,7 @@
 #include "fit/options.h"
 #include "fit/samples.h"
 #include "io/fit_report.h"
+#include "pipeline/shard.h"
 
 namespace brdfit::pipeline {
 
@@ -52,6 +53,12 @@ struct BatchFitRequest {
   bool force = false;            // redo fits the report already holds
   bool timings = true;           // false: no timings in the report (byte-identical reruns)
   int jobs = 1;                  // fits in parallel
+  // Only this shard's slice of the (input x model run) work list (pipeline/shard.h). A source
+  // whose fits are split over shards gets no `chosen` mark here (the shard cannot know the
+  // choice among fits it does not hold): `brdfit merge` marks it over all the fits.
+  Shard shard;
+  // Called (serialized) as each fit finishes, with its entry (chosen not yet marked).
+  std::function<void(const FitReportEntry& entry)> on_fit_done;
   // Reliability (cli/cmd_fit.cc's interrupt message): called, serialized, with the number of
   // entries the report on disk holds, once at the start and after every write.
   std::function<void(std::size_t entries)> on_report_written;
@@ -63,6 +70,7 @@ struct BatchFitResult {
   std::vector<std::string> input_errors;  // one message per unreadable input, sorted
   std::size_t skipped = 0;                // (input, model) pairs already in the report
   std::size_t planned = 0;                // fits this run set out to make
+  std::size_t other_shards = 0;           // (input, model) pairs left to the other shards
 };
 
 // Called (serialized) as each fit starts, with the number of fits this run makes and a label
@@ -76,7 +84,8 @@ BatchFitResult RunBatchFit(const BatchFitRequest& request, const BatchProgress& 
 
 // Marks, per source, the fit core/model_choice.h recommends among the entries of that source
 // (`chosen`, with the reason in `choice`); clears every other mark. RunBatchFit does it before
-// every write, over everything the report holds.
+// every write, over everything the report holds (but for the split sources of a shard), and
+// `brdfit merge` over everything the merged report holds.
 void MarkChosenFits(std::vector<FitReportEntry>& entries);
 
 // Model names as `brdfit fit --model` takes them: "NAME:N" is N lobes of NAME

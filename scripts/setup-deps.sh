@@ -12,6 +12,7 @@ PACKAGES=(
   libegl-dev libgl-dev libegl1-mesa-dev libgl1-mesa-dri libglfw3-dev libtinyobjloader-dev
   libjs-chart.js chromium xvfb xauth time
   python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest  # python/ (docs/python.md)
+  parallel slurmctld slurmd slurm-client  # the sharded-batch recipes and their tests (docs/scale.md)
 )
 # Extra packages for the sanitizer / fuzzing build (clang's runtimes).
 if [[ "${BRDFIT_WITH_CLANG:-0}" == 1 ]]; then

@@ -143,7 +143,7 @@ TEST(FitReport, RoundTripKeepsEveryField) {
   const Table t = SynthModel("lambert+ggx", Params("lambert+ggx", {}), SmallGrid(), 0.05, 0.1, 2);
   FitReportEntry e{"dir/t.binary", "t", "{\"loss\":\"log\"}",
                    FitTable("lambert+ggx", t, SampleOptions{}, FitOptions{}), true,
-                   "best rendered score", TableContentHash(t)};
+                   "best rendered score", TableContentHash(t), false};
   e.result.times.load = 12.5;
   const fs::path p =
       fs::temp_directory_path() / ("brdfit_report_" + std::to_string(::getpid()) + ".h5");
@@ -169,6 +169,7 @@ TEST(FitReport, RoundTripKeepsEveryField) {
   EXPECT_EQ(b.metrics.worst.predicted, a.metrics.worst.predicted);
   EXPECT_EQ(b.sample_counts.eligible, a.sample_counts.eligible);
   EXPECT_EQ(b.times.load, 12.5);
+  EXPECT_TRUE(back[0].timed);  // the reader notes the /timing group (brdfit merge keeps it)
   EXPECT_EQ(b.times.solve_cpu, a.times.solve_cpu);
   // A table is not a report.
   const fs::path table =

@@ -1,0 +1,96 @@
+#include "pipeline/merge_reports.h"
+
+#include <fmt/core.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <memory>
+#include <string>
+#include <system_error>
+#include <tuple>
+
+#include "core/error.h"
+#include "pipeline/batch_fit.h"
+
+namespace brdfit::pipeline {
+namespace {
+
+namespace fs = std::filesystem;
+
+using Key = std::tuple<std::string, std::string, std::string>;  // source, model, options
+
+// A scratch folder for comparing entries, removed on destruction.
+class Scratch {
+ public:
+  Scratch() {
+    static int counter = 0;
+    dir_ = fs::temp_directory_path() /
+           fmt::format("brdfit-merge-{}-{}", static_cast<long>(::getpid()), counter++);
+    fs::create_directories(dir_);
+  }
+  ~Scratch() {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  Scratch(const Scratch&) = delete;
+  Scratch& operator=(const Scratch&) = delete;
+  const fs::path& dir() const { return dir_; }
+
+ private:
+  fs::path dir_;
+};
+
+// The bytes of the entry written alone, without timings or choice marks: what must agree.
+std::string Canonical(FitReportEntry e, const fs::path& scratch) {
+  e.chosen = false;
+  e.choice.clear();
+  const fs::path p = scratch / "entry.h5";
+  WriteFitReport({std::move(e)}, p, /*include_timings=*/false);
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+}  // namespace
+
+MergedReports MergeFitReports(const std::vector<fs::path>& parts) {
+  if (parts.empty()) throw InputError("merge: no fit report to merge");
+  MergedReports out;
+  std::map<Key, std::size_t> seen;  // key -> index into out.entries
+  std::vector<std::size_t> from;    // part of each kept entry
+  std::unique_ptr<Scratch> scratch;
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    std::vector<FitReportEntry> entries = ReadFitReport(parts[p]);
+    out.read += entries.size();
+    for (FitReportEntry& e : entries) {
+      const Key key{e.source, e.result.model, e.options};
+      const auto it = seen.find(key);
+      if (it == seen.end()) {
+        seen.emplace(key, out.entries.size());
+        from.push_back(p);
+        out.entries.push_back(std::move(e));
+        continue;
+      }
+      if (!scratch) scratch = std::make_unique<Scratch>();
+      const FitReportEntry& kept = out.entries[it->second];
+      if (Canonical(kept, scratch->dir()) != Canonical(e, scratch->dir())) {
+        const fs::path& a = parts[from[it->second]];
+        throw InputError(fmt::format(
+            "conflicting fits of {} with model {} and options {}: {} and {} hold different "
+            "results (final cost {} vs {}, status {} vs {}); refusing to merge (drop one part "
+            "or refit that table with --force)",
+            e.source, e.result.model, e.options, a.string(), parts[p].string(),
+            kept.result.final_cost, e.result.final_cost, ToString(kept.result.status),
+            ToString(e.result.status)));
+      }
+      ++out.duplicates;
+    }
+  }
+  for (const FitReportEntry& e : out.entries) out.timed = out.timed || e.timed;
+  MarkChosenFits(out.entries);
+  SortEntries(out.entries);
+  return out;
+}
+
+}  // namespace brdfit::pipeline

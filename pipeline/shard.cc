@@ -1,0 +1,95 @@
+#include "pipeline/shard.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <numeric>
+#include <queue>
+#include <tuple>
+#include <utility>
+
+#include "core/error.h"
+#include "models/registry.h"
+
+namespace brdfit::pipeline {
+namespace {
+
+constexpr int kMaxShards = 100000;
+
+// A non-negative decimal number of at most 6 digits, or -1.
+int ParseCount(const std::string& s) {
+  if (s.empty() || s.size() > 6 || !std::all_of(s.begin(), s.end(), ::isdigit)) return -1;
+  return std::stoi(s);
+}
+
+}  // namespace
+
+Shard ParseShard(const std::string& text) {
+  const auto slash = text.find('/');
+  const int i = slash == std::string::npos ? -1 : ParseCount(text.substr(0, slash));
+  const int n = slash == std::string::npos ? -1 : ParseCount(text.substr(slash + 1));
+  if (i < 0 || n < 1 || n > kMaxShards || i >= n) {
+    throw InputError("--shard '" + text + "': expected I/N with 0 <= I < N <= " +
+                     std::to_string(kMaxShards) + ", e.g. 0/4");
+  }
+  return {i, n};
+}
+
+int ModelRunCost(const std::string& model) {
+  const ModelInfo* m = FindModel(model);
+  return (m ? static_cast<int>(m->params.size()) : 0) + 2;
+}
+
+std::vector<bool> ShardMembership(const std::vector<std::string>& inputs,
+                                  const std::vector<ShardRun>& runs, const Shard& shard) {
+  const std::size_t nr = runs.size();
+  std::vector<bool> in(inputs.size() * nr, shard.Whole());
+  if (shard.Whole() || in.empty()) return in;
+  std::int64_t input_cost = 0;
+  std::vector<std::int64_t> run_cost;
+  for (const ShardRun& r : runs) {
+    run_cost.push_back(ModelRunCost(r.model));
+    input_cost += run_cost.back();
+  }
+  // Units: whole inputs (run = nr marks "all runs") or single items.
+  const bool whole_inputs = inputs.size() >= static_cast<std::size_t>(shard.count);
+  struct Unit {
+    std::size_t input, run;
+    std::int64_t cost;
+  };
+  std::vector<Unit> units;
+  for (std::size_t f = 0; f < inputs.size(); ++f) {
+    if (whole_inputs) {
+      units.push_back({f, nr, input_cost});
+      continue;
+    }
+    for (std::size_t k = 0; k < nr; ++k) units.push_back({f, k, run_cost[k]});
+  }
+  // Decreasing cost; ties by the item's names, never by the order given.
+  std::sort(units.begin(), units.end(), [&](const Unit& a, const Unit& b) {
+    if (a.cost != b.cost) return a.cost > b.cost;
+    const std::string& ma = a.run < nr ? runs[a.run].model : std::string();
+    const std::string& mb = b.run < nr ? runs[b.run].model : std::string();
+    const std::string& oa = a.run < nr ? runs[a.run].options : std::string();
+    const std::string& ob = b.run < nr ? runs[b.run].options : std::string();
+    return std::tie(inputs[a.input], ma, oa, a.input) < std::tie(inputs[b.input], mb, ob, b.input);
+  });
+  // Least-loaded shard first; ties: the lowest index.
+  using Load = std::pair<std::int64_t, int>;
+  std::priority_queue<Load, std::vector<Load>, std::greater<Load>> loads;
+  for (int s = 0; s < shard.count; ++s) loads.push({0, s});
+  for (const Unit& u : units) {
+    auto [load, s] = loads.top();
+    loads.pop();
+    loads.push({load + u.cost, s});
+    if (s != shard.index) continue;
+    if (u.run < nr) {
+      in[u.input * nr + u.run] = true;
+    } else {
+      for (std::size_t k = 0; k < nr; ++k) in[u.input * nr + k] = true;
+    }
+  }
+  return in;
+}
+
+}  // namespace brdfit::pipeline
