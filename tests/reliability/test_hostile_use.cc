@@ -284,7 +284,8 @@ std::vector<std::string> FitArgs(const std::vector<std::string>& tables, const f
                                  int multistart = 2) {
   std::vector<std::string> a = {"fit"};
   a.insert(a.end(), tables.begin(), tables.end());
-  for (const char* s : {"--model", "ggx,ward", "--no-timings"}) a.push_back(s);
+  // --budget full: fits slow enough (tens of ms) for a signal to land inside the batch.
+  for (const char* s : {"--model", "ggx,ward", "--budget", "full", "--no-timings"}) a.push_back(s);
   a.insert(a.end(), {"--multistart", std::to_string(multistart)});
   a.insert(a.end(), {"-o", out.string()});
   return a;
