@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
 
@@ -64,7 +65,14 @@ RunProvenance CurrentRunProvenance(bool with_run_details) {
   p.version = std::string(BrdfitVersion());
   if (!with_run_details) return p;
   p.command_line = CommandLine();
-  const std::time_t now = std::time(nullptr);
+  // SOURCE_DATE_EPOCH (reproducible-builds.org/specs/source-date-epoch): a fixed date for
+  // reproducible outputs, seconds since 1970 UTC.
+  std::time_t now = std::time(nullptr);
+  if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH")) {
+    char* end = nullptr;
+    const long long v = std::strtoll(epoch, &end, 10);
+    if (end != epoch && *end == '\0' && v >= 0) now = static_cast<std::time_t>(v);
+  }
   std::tm utc{};
   gmtime_r(&now, &utc);
   char buf[32];

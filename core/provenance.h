@@ -23,7 +23,8 @@ std::string_view BrdfitVersion();
 struct RunProvenance {
   std::string version;       // BrdfitVersion()
   std::string command_line;  // the process's arguments, shell-quoted where needed; may be empty
-  std::string created;       // UTC, ISO 8601 ("2026-12-02T09:30:00Z"); may be empty
+  std::string created;       // UTC, ISO 8601 ("2026-12-02T09:30:00Z"), $SOURCE_DATE_EPOCH
+                             // when set; may be empty
 };
 
 // Records the process's command line (main() calls it once, before any thread starts).

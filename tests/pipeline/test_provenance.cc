@@ -7,6 +7,7 @@
 #include <H5Cpp.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -137,6 +138,14 @@ TEST_F(Provenance, FitReportJsonFactorAndHtmlSayWhatMadeThem) {
   EXPECT_EQ(a["fits"][0]["source_hash"], hash);
   EXPECT_TRUE(ReadAll("a.h5") == ReadAll("b.h5")) << "another command line, the same report";
   EXPECT_EQ(ReadAll("a.json"), ReadAll("b.json"));
+
+  // SOURCE_DATE_EPOCH fixes the date (reproducible outputs with their command line).
+  setenv("SOURCE_DATE_EPOCH", "86400", 1);
+  r = testing_cli::Run({"fit", "in/t.h5", "--model", "lambert+ggx", "-o", "e.h5", "-q"},
+                       dir_ / "e.log");
+  unsetenv("SOURCE_DATE_EPOCH");
+  ASSERT_EQ(r.code, 0) << r.log;
+  EXPECT_EQ(RootAttr("e.h5", "created"), "1970-01-02T00:00:00Z");
 
   // factor: sidecar and every EXR header.
   r = testing_cli::Run({"factor", "in/t.h5", "--param", "mccool", "--res", "16", "-o", "fac", "-q"},
