@@ -28,13 +28,11 @@ bool ParseCount(const std::string& s, std::size_t* out) {
   return ec == std::errc() && ptr == s.data() + s.size();
 }
 
-// A sample before selection: a cell and its optional phi_d mirror.
-// 24 bytes: a full MERL table has 729,000 of them alive while its samples are built.
+// A sample before it is appended: a cell and its optional phi_d mirror.
 struct Unit {
   std::uint32_t primary;   // table index of (ih, id, ip), ip in the first half (member or not)
   std::uint32_t cells[2];  // the members: the primary cell and/or its mirror, whichever are usable
   std::uint8_t members;
-  double weight;  // sum of the members' cell weights
 };
 
 struct UnitAxes {
@@ -46,12 +44,6 @@ struct UnitAxes {
 // none.
 int EffectiveStride(const Budget& b, const Grid& g) {
   return std::min(b.stride, std::max((g.n_phi_d + 1) / 2, 1));
-}
-
-UnitAxes AxesOf(const Grid& g, const Unit& u) {
-  UnitAxes a;
-  g.Unindex(u.primary, &a.ih, &a.id, &a.ip);
-  return a;
 }
 
 AxisTrig MakeAxisTrig(const Grid& g) {
@@ -141,7 +133,7 @@ void ForEachUnit(const Table& table, const SampleOptions& options, const AxisTri
         const double ci = t.cos_h[ih] * t.cos_d[id] - t.sin_h[ih] * t.sin_d[id] * t.cos_p[ip];
         const double co = 2.0 * t.cos_d[id] * t.cos_h[ih] - ci;
         const bool inside = ci >= cos_cut && co >= cos_cut;
-        Unit u{static_cast<std::uint32_t>(g.Index(ih, id, ip)), {0, 0}, 0, 0.0};
+        Unit u{static_cast<std::uint32_t>(g.Index(ih, id, ip)), {0, 0}, 0};
         const int mirror = g.n_phi_d - 1 - ip;
         const int n_members = (pair && mirror != ip) ? 2 : 1;
         for (int m = 0; m < n_members; ++m) {
@@ -159,7 +151,6 @@ void ForEachUnit(const Table& table, const SampleOptions& options, const AxisTri
           }
           ++c.eligible;
           u.cells[u.members++] = static_cast<std::uint32_t>(idx);
-          u.weight += w_cell;
         }
         if (u.members > 0) fn(u, UnitAxes{ih, id, ip}, w_cell);
       }
@@ -178,9 +169,9 @@ void ReserveFor(std::size_t n_samples, std::size_t n_obs, bool stored, bool copy
   out->obs_begin.push_back(0);
 }
 
-// Appends the unit as one sample, its members' weights w_cell * factor.
-void AppendUnit(const Table& table, const Unit& u, const UnitAxes& a, double w_cell,
-                double factor, bool stored, bool copy_values, Samples* out) {
+// Appends the unit as one sample, each member weighing w_cell.
+void AppendUnit(const Table& table, const Unit& u, const UnitAxes& a, double w_cell, bool stored,
+                bool copy_values, Samples* out) {
   const Geometry geo = GeometryAt(out->trig, a);
   if (stored) out->geometry.push_back(geo);
   for (int m = 0; m < u.members; ++m) {
@@ -190,9 +181,8 @@ void AppendUnit(const Table& table, const Unit& u, const UnitAxes& a, double w_c
     const double* v = table.Value(idx);
     if (copy_values) out->value.insert(out->value.end(), v, v + 3);
     if (v[0] < 0 || v[1] < 0 || v[2] < 0) ++out->counts.negative;
-    const double w = w_cell * factor;
-    out->weight.push_back(w);
-    out->total_weight += w;
+    out->weight.push_back(w_cell);
+    out->total_weight += w_cell;
     out->cos_i.push_back(is_mirror ? geo.cos_o : geo.cos_i);
   }
   out->obs_begin.push_back(static_cast<std::uint32_t>(out->cell.size()));
@@ -202,6 +192,7 @@ void AppendUnit(const Table& table, const Unit& u, const UnitAxes& a, double w_c
 
 namespace {
 
+// Every usable cell (options.budget is not applied here).
 Samples PrepareSamplesImpl(const Table& table, const SampleOptions& options,
                            GeometryStorage storage, bool copy_values) {
   if (!(options.cutoff_deg > 0.0 && options.cutoff_deg <= 90.0)) {
@@ -218,84 +209,19 @@ Samples PrepareSamplesImpl(const Table& table, const SampleOptions& options,
   out.counts.cells = g.NumCells();
   out.trig = MakeAxisTrig(g);
   const bool stored = storage == GeometryStorage::kStored;
-  const Budget& b = options.budget;
-
-  if (b.kind == Budget::Kind::kFull) {
-    // Every unit: counted first so that the arrays are exactly sized (a full MERL table has
-    // 1.1 M observations: growth by doubling would hold up to twice that), then filled, with
-    // no per-unit list in between (17 MB for MERL).
-    std::size_t n_samples = 0, n_obs = 0;
-    ForEachUnit(table, options, out.trig, &out.counts, [&](const Unit& u, const UnitAxes&, double) {
-      ++n_samples;
-      n_obs += u.members;
-    });
-    ReserveFor(n_samples, n_obs, stored, copy_values, &out);
-    ForEachUnit(table, options, out.trig, nullptr,
-                [&](const Unit& u, const UnitAxes& a, double w_cell) {
-                  AppendUnit(table, u, a, w_cell, 1.0, stored, copy_values, &out);
-                });
-    out.counts.selected = out.cell.size();
-    return out;
-  }
-
-  std::vector<Unit> units;
-  std::vector<double> unit_w_cell;
-  ForEachUnit(table, options, out.trig, &out.counts, [&](const Unit& u, const UnitAxes&, double w) {
-    units.push_back(u);
-    unit_w_cell.push_back(w);
+  // Every unit: counted first so that the arrays are exactly sized (a full MERL table has
+  // 1.1 M observations: growth by doubling would hold up to twice that), then filled, with no
+  // per-unit list in between (17 MB for MERL).
+  std::size_t n_samples = 0, n_obs = 0;
+  ForEachUnit(table, options, out.trig, &out.counts, [&](const Unit& u, const UnitAxes&, double) {
+    ++n_samples;
+    n_obs += u.members;
   });
-
-  // Budget.
-  std::vector<std::size_t> kept;
-  std::vector<double> factor;
-  if (b.kind == Budget::Kind::kStride) {
-    if (b.stride < 1) throw InputError("stride budget needs K >= 1");
-    // Keep phi_d bins offset, offset + K, ... of the half range; rescale each (theta_h,
-    // theta_d) row so that it keeps its total weight. K beyond the half row (small grids) is
-    // the half row: one bin per row, never none.
-    const int stride = EffectiveStride(b, g);
-    const int offset = stride / 2;
-    std::size_t row_begin = 0;
-    while (row_begin < units.size()) {
-      std::size_t row_end = row_begin;
-      double all = 0, sel = 0;
-      // Cells of one (theta_h, theta_d) row share primary / n_phi_d (core/table.h, Index).
-      const std::size_t row = units[row_begin].primary / g.n_phi_d;
-      while (row_end < units.size() && units[row_end].primary / g.n_phi_d == row) {
-        all += units[row_end].weight;
-        if (AxesOf(g, units[row_end]).ip % stride == offset) sel += units[row_end].weight;
-        ++row_end;
-      }
-      for (std::size_t i = row_begin; i < row_end; ++i) {
-        if (AxesOf(g, units[i]).ip % stride == offset) {
-          kept.push_back(i);
-          factor.push_back(all / sel);
-        }
-      }
-      row_begin = row_end;
-    }
-  } else {
-    if (b.count < 1) throw InputError("random budget needs N >= 1");
-    std::vector<int> stratum(units.size());
-    std::vector<double> weight(units.size());
-    for (std::size_t i = 0; i < units.size(); ++i) {
-      stratum[i] = AxesOf(g, units[i]).ih;
-      weight[i] = units[i].weight;
-    }
-    Selection s = SelectStratified(stratum, weight, b.count, options.seed, kAllocationPower);
-    kept = std::move(s.kept);
-    factor = std::move(s.factor);
-  }
-
-  // Geometry and observations of the kept samples only, in exactly sized arrays.
-  std::size_t n_obs = 0;
-  for (std::size_t k : kept) n_obs += static_cast<std::size_t>(units[k].members);
-  ReserveFor(kept.size(), n_obs, stored, copy_values, &out);
-  for (std::size_t k = 0; k < kept.size(); ++k) {
-    const Unit& u = units[kept[k]];
-    AppendUnit(table, u, AxesOf(g, u), unit_w_cell[kept[k]], factor[k], stored, copy_values,
-               &out);
-  }
+  ReserveFor(n_samples, n_obs, stored, copy_values, &out);
+  ForEachUnit(table, options, out.trig, nullptr,
+              [&](const Unit& u, const UnitAxes& a, double w_cell) {
+                AppendUnit(table, u, a, w_cell, stored, copy_values, &out);
+              });
   out.counts.selected = out.cell.size();
   return out;
 }
@@ -303,7 +229,17 @@ Samples PrepareSamplesImpl(const Table& table, const SampleOptions& options,
 }  // namespace
 
 Samples PrepareSamples(const Table& table, const SampleOptions& options, GeometryStorage storage) {
-  return PrepareSamplesImpl(table, options, storage, true);
+  if (options.budget.kind == Budget::Kind::kFull) {
+    return PrepareSamplesImpl(table, options, storage, true);
+  }
+  // A sub-sampled budget: the samples SelectBudget keeps of the full set (one selection rule
+  // for the fitter, which selects from its metric set, and for direct preparation).
+  SampleOptions full = options;
+  full.budget = Budget{};
+  Samples out = SelectBudget(PrepareSamplesImpl(table, full, GeometryStorage::kOnDemand, true),
+                             options.budget, options.seed);
+  if (storage == GeometryStorage::kOnDemand) out.geometry = {};
+  return out;
 }
 
 Samples PrepareMetricSamples(Table&& table, const SampleOptions& options) {
@@ -324,6 +260,24 @@ UnitAxes PrimaryAxes(const Samples& s, std::size_t sample) {
   g.Unindex(s.cell[s.obs_begin[sample]], &a.ih, &a.id, &a.ip);
   if (s.options.pair_mirrors) a.ip = std::min(a.ip, g.n_phi_d - 1 - a.ip);
   return a;
+}
+
+// A sample's weight is its unit's: the sum of its members' cell weights, in member order.
+std::vector<double> SampleWeights(const Samples& samples) {
+  std::vector<double> weight(samples.NumSamples(), 0.0);
+  for (std::size_t s = 0; s < weight.size(); ++s) {
+    for (std::uint32_t o = samples.obs_begin[s]; o < samples.obs_begin[s + 1]; ++o) {
+      weight[s] += samples.weight[o];
+    }
+  }
+  return weight;
+}
+
+// The theta_h bin of every sample: the strata of stratified selections.
+std::vector<int> ThetaHStrata(const Samples& samples) {
+  std::vector<int> stratum(samples.NumSamples());
+  for (std::size_t s = 0; s < stratum.size(); ++s) stratum[s] = PrimaryAxes(samples, s).ih;
+  return stratum;
 }
 
 // Copies the kept samples of `from` with their weights scaled by factor[k].
@@ -372,13 +326,7 @@ Geometry SampleGeometry(const Samples& samples, std::size_t s) {
 
 Samples SelectBudget(const Samples& full, const Budget& budget, std::uint64_t seed) {
   const std::size_t ns = full.NumSamples();
-  // A sample's weight is its unit's: the sum of its members' cell weights, in member order.
-  std::vector<double> weight(ns, 0.0);
-  for (std::size_t s = 0; s < ns; ++s) {
-    for (std::uint32_t o = full.obs_begin[s]; o < full.obs_begin[s + 1]; ++o) {
-      weight[s] += full.weight[o];
-    }
-  }
+  const std::vector<double> weight = SampleWeights(full);
   std::vector<std::size_t> kept;
   std::vector<double> factor;
   if (budget.kind == Budget::Kind::kFull) {
@@ -387,7 +335,9 @@ Samples SelectBudget(const Samples& full, const Budget& budget, std::uint64_t se
     factor.assign(ns, 1.0);
   } else if (budget.kind == Budget::Kind::kStride) {
     if (budget.stride < 1) throw InputError("stride budget needs K >= 1");
-    // As PrepareSamples: phi_d bins offset, offset + K, ... of each (theta_h, theta_d) row.
+    // phi_d bins offset, offset + K, ... of the half range; each (theta_h, theta_d) row
+    // rescaled to keep its total weight. K beyond the half row (small grids) is the half row:
+    // one bin per row, never none.
     const int stride = EffectiveStride(budget, full.grid);
     const int offset = stride / 2;
     std::size_t row_begin = 0;
@@ -412,9 +362,8 @@ Samples SelectBudget(const Samples& full, const Budget& budget, std::uint64_t se
     }
   } else {
     if (budget.count < 1) throw InputError("random budget needs N >= 1");
-    std::vector<int> stratum(ns);
-    for (std::size_t s = 0; s < ns; ++s) stratum[s] = PrimaryAxes(full, s).ih;
-    Selection sel = SelectStratified(stratum, weight, budget.count, seed, kAllocationPower);
+    Selection sel =
+        SelectStratified(ThetaHStrata(full), weight, budget.count, seed, kAllocationPower);
     kept = std::move(sel.kept);
     factor = std::move(sel.factor);
   }
@@ -425,40 +374,9 @@ Samples SelectBudget(const Samples& full, const Budget& budget, std::uint64_t se
 }
 
 Samples Subsample(const Samples& samples, std::size_t n, std::uint64_t seed) {
-  const std::size_t ns = samples.NumSamples();
-  std::vector<int> stratum(ns);
-  std::vector<double> weight(ns, 0.0);
-  for (std::size_t s = 0; s < ns; ++s) {
-    int ih, id, ip;
-    samples.grid.Unindex(samples.cell[samples.obs_begin[s]], &ih, &id, &ip);
-    stratum[s] = ih;
-    for (std::uint32_t o = samples.obs_begin[s]; o < samples.obs_begin[s + 1]; ++o) {
-      weight[s] += samples.weight[o];
-    }
-  }
-  const Selection sel = SelectStratified(stratum, weight, n, seed, kAllocationPower);
-  Samples out;
-  out.grid = samples.grid;
-  out.options = samples.options;
-  out.counts = samples.counts;
-  out.trig = samples.trig;
-  out.obs_begin.push_back(0);
-  for (std::size_t k = 0; k < sel.kept.size(); ++k) {
-    const std::size_t s = sel.kept[k];
-    out.geometry.push_back(SampleGeometry(samples, s));
-    for (std::uint32_t o = samples.obs_begin[s]; o < samples.obs_begin[s + 1]; ++o) {
-      out.cell.push_back(samples.cell[o]);
-      const double* v = samples.Value(o);
-      out.value.insert(out.value.end(), v, v + 3);
-      const double w = samples.weight[o] * sel.factor[k];
-      out.weight.push_back(w);
-      out.total_weight += w;
-      out.cos_i.push_back(samples.cos_i[o]);
-    }
-    out.obs_begin.push_back(static_cast<std::uint32_t>(out.cell.size()));
-  }
-  out.counts.selected = out.cell.size();
-  return out;
+  const Selection sel =
+      SelectStratified(ThetaHStrata(samples), SampleWeights(samples), n, seed, kAllocationPower);
+  return CopySelected(samples, sel.kept, sel.factor);
 }
 
 std::vector<double> ExpandToObservations(const Samples& samples,

@@ -114,7 +114,8 @@ struct Samples {
   }
 };
 
-// Builds the samples of a table. Throws InputError if the options are invalid
+// Builds the samples of a table (a sub-sampled budget: SelectBudget of the full set, below).
+// Throws InputError if the options are invalid
 // (cut-off outside (0, 90], zero budget). A table with no usable cell gives empty samples
 // (the fitter reports that as a failed fit, not an exception).
 // kOnDemand leaves Samples::geometry empty (120 bytes per sample, 55 MB for a full MERL table):
@@ -133,10 +134,11 @@ Samples PrepareMetricSamples(Table&& table, const SampleOptions& options);
 // with the same operations, bit for bit.
 Geometry SampleGeometry(const Samples& samples, std::size_t s);
 
-// The samples a sub-sampled budget keeps, selected from the full samples of the same table and
-// options (options.budget full): equal, array for array, to PrepareSamples(table, options with
-// `budget`; the kept samples' geometry is stored), without computing the full set's again. Used when a fit needs both sets (the fit
-// set and the metric set of every cell). Throws InputError on a bad budget.
+// The samples a budget keeps of the full samples of a table (options.budget full), with their
+// geometry stored and their weights rescaled (stride: per (theta_h, theta_d) row; random: per
+// theta_h stratum). The one selection rule: PrepareSamples of a sub-sampled budget is this
+// applied to its full set, and the fitter applies it to its metric set (no geometry computed
+// twice). Throws InputError on a bad budget.
 Samples SelectBudget(const Samples& full, const Budget& budget, std::uint64_t seed);
 
 // A stratified subset (over theta_h bins, proportional to weight, at least a few per bin) of

@@ -9,6 +9,7 @@
 
 #include "fit/bin_measure.h"
 #include "fit/samples.h"
+#include "fit/stratified.h"
 #include "fit_test_util.h"
 #include "core/error.h"
 #include "models/registry.h"
@@ -237,45 +238,116 @@ TEST(Samples, SubsampleKeepsTotalWeight) {
   EXPECT_EQ(same.cell, sub.cell);
 }
 
-// SelectBudget on the full samples must give exactly what PrepareSamples builds for the budget
-// itself (the fitter uses it so that the metric set's geometry is computed once): the oracle is
-// the direct preparation, compared array for array, bit for bit. The table has holes, cells
-// whose mirror alone is valid, a negative value and odd / even phi_d counts.
-TEST(Samples, SelectBudgetEqualsDirectPreparation) {
+// What a budget must keep, computed here from the full set's cells (the oracle): stride:K keeps
+// the samples whose first-half phi_d bin ip has ip % K' == K' / 2 (K' = K capped at the half
+// row), each (theta_h, theta_d) row's weights scaled to keep the row's total; random:N is
+// SelectStratified over (theta_h bin, sample weight) (fit/stratified.h, tested on its own).
+struct ExpectedSelection {
+  std::vector<std::size_t> kept;
+  std::vector<double> factor;
+};
+ExpectedSelection Expected(const Samples& full, const Budget& b, std::uint64_t seed) {
+  const Grid& g = full.grid;
+  struct Key {
+    int ih, id, ip;
+  };
+  std::vector<Key> key;
+  std::vector<double> weight;
+  for (std::size_t s = 0; s < full.NumSamples(); ++s) {
+    Key k;
+    g.Unindex(full.cell[full.obs_begin[s]], &k.ih, &k.id, &k.ip);
+    if (full.options.pair_mirrors) k.ip = std::min(k.ip, g.n_phi_d - 1 - k.ip);
+    key.push_back(k);
+    double w = 0;
+    for (std::uint32_t o = full.obs_begin[s]; o < full.obs_begin[s + 1]; ++o) w += full.weight[o];
+    weight.push_back(w);
+  }
+  ExpectedSelection e;
+  if (b.kind == Budget::Kind::kRandom) {
+    std::vector<int> stratum;
+    for (const Key& k : key) stratum.push_back(k.ih);
+    // 0.5: the allocation power of random budgets (fit/samples.cc kAllocationPower).
+    Selection sel = SelectStratified(stratum, weight, b.count, seed, 0.5);
+    e.kept = sel.kept;
+    e.factor = sel.factor;
+    return e;
+  }
+  const int K = std::min(b.stride, (g.n_phi_d + 1) / 2);
+  for (std::size_t begin = 0; begin < key.size();) {
+    std::size_t end = begin;
+    double all = 0, sel = 0;
+    for (; end < key.size() && key[end].ih == key[begin].ih && key[end].id == key[begin].id; ++end) {
+      all += weight[end];
+      if (key[end].ip % K == K / 2) sel += weight[end];
+    }
+    for (std::size_t s = begin; s < end; ++s) {
+      if (key[s].ip % K == K / 2) {
+        e.kept.push_back(s);
+        e.factor.push_back(all / sel);
+      }
+    }
+    begin = end;
+  }
+  return e;
+}
+
+// SelectBudget keeps what the budget's rule says, sample for sample and bit for bit, whether
+// the full set stores its geometry or computes it on demand (the fitter's metric set); and
+// PrepareSamples of the budget is the same set. The table has holes, cells whose mirror alone
+// is valid, negative values and odd / even phi_d counts.
+TEST(Samples, SelectBudgetKeepsWhatTheBudgetsRuleSays) {
   for (const Grid g : {Grid::Merl(), Grid{30, 20, 61, ThetaHMapping::kLinear}}) {
     Table t = SynthModel("lambert+ggx", Params("lambert+ggx", {}), g);
     for (std::size_t i = 0; i < g.NumCells(); i += 7) t.valid[i] = 0;
     for (std::size_t i = 3; i < g.NumCells(); i += 101) t.Value(i)[1] = -0.01;
     for (const bool pair : {true, false}) {
+      SampleOptions full;
+      full.pair_mirrors = pair;
+      full.seed = 9;
+      const Samples stored = PrepareSamples(t, full);
+      const Samples lazy = PrepareSamples(t, full, GeometryStorage::kOnDemand);
       for (const char* text : {"stride:1", "stride:2", "stride:5", "stride:32", "stride:500",
-                               "random:3000",
-                               "random:100000000"}) {
-        SampleOptions full;
-        full.pair_mirrors = pair;
-        full.seed = 9;
-        SampleOptions sub = full;
-        sub.budget = Budget::Parse(text);
-        const Samples direct = PrepareSamples(t, sub);
-        // From a full set with its geometry stored and from one without (the metric set).
-        const GeometryStorage storage =
-            text[0] == 's' ? GeometryStorage::kStored : GeometryStorage::kOnDemand;
-        const Samples selected =
-            SelectBudget(PrepareSamples(t, full, storage), sub.budget, sub.seed);
+                               "random:3000", "random:100000000"}) {
         SCOPED_TRACE(std::string(text) + (pair ? " paired" : " unpaired"));
-        ASSERT_GT(direct.NumSamples(), 0u);
-        EXPECT_EQ(selected.cell, direct.cell);
-        EXPECT_EQ(selected.obs_begin, direct.obs_begin);
-        EXPECT_EQ(selected.value, direct.value);
-        EXPECT_EQ(selected.weight, direct.weight);
-        EXPECT_EQ(selected.cos_i, direct.cos_i);
-        EXPECT_EQ(selected.total_weight, direct.total_weight);
-        EXPECT_TRUE(selected.counts == direct.counts);
-        EXPECT_TRUE(selected.options == direct.options);
-        ASSERT_EQ(selected.geometry.size(), direct.geometry.size());
-        for (std::size_t s = 0; s < direct.geometry.size(); ++s) {
-          ASSERT_EQ(std::memcmp(&selected.geometry[s], &direct.geometry[s], sizeof(Geometry)), 0)
-              << s;
+        const Budget b = Budget::Parse(text);
+        const ExpectedSelection want = Expected(stored, b, full.seed);
+        ASSERT_FALSE(want.kept.empty());
+        for (const Samples* from : {&stored, &lazy}) {
+          const Samples got = SelectBudget(*from, b, full.seed);
+          ASSERT_EQ(got.NumSamples(), want.kept.size());
+          std::size_t negative = 0;
+          double total = 0;
+          for (std::size_t k = 0; k < want.kept.size(); ++k) {
+            const std::size_t s = want.kept[k];
+            ASSERT_EQ(std::memcmp(&got.geometry[k], &stored.geometry[s], sizeof(Geometry)), 0);
+            ASSERT_EQ(got.obs_begin[k + 1] - got.obs_begin[k],
+                      stored.obs_begin[s + 1] - stored.obs_begin[s]);
+            for (std::uint32_t o = got.obs_begin[k], f = stored.obs_begin[s];
+                 o < got.obs_begin[k + 1]; ++o, ++f) {
+              ASSERT_EQ(got.cell[o], stored.cell[f]);
+              ASSERT_EQ(std::memcmp(got.Value(o), stored.Value(f), 3 * sizeof(double)), 0);
+              ASSERT_EQ(got.cos_i[o], stored.cos_i[f]);
+              ASSERT_EQ(got.weight[o], stored.weight[f] * want.factor[k]);
+              total += got.weight[o];
+              const double* v = stored.Value(f);
+              negative += v[0] < 0 || v[1] < 0 || v[2] < 0;
+            }
+          }
+          EXPECT_EQ(got.total_weight, total);
+          EXPECT_EQ(got.counts.negative, negative);
+          EXPECT_EQ(got.counts.selected, got.NumObservations());
+          EXPECT_EQ(got.counts.valid, stored.counts.valid);
+          EXPECT_EQ(got.counts.eligible, stored.counts.eligible);
+          EXPECT_TRUE(got.options.budget == b);
         }
+        SampleOptions sub = full;
+        sub.budget = b;
+        const Samples direct = PrepareSamples(t, sub);
+        const Samples selected = SelectBudget(stored, b, full.seed);
+        EXPECT_EQ(direct.cell, selected.cell);
+        EXPECT_EQ(direct.weight, selected.weight);
+        EXPECT_TRUE(direct.counts == selected.counts);
+        EXPECT_TRUE(direct.options == sub);
       }
     }
   }
