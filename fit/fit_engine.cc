@@ -7,13 +7,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <memory>
-#include <thread>
 
 #include "fit/grid_init.h"
 #include "fit/metrics.h"
 #include "fit/model_ops.h"
+#include "fit/threads.h"
 
 namespace brdfit::internal {
 
@@ -22,11 +21,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double MsSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-double ThreadCpuMs() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
 }
 
 // Blocks per problem: enough for Ceres' threads and short accumulations, few enough that the
@@ -280,10 +274,7 @@ FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& lo
       ops.eval(r.params.data(), SampleGeometry(metric, s), &pred[3 * s]);
     }
   };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < n_threads; ++t) pool.emplace_back(predict, t);
-  predict(0);
-  for (auto& th : pool) th.join();
+  RunOnThreads(n_threads, predict);
   r.metrics = ComputeMetricsPerSample(metric, pred, opt.threads);
   r.times.metrics = MsSince(t0);
   r.times.metrics_cpu = ThreadCpuMs() - c0;

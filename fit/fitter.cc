@@ -2,22 +2,16 @@
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <optional>
 
 #include "fit/model_ops.h"
+#include "fit/threads.h"
 #include "core/error.h"
 #include "models/registry.h"
 
 namespace brdfit {
 
 namespace {
-
-double ThreadCpuMs() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
-}
 
 const std::vector<internal::ModelOps>& Fitters() {
   static const std::vector<internal::ModelOps> fitters = [] {
@@ -105,11 +99,11 @@ FitResult FitPrepared(std::string_view model, const PreparedTable& table,
   if (!r.Failed() && info && !table.rendered.Empty()) {
     // The rendered-image metric of the fitted parameters (docs/accuracy.md).
     const auto t0 = std::chrono::steady_clock::now();
-    const double c0 = ThreadCpuMs();
+    const double c0 = internal::ThreadCpuMs();
     r.metrics.rendered = ScoreRendered(table.rendered, ModelBrdf(*info, r.params));
     r.times.metrics +=
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    r.times.metrics_cpu += ThreadCpuMs() - c0;
+    r.times.metrics_cpu += internal::ThreadCpuMs() - c0;
   }
   return r;
 }

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-#include <thread>
 #include <vector>
 
 #include "fit/fast_cbrt.h"
 #include "fit/loss.h"
+#include "fit/threads.h"
 
 namespace brdfit {
 
@@ -93,18 +93,14 @@ FitMetrics Score(const Samples& samples, const Predicted& predicted, int threads
   const std::size_t ns = samples.NumSamples();
   const std::size_t n_chunks = (ns + kChunkSamples - 1) / kChunkSamples;
   std::vector<Partial> parts(n_chunks);
-  auto run = [&](std::size_t first, std::size_t step) {
-    for (std::size_t k = first; k < n_chunks; k += step) {
+  const std::size_t n_threads =
+      std::clamp<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), 1, n_chunks);
+  internal::RunOnThreads(static_cast<int>(n_threads), [&](int t) {
+    for (std::size_t k = static_cast<std::size_t>(t); k < n_chunks; k += n_threads) {
       parts[k] = ScoreRange(samples, k * kChunkSamples, std::min(ns, (k + 1) * kChunkSamples),
                             predicted);
     }
-  };
-  const std::size_t n_threads =
-      std::clamp<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), 1, n_chunks);
-  std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < n_threads; ++t) pool.emplace_back(run, t, n_threads);
-  run(0, n_threads);
-  for (auto& th : pool) th.join();
+  });
 
   if (std::any_of(parts.begin(), parts.end(), [](const Partial& p) { return p.nonfinite; })) {
     m.problem = "non-finite prediction";  // nothing of the partial sums is reported
