@@ -35,9 +35,7 @@ using namespace brdfit;
 using pipeline::BenchTable;
 namespace fs = std::filesystem;
 
-const fs::path kZip = fs::path(BRDFIT_SHARED_DATA) / "merl_nbrdf.zip";
-const std::vector<std::string> kDefaultNbrdf = {"gold-metallic-paint", "blue-acrylic", "pink-felt",
-                                                "chrome", "specular-black-phenolic"};
+const fs::path kZip = bench::NbrdfZip();
 const std::vector<std::string> kBudgets = {"full", "stride:8", "stride:16", "stride:32",
                                            "random:8192"};
 
@@ -142,7 +140,7 @@ int main(int argc, char** argv) {
   std::string csv;
   std::vector<std::string> models = {"lambert+ggx"};
   std::vector<std::string> budgets = kBudgets;
-  std::vector<std::string> nbrdf = kDefaultNbrdf;
+  std::vector<std::string> nbrdf = bench::kBenchNbrdf;
   int repeats = 3;
   std::vector<char*> rest = {argv[0]};
   for (int i = 1; i < argc; ++i) {
@@ -167,7 +165,7 @@ int main(int argc, char** argv) {
   }
   if (!csv.empty()) return Sweep(csv, models, budgets, nbrdf, repeats);
 
-  static const std::vector<BenchTable> tables = LoadTables(kDefaultNbrdf);
+  static const std::vector<BenchTable> tables = LoadTables(bench::kBenchNbrdf);
   for (const BenchTable& t : tables) {
     for (const std::string& b : kBudgets) {
       benchmark::RegisterBenchmark(("lambert+ggx/" + t.material + "/" + b).c_str(), BM_LambertGgx,

@@ -33,9 +33,7 @@ namespace {
 using namespace brdfit;
 namespace fs = std::filesystem;
 
-const fs::path kZip = fs::path(BRDFIT_SHARED_DATA) / "merl_nbrdf.zip";
-const std::vector<std::string> kNbrdf = {"gold-metallic-paint", "blue-acrylic", "pink-felt",
-                                         "chrome", "specular-black-phenolic"};
+const fs::path kZip = bench::NbrdfZip();
 
 std::vector<std::string> SplitArgs(const std::string& s) {
   std::vector<std::string> out;
@@ -55,7 +53,7 @@ std::vector<std::pair<std::string, fs::path>> WriteTables(const fs::path& dir) {
     fmt::print(stderr, "{} not found: the MERL proxies are skipped\n", kZip.string());
     return out;
   }
-  for (const std::string& name : kNbrdf) {
+  for (const std::string& name : bench::kBenchNbrdf) {
     const fs::path p = dir / (name + ".binary");
     WriteMerl(TabulateNbrdf(ReadNbrdf(kZip, name), Grid::Merl(), 1).table, p);
     out.emplace_back(name, p);

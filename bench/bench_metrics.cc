@@ -22,7 +22,7 @@ namespace {
 using namespace brdfit;
 namespace fs = std::filesystem;
 
-const fs::path kZip = fs::path(BRDFIT_SHARED_DATA) / "merl_nbrdf.zip";
+const fs::path kZip = bench::NbrdfZip();
 
 struct Case {
   std::string name;

@@ -16,6 +16,17 @@
 
 namespace brdfit::bench {
 
+// The NBRDF archive of the studies (../shared/data; absent on a machine without the data).
+inline std::filesystem::path NbrdfZip() {
+  return std::filesystem::path(BRDFIT_SHARED_DATA) / "merl_nbrdf.zip";
+}
+
+// The MERL proxies of the bench tables (with the synthetic table below, "the six bench tables"
+// of docs/fitting.md): bench_fit and bench_fit_cli.
+inline const std::vector<std::string> kBenchNbrdf = {"gold-metallic-paint", "blue-acrylic",
+                                                     "pink-felt", "chrome",
+                                                     "specular-black-phenolic"};
+
 // "a,b,,c" -> {"a", "b", "c"}: the comma-separated lists of the programs' options.
 inline std::vector<std::string> SplitList(const std::string& s) {
   std::vector<std::string> out;
@@ -32,7 +43,7 @@ inline std::vector<std::string> SplitList(const std::string& s) {
 // The inputs nbrdf:NAME of a study over ../shared/data/merl_nbrdf.zip ("all": every material),
 // or none, with a message, when the archive is absent.
 inline std::vector<std::string> NbrdfStudyInputs(const std::vector<std::string>& names) {
-  const std::filesystem::path zip = std::filesystem::path(BRDFIT_SHARED_DATA) / "merl_nbrdf.zip";
+  const std::filesystem::path zip = NbrdfZip();
   if (!std::filesystem::exists(zip)) {
     fmt::print(stderr, "{} not found: nothing to measure\n", zip.string());
     return {};
