@@ -4,6 +4,7 @@
 //
 //   bench_accuracy --csv FILE [--models lambert+ggx,...] [--losses log,cbrt,rel,l2]
 //                  [--multistart 1,4] [--budget stride:8] [--nbrdf all|m1,m2] [--jobs 2]
+//                  [--polish none|rendered]
 //
 // One CSV row per fit: material, model, loss, multistart, budget, status, log_rmse, psnr_db,
 // psnr_srgb_db, median and p95 relative luminance error, fit time; then per configuration the
@@ -49,7 +50,7 @@ struct Row {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string csv = "accuracy.csv", budget = "stride:8";
+  std::string csv = "accuracy.csv", budget = "stride:8", polish = "none";
   std::vector<std::string> models = {"lambert+ggx"}, losses = {"log"}, nbrdf = {"all"};
   std::vector<int> multistarts = {1};
   int jobs = 2;
@@ -63,6 +64,8 @@ int main(int argc, char** argv) {
       losses = bench::SplitList(v);
     else if (a == "--budget")
       budget = v;
+    else if (a == "--polish")
+      polish = v;
     else if (a == "--nbrdf")
       nbrdf = bench::SplitList(v);
     else if (a == "--jobs")
@@ -99,6 +102,7 @@ int main(int argc, char** argv) {
         FitOptions fo;
         fo.loss = LossKindFromString(c.loss);
         fo.multistart = c.multistart;
+        fo.polish = FromString<PolishKind>(polish);
         auto it = prepared.find(c.loss);
         if (it == prepared.end()) it = prepared.emplace(c.loss, PrepareTable(table, so, fo)).first;
         FitResult r = FitPrepared(c.model, it->second, fo);
@@ -120,7 +124,7 @@ int main(int argc, char** argv) {
 
   std::string out =
       "material,model,loss,multistart,budget,status,log_rmse,psnr_db,psnr_srgb_db,"
-      "median_rel_error,p95_rel_error,fit_ms,params\n";
+      "median_rel_error,p95_rel_error,fit_ms,params,polish\n";
   for (const Row& r : rows) {
     const RenderedError& e = r.result.metrics.rendered;
     std::string params;
@@ -128,11 +132,11 @@ int main(int argc, char** argv) {
       params +=
           fmt::format("{}{}={:.6g}", k ? ";" : "", r.result.param_names[k], r.result.params[k]);
     }
-    out += fmt::format("{},{},{},{},{},{},{:.6g},{:.4f},{:.4f},{:.6f},{:.6f},{:.1f},{}\n",
+    out += fmt::format("{},{},{},{},{},{},{:.6g},{:.4f},{:.4f},{:.6f},{:.6f},{:.1f},{},{}\n",
                        r.material, r.config.model, r.config.loss, r.config.multistart, budget,
                        ToString(r.result.status), r.result.metrics.log_rmse, e.psnr_db,
                        e.psnr_srgb_db, e.median_rel_error, e.p95_rel_error,
-                       r.result.times.init + r.result.times.solve, params);
+                       r.result.times.init + r.result.times.solve, params, polish);
   }
   WriteTextAtomically(csv, out);
 

@@ -297,6 +297,10 @@ Registrar reg{
                      "(N stratified samples); metrics always use every cell; the default "
                      "renders as well as full in a quarter of the time (docs/fitting.md)")
           ->capture_default_str();
+      sub.add_option("--polish", o->fit.polish,
+                     "rendered: finish each fit on the rendered-image metric's own pixels "
+                     "(docs/accuracy.md, \"The rendered polish\") | none: the table's loss only")
+          ->capture_default_str();
       sub.add_option("--seed", o->fit.seed, "seed of random budgets and subsets")
           ->capture_default_str();
       sub.add_option("--multistart", o->fit.multistart, "LM runs from the best N initializer points")

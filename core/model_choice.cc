@@ -2,12 +2,13 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace brdfit {
 
 double RenderedScoreDb(const RenderedError& rendered) {
-  return rendered.psnr_db - 20.0 * rendered.median_rel_error;
+  return std::min(rendered.psnr_db, kScorePsnrCapDb) - 20.0 * rendered.median_rel_error;
 }
 
 std::optional<double> RenderedScoreDb(const FitResult& fit) {

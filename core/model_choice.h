@@ -3,7 +3,14 @@
 //
 // Every fit is judged by its rendered-image error (fit/rendered_error.h) through one score,
 //
-//   S = psnr_db - 20 * median_rel_error        (dB; 1 point of median error = 0.2 dB)
+//   S = min(psnr_db, 60) - 20 * median_rel_error        (dB; 1 point of median error = 0.2 dB)
+//
+// A PSNR beyond 60 dB (an RMS error below 1/1000 of the peak, under the RMS error of 8-bit
+// quantization, 58.9 dB) counts as 60: nothing a display shows tells such fits apart, and on a
+// coarse table a fit can pass the measured images' own interpolation floor only by fitting that
+// interpolation (a 30 x 30 x 60 table of lambert+ggx-f0: the exact model renders at 67 dB, a
+// polished lambert+ggx+ggx at 73 dB; tests/pipeline/test_model_auto.cc). Then the median error
+// and the parameter count decide.
 //
 // which weighs the two things a render shows: the linear PSNR, dominated by the highlight's
 // absolute error, and the median relative luminance error, dominated by the body. (A fit
@@ -24,6 +31,8 @@
 #include "core/result.h"
 
 namespace brdfit {
+
+inline constexpr double kScorePsnrCapDb = 60.0;
 
 struct ModelChoiceOptions {
   double tolerance_db = 0.5;

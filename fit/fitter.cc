@@ -93,8 +93,9 @@ FitResult FitPrepared(std::string_view model, const PreparedTable& table,
   if (table.loss.kind != options.loss || table.loss.cosine != options.cosine) {
     own_loss = PrepareLoss(table.fit, options);
   }
+  const bool polish = options.polish == PolishKind::kRendered && !table.rendered.Empty();
   FitResult r = internal::FitWithOps(Find(model), table.fit, own_loss ? *own_loss : table.loss,
-                                     table.metric(), options);
+                                     table.metric(), options, polish ? &table.rendered : nullptr);
   const ModelInfo* info = FindModel(model);
   if (!r.Failed() && info && !table.rendered.Empty()) {
     // The rendered-image metric of the fitted parameters (docs/accuracy.md).

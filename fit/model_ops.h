@@ -21,6 +21,9 @@ namespace brdfit::internal {
 using MakeBlockFn = ceres::CostFunction* (*)(const Samples&, const LossData&, const ParamLayout&,
                                              const ceres::LossFunction*, std::size_t begin,
                                              std::size_t end);
+struct PolishPixels;
+using MakePixelBlockFn = ceres::CostFunction* (*)(const PolishPixels&, const ParamLayout&,
+                                                  std::size_t begin, std::size_t end);
 
 struct ModelOps {
   std::size_t catalog_index = 0;
@@ -29,6 +32,7 @@ struct ModelOps {
   ParamLayout layout;
   EvalFn eval = nullptr;
   MakeBlockFn make_block = nullptr;
+  MakePixelBlockFn make_pixel_block = nullptr;  // the rendered polish's (fit/pixel_cost.h)
 };
 
 // Each fit/problem_instances_K.cc registers the catalog models with index % kShards == K.
@@ -38,8 +42,10 @@ void RegisterModels1(std::vector<ModelOps>& out);
 void RegisterModels2(std::vector<ModelOps>& out);
 
 // The engine (fit/fit_engine.cc).
+// polish_on: the rendered reference of options.polish == kRendered (nullptr: no polish).
 FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& loss,
-                     const Samples& metric, const FitOptions& options);
+                     const Samples& metric, const FitOptions& options,
+                     const RenderedReference* polish_on = nullptr);
 NormalEquations NormalEquationsWithOps(const ModelOps& ops, const Samples& samples,
                                        const LossData& loss, const FitOptions& options,
                                        const std::vector<double>& params);

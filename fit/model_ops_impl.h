@@ -6,6 +6,7 @@
 
 #include "fit/block_cost.h"
 #include "fit/model_ops.h"
+#include "fit/pixel_cost.h"
 #include "models/catalog.h"
 #include "models/registry.h"
 
@@ -16,6 +17,12 @@ ceres::CostFunction* MakeBlock(const Samples& s, const LossData& l, const ParamL
                                const ceres::LossFunction* robust, std::size_t begin,
                                std::size_t end) {
   return new BlockCost<M>(s, l, layout, robust, begin, end);
+}
+
+template <class M>
+ceres::CostFunction* MakePixelBlock(const PolishPixels& px, const ParamLayout& layout,
+                                    std::size_t begin, std::size_t end) {
+  return new PixelCost<M>(px, layout, begin, end);
 }
 
 template <class M>
@@ -33,7 +40,7 @@ void RegisterShard(std::vector<ModelOps>& out) {
             using M = std::tuple_element_t<I, ModelCatalog>;
             const ModelInfo info = MakeModelInfo<M>();
             out.push_back({I, info.name, info.param_names, ParamLayout::Of(M::kParams),
-                           &EvalDouble<M>, &MakeBlock<M>});
+                           &EvalDouble<M>, &MakeBlock<M>, &MakePixelBlock<M>});
           }
         }(),
         ...);

@@ -46,6 +46,15 @@ inline RobustKind RobustKindFromString(const std::string& s) {
   return FromString<RobustKind>(s);
 }
 
+// A last stage after the fit on the table (fit/rendered_polish.h): kRendered polishes the
+// parameters on the rendered-image metric's own pixels (docs/accuracy.md, "The rendered polish").
+enum class PolishKind { kNone, kRendered };
+inline constexpr auto kPolishKindNames = MakeEnumNames<PolishKind>(
+    "polish", {{PolishKind::kNone, "none"}, {PolishKind::kRendered, "rendered"}});
+constexpr const auto& EnumNamesOf(PolishKind) {
+  return kPolishKindNames;
+}
+
 // The loss of `brdfit fit` when none is given: the relative loss gives the lowest rendered
 // error over the 100 MERL proxies of every loss tried (docs/accuracy.md). The library's
 // FitOptions keeps the log loss (E2), the metric the fits were validated on.
@@ -72,6 +81,7 @@ struct FitOptions {
   double function_tolerance = 1e-6;
   double parameter_tolerance = 1e-10;
   double gradient_tolerance = 1e-16;
+  PolishKind polish = PolishKind::kNone;
 
   bool operator==(const FitOptions&) const = default;
 };

@@ -25,6 +25,8 @@ std::string OptionsJson(const SampleOptions& s, const FitOptions& f) {
   j["function_tolerance"] = f.function_tolerance;
   j["parameter_tolerance"] = f.parameter_tolerance;
   j["gradient_tolerance"] = f.gradient_tolerance;
+  // Written only when on, so that reports made before the polish existed keep their keys.
+  if (f.polish != PolishKind::kNone) j["polish"] = ToString(f.polish);
   return j.dump();
 }
 

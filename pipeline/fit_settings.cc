@@ -24,6 +24,7 @@ void ApplyFitSettings(const FitSettings& s, SampleOptions* samples, FitOptions* 
   fo.max_iterations = s.max_iterations;
   fo.threads = s.threads;
   fo.seed = s.seed;
+  fo.polish = FromString<PolishKind>(s.polish);
   if (!(so.cutoff_deg > 0 && so.cutoff_deg <= 90)) throw InputError("--cutoff must be in (0, 90]");
 }
 

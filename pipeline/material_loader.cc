@@ -26,6 +26,7 @@
 #include "pipeline/cache_key.h"
 #include "pipeline/factor_export.h"
 #include "pipeline/factor_textures.h"
+#include "pipeline/fit_settings.h"
 #include "pipeline/inputs.h"
 
 namespace brdfit::pipeline {
@@ -78,11 +79,12 @@ class TableCache {
 // Cache entry of a fit: {"model", "params", "param_names", "status", "source", "key"}.
 std::vector<double> FitCached(const MaterialSpec& m, const std::filesystem::path& cache_dir,
                               TableCache* tables, ExplainLog* log) {
-  // The key: table content + model + every option that can change the result (canonical
-  // JSON of the fitter's defaults, fit/options.h): new defaults never reuse an old entry.
+  // The fit `brdfit fit TABLE --model M` makes (its defaults: pipeline/fit_settings.h). The key:
+  // table content + model + every option that can change the result (canonical JSON,
+  // fit/options.h): new defaults never reuse an old entry.
   SampleOptions sample_options;
-  sample_options.budget = DefaultFitBudget();  // as brdfit fit
-  const FitOptions fit_options;
+  FitOptions fit_options;
+  ApplyFitSettings(FitSettings{}, &sample_options, &fit_options);
   Fnv1a64 h;
   h.Add(InputContentKey(m.fit_table.string()));
   h.Add("|fit|" + m.model + "|" + OptionsJson(sample_options, fit_options));

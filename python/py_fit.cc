@@ -133,8 +133,9 @@ void BindFit(py::module_& m) {
          const std::string& budget, const std::string& diffuse, bool cosine,
          const std::string& robust, double robust_scale, double cutoff,
          const std::string& weighting, std::uint64_t seed, int multistart, int max_iterations,
-         int threads) {
+         int threads, const std::string& polish) {
         pipeline::FitSettings s;
+        s.polish = polish;
         s.loss = loss.value_or("");
         s.budget = budget;
         s.no_cosine = !cosine;
@@ -160,8 +161,9 @@ void BindFit(py::module_& m) {
       py::arg("cutoff") = pipeline::FitSettings{}.cutoff, py::arg("weighting") = "bin-measure",
       py::arg("seed") = 1, py::arg("multistart") = 1,
       py::arg("max_iterations") = pipeline::FitSettings{}.max_iterations, py::arg("threads") = 1,
+      py::arg("polish") = pipeline::FitSettings{}.polish,
       "Fits one model as `brdfit fit TABLE --model MODEL ...` does (same defaults: loss rel, "
-      "diffuse lambert, budget stride:32); the GIL is released while it runs");
+      "diffuse lambert, budget stride:32, polish rendered); the GIL is released while it runs");
 }
 
 }  // namespace brdfit::python

@@ -35,7 +35,8 @@ def num_params(row):
 
 
 def score(row, weight):
-    return float(row["psnr_db"]) - weight * float(row["median_rel_error"])
+    # core/model_choice.h: a PSNR beyond 60 dB counts as 60.
+    return min(float(row["psnr_db"]), 60.0) - weight * float(row["median_rel_error"])
 
 
 def choose(rows, materials, cands, tol, weight):

@@ -92,3 +92,17 @@ def test_nbrdf_fit_equals_cli_json(cli, tmp_path):
     assert table.shape == (90, 90, 180) and table.input == name
     r = brdfit.fit(table, model="lambert+ggx", budget="stride:32")
     assert r.json == out_json.read_text()
+
+
+def test_polish_is_the_clis_and_recorded_in_the_options(cli, small_table_file, tmp_path):
+    # The rendered polish is on by default, as in `brdfit fit`; "none" leaves it out of the
+    # options (fit/options.h OptionsJson), and a bad name is the CLI's error.
+    table = brdfit.load(str(small_table_file))
+    assert brdfit.fit(table, **FIT_ARGS).options.get("polish") == "rendered"
+    assert "polish" not in brdfit.fit(table, polish="none", **FIT_ARGS).options
+    try:
+        brdfit.fit(table, polish="bogus", **FIT_ARGS)
+    except Exception as e:  # brdfit.InputError
+        assert "unknown polish 'bogus'" in str(e)
+    else:
+        raise AssertionError("polish='bogus' was accepted")

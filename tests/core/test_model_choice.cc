@@ -38,6 +38,16 @@ TEST(ModelChoice, ScoreIsPsnrMinusTwentyTimesTheMedianError) {
   EXPECT_FALSE(RenderedScoreDb(unscored));
 }
 
+TEST(ModelChoice, PsnrBeyondSixtyDbCountsAsSixty) {
+  EXPECT_DOUBLE_EQ(*RenderedScoreDb(Fit("a", 3, 73, 0.01)), 59.8);
+  EXPECT_DOUBLE_EQ(*RenderedScoreDb(Fit("a", 3, 59, 0.01)), 58.8);
+  // Two fits past the cap: the median error and then the parameter count decide.
+  const std::vector<FitResult> fits = {Fit("big", 10, 73, 0.002), Fit("small", 7, 67, 0.004)};
+  const auto c = ChooseFit(Ptrs(fits));
+  ASSERT_TRUE(c);
+  EXPECT_EQ(c->index, 1u);
+}
+
 TEST(ModelChoice, BestScoreWinsWhenNothingSimplerIsClose) {
   const std::vector<FitResult> fits = {Fit("small", 7, 33, 0.10), Fit("big", 11, 40, 0.05)};
   const auto c = ChooseFit(Ptrs(fits));

@@ -1,0 +1,50 @@
+// The rendered polish: a fit's last stage, Levenberg-Marquardt on the rendered-image metric's own
+// pixels (fit/rendered_error.h, docs/accuracy.md "The rendered polish"). The table's loss fits
+// every cell alike; the metric judges what a render shows — the highlight's absolute error (PSNR)
+// and the body's relative error (median) — and the polish moves the parameters to what it judges.
+//
+// The score S = PSNR - 20 median (core/model_choice.h) is not a sum of squares; each round makes
+// one that agrees with it to first order at the current parameters p0 (iteratively reweighted
+// least squares, Holland & Welsch 1977):
+//   linear terms: (10 / ln 10) SSE(p) / SSE(p0)   -- d PSNR = -(10 / ln 10) d SSE / SSE
+//   luminance terms: sum_i W / (n max(|e_i(p0)|, e_min)) ln^2((Y_i + delta_i) / (Y_m,i + delta_i))
+//                    ~ W mean |e_i|, an L1 surrogate of W times the median relative error e
+// and runs a few LM iterations on it. The parameters kept are the best by S itself, the
+// starting point included: the polish never lowers the score it is judged by.
+#pragma once
+
+#include <vector>
+
+#include "core/metrics.h"
+#include "fit/model_ops.h"
+#include "fit/rendered_error.h"
+
+namespace brdfit::internal {
+
+struct RenderedPolishOptions {
+  int rounds = 2;           // reweightings
+  int max_iterations = 6;   // LM iterations per round
+  double median_weight = 40;  // W (the score's own weight is 20; 40 trades 0.1 dB of S for
+                              // a lower median error, docs/accuracy.md)
+  double min_error = 0.02;    // e_min
+  double delta_fraction = 1e-3;  // delta_i = this x the peak measured luminance of i's light
+  // Polish on every k-th lit pixel of each light; S is always scored on all of them. 2 costs
+  // half of 1 and scores the same on lights the polish never saw (docs/accuracy.md).
+  int pixel_stride = 2;
+  int threads = 1;
+};
+
+struct RenderedPolishOutcome {
+  bool ran = false;       // the reference had pixels and the start was finite
+  bool improved = false;  // x changed (S rose)
+  int iterations = 0;
+  double score_before = 0, score_after = 0;  // S, dB
+};
+
+// x: the fit's parameters in optimization space (fit/param_layout.h), updated in place when
+// the polish improves S; within the layout's bounds.
+RenderedPolishOutcome PolishOnRendered(const ModelOps& ops, const RenderedReference& reference,
+                                       const RenderedPolishOptions& options,
+                                       std::vector<double>& x);
+
+}  // namespace brdfit::internal
