@@ -1,6 +1,6 @@
-// `brdfit export FITS --format gltf|glb|mitsuba|pbrt [--material NAME] [--model NAME] -o OUT`:
-// one fit of a fit report or JSON parameters as a glTF 2.0 asset, a Mitsuba 3 scene or a pbrt-v4
-// scene (export/, docs/exports.md). What the target cannot express exactly is said in the file
+// `brdfit export FITS --format gltf|glb|mitsuba|pbrt|blender [--material NAME] [--model NAME] -o OUT`:
+// one fit of a fit report or JSON parameters as a glTF 2.0 asset, a Mitsuba 3 scene, a pbrt-v4
+// scene or a Blender Python script (export/, docs/exports.md). What the target cannot express exactly is said in the file
 // and on stderr.
 #include <fmt/core.h>
 
@@ -45,17 +45,17 @@ int RunExport(const ExportOptions& o) {
 }
 
 Registrar reg{
-    "export", "Write a fitted material for glTF 2.0, Mitsuba 3 or pbrt-v4 (a sphere scene with it)",
+    "export", "Write a fitted material for glTF 2.0, Mitsuba 3, pbrt-v4 or Blender (a sphere scene with it)",
     [](CLI::App& sub) {
       auto o = std::make_shared<ExportOptions>();
       sub.add_option("fits", o->fits, "fit report (.h5) or JSON parameters of brdfit fit")
           ->required();
-      sub.add_option("--format", o->format, "gltf (.gltf + .bin) | glb | mitsuba | pbrt")
+      sub.add_option("--format", o->format, "gltf (.gltf + .bin) | glb | mitsuba | pbrt | blender (a .py)")
           ->required();
       sub.add_option("--material", o->material, "material to export (when the fits hold several)");
       sub.add_option("--model", o->model,
                      "fit to export (default: the one exact for the target, lambert+ggx-hc; "
-                     "lambert+ggx for mitsuba; else the chosen fit)");
+                     "lambert+ggx for mitsuba and blender; else the chosen fit)");
       sub.add_option("-o,--out", o->out, "output file")->required();
       sub.add_flag("-q,--quiet", o->quiet, "no summary line");
       sub.footer(

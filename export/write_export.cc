@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "export/blender_script.h"
 #include "export/gltf.h"
 #include "export/lobe_material.h"
 #include "export/provenance.h"
@@ -18,7 +19,8 @@ Format FormatFromString(const std::string& s) {
   if (s == "glb") return Format::kGlb;
   if (s == "mitsuba") return Format::kMitsuba;
   if (s == "pbrt") return Format::kPbrt;
-  throw InputError("--format '" + s + "': expected gltf, glb, mitsuba or pbrt");
+  if (s == "blender") return Format::kBlender;
+  throw InputError("--format '" + s + "': expected gltf, glb, mitsuba, pbrt or blender");
 }
 
 const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
@@ -52,7 +54,8 @@ const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
     }
     throw InputError("no fit of model '" + model + "' (fitted: " + models + ")");
   }
-  const std::string exact = format == Format::kMitsuba ? "lambert+ggx" : "lambert+ggx-hc";
+  const std::string exact =
+      format == Format::kMitsuba || format == Format::kBlender ? "lambert+ggx" : "lambert+ggx-hc";
   for (const auto* e : of) {
     if (e->result.model == exact) return *e;
   }
@@ -112,6 +115,14 @@ ExportOutcome WriteExport(const FitReportEntry& entry, const std::string& fits_p
       const std::string image = fs::path(out).filename().replace_extension(".exr").string();
       WriteTextAtomically(
           out, PbrtScene(x, ProvenanceOf(entry, fits_path, "pbrt-v4", x.fidelity), image));
+      o.written.push_back(out);
+      break;
+    }
+    case Format::kBlender: {
+      const BlenderMaterial b = ToBlender(m);
+      o.fidelity = b.fidelity;
+      WriteTextAtomically(
+          out, BlenderScript(b, ProvenanceOf(entry, fits_path, "Blender 3.4 Cycles", b.fidelity)));
       o.written.push_back(out);
       break;
     }

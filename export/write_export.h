@@ -11,14 +11,14 @@
 
 namespace brdfit::exports {
 
-enum class Format { kGltf, kGlb, kMitsuba, kPbrt };
+enum class Format { kGltf, kGlb, kMitsuba, kPbrt, kBlender };
 
-// "gltf" | "glb" | "mitsuba" | "pbrt"; throws InputError otherwise.
+// "gltf" | "glb" | "mitsuba" | "pbrt" | "blender"; throws InputError otherwise.
 Format FormatFromString(const std::string& s);
 
 // The entry to export among `entries`: those of `material` (any when empty and there is one
 // material), of `model` when given, else the exportable one the target expresses exactly
-// (lambert+ggx for Mitsuba, lambert+ggx-hc for the others), else the chosen fit, else the
+// (lambert+ggx for Mitsuba and Blender, lambert+ggx-hc for the others), else the chosen fit, else the
 // exportable fit with the lowest log_rmse. Throws InputError naming what is available.
 const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
                                   const std::string& material, const std::string& model,
