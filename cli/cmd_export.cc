@@ -11,6 +11,7 @@
 #include "export/write_export.h"
 #include "io/fit_params_json.h"
 #include "io/output_policy.h"
+#include "preview/shader_gen.h"
 
 namespace brdfit::cli {
 namespace {
@@ -31,7 +32,9 @@ int RunExport(const ExportOptions& o) {
   CheckOutputs({o.fits}, outs);
   const std::vector<FitReportEntry> entries = ReadFitsAnyFormat(o.fits);
   const FitReportEntry& e = exports::SelectEntry(entries, o.material, o.model, format);
-  const exports::ExportOutcome r = exports::WriteExport(e, o.fits, format, o.out);
+  const std::string glsl =
+      format == exports::Format::kThreejs ? preview::AnalyticBrdfSource(e.result.model) : "";
+  const exports::ExportOutcome r = exports::WriteExport(e, o.fits, format, o.out, glsl);
   for (const std::string& a : r.fidelity.approximations) {
     fmt::print(stderr, "brdfit: export: approximate: {}\n", a);
   }
@@ -45,22 +48,23 @@ int RunExport(const ExportOptions& o) {
 }
 
 Registrar reg{
-    "export", "Write a fitted material for glTF 2.0, Mitsuba 3, pbrt-v4 or Blender (a sphere scene with it)",
+    "export", "Write a fitted material for glTF 2.0, Mitsuba 3, pbrt-v4, Blender (a sphere scene with it) or three.js",
     [](CLI::App& sub) {
       auto o = std::make_shared<ExportOptions>();
       sub.add_option("fits", o->fits, "fit report (.h5) or JSON parameters of brdfit fit")
           ->required();
-      sub.add_option("--format", o->format, "gltf (.gltf + .bin) | glb | mitsuba | pbrt | blender (a .py)")
+      sub.add_option("--format", o->format, "gltf (.gltf + .bin) | glb | mitsuba | pbrt | blender (a .py) | threejs (a .mjs)")
           ->required();
       sub.add_option("--material", o->material, "material to export (when the fits hold several)");
       sub.add_option("--model", o->model,
                      "fit to export (default: the one exact for the target, lambert+ggx-hc; "
-                     "lambert+ggx for mitsuba and blender; else the chosen fit)");
+                     "lambert+ggx for mitsuba and blender; else the chosen fit; threejs: any model, the chosen fit)");
       sub.add_option("-o,--out", o->out, "output file")->required();
       sub.add_flag("-q,--quiet", o->quiet, "no summary line");
       sub.footer(
           "Exit codes: 0 ok, 2 bad input or output. Exportable models: lambert+ggx-hc, "
-          "lambert+ggx, lambert+ggx-f0, ue4; docs/exports.md has the mappings.\n"
+          "lambert+ggx, lambert+ggx-f0, ue4 (threejs: any analytic model); docs/exports.md has the "
+          "mappings.\n"
           "Examples:\n  brdfit fit gold.binary --model ggx-hc --json fits.json\n"
           "  brdfit export fits.json --format glb -o gold.glb");
       return [o] { return RunExport(*o); };

@@ -1,6 +1,7 @@
 #include "export/write_export.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "core/error.h"
 #include "export/blender_script.h"
@@ -8,6 +9,7 @@
 #include "export/lobe_material.h"
 #include "export/provenance.h"
 #include "export/scene_text.h"
+#include "export/threejs_module.h"
 #include "io/atomic_file.h"
 
 namespace brdfit::exports {
@@ -20,7 +22,8 @@ Format FormatFromString(const std::string& s) {
   if (s == "mitsuba") return Format::kMitsuba;
   if (s == "pbrt") return Format::kPbrt;
   if (s == "blender") return Format::kBlender;
-  throw InputError("--format '" + s + "': expected gltf, glb, mitsuba, pbrt or blender");
+  if (s == "threejs") return Format::kThreejs;
+  throw InputError("--format '" + s + "': expected gltf, glb, mitsuba, pbrt, blender or threejs");
 }
 
 const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
@@ -54,6 +57,16 @@ const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
     }
     throw InputError("no fit of model '" + model + "' (fitted: " + models + ")");
   }
+  if (format == Format::kThreejs) {
+    for (const auto* e : of) {
+      if (e->chosen) return *e;
+    }
+    const FitReportEntry* best = of.front();
+    for (const auto* e : of) {
+      if (e->result.metrics.log_rmse < best->result.metrics.log_rmse) best = e;
+    }
+    return *best;
+  }
   const std::string exact =
       format == Format::kMitsuba || format == Format::kBlender ? "lambert+ggx" : "lambert+ggx-hc";
   for (const auto* e : of) {
@@ -75,9 +88,17 @@ const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
 }
 
 ExportOutcome WriteExport(const FitReportEntry& entry, const std::string& fits_path, Format format,
-                          const fs::path& out) {
-  const LobeMaterial m = FromFit(entry.result);
+                          const fs::path& out, const std::string& brdf_glsl) {
   ExportOutcome o;
+  if (format == Format::kThreejs) {
+    if (brdf_glsl.empty()) throw std::logic_error("WriteExport(threejs) without the model's GLSL");
+    const ThreejsAnalytic a{entry.result.model, entry.result.params, brdf_glsl};
+    WriteTextAtomically(out,
+                        ThreejsModule(a, ProvenanceOf(entry, fits_path, "three.js", o.fidelity)));
+    o.written.push_back(out);
+    return o;
+  }
+  const LobeMaterial m = FromFit(entry.result);
   switch (format) {
     case Format::kGltf:
     case Format::kGlb: {
@@ -126,6 +147,8 @@ ExportOutcome WriteExport(const FitReportEntry& entry, const std::string& fits_p
       o.written.push_back(out);
       break;
     }
+    case Format::kThreejs:
+      break;  // written above
   }
   return o;
 }

@@ -116,6 +116,11 @@ std::string ShadeFragmentSource(const ShaderVariant& v) {
   return src;
 }
 
+std::string AnalyticBrdfSource(const std::string& model) {
+  return "// ---- preview/glsl/common.glsl\n" + std::string(GlslSource("preview/glsl/common.glsl")) +
+         AnalyticEval(model);
+}
+
 std::string ToneMapFragmentSource(ToneMap t, Encoding e) {
   return kVersion + Define("TONE_MAPPING", static_cast<int>(t)) +
          Define("ENCODING", static_cast<int>(e)) +

@@ -27,6 +27,12 @@ struct ShaderVariant {
 std::string ShadeVertexSource(const ShaderVariant& v);
 std::string ShadeFragmentSource(const ShaderVariant& v);
 std::string ToneMapFragmentSource(ToneMap t, Encoding e);
+
+// The preview's BRDF code for an analytic model, without #version or #defines: common.glsl
+// (constants, light structs, BrdfGeometry, MakeBrdfGeometry, BuildFrame), the lobes' GLSL twins
+// and `uniform float uParams[N]; vec3 EvalBrdf(const in BrdfGeometry g)` -- for shaders outside
+// the preview (the three.js ShaderMaterial export, docs/exports.md).
+std::string AnalyticBrdfSource(const std::string& model);
 std::string FullscreenVertexSource();
 
 }  // namespace brdfit::preview
