@@ -9,6 +9,8 @@
 
 #include "cli/command.h"
 #include "export/write_export.h"
+#include "core/error.h"
+#include "io/factor_io.h"
 #include "io/fit_params_json.h"
 #include "io/output_policy.h"
 #include "preview/shader_gen.h"
@@ -23,8 +25,32 @@ struct ExportOptions {
   bool quiet = false;
 };
 
+bool IsFactorSidecar(const std::string& path) {
+  const std::string suffix = ".factor.json";
+  return path.size() >= suffix.size() && path.ends_with(suffix);
+}
+
+// A factorization's sidecar: only the three.js module can carry its textures.
+int RunFactorExport(const ExportOptions& o, exports::Format format) {
+  if (format != exports::Format::kThreejs) {
+    throw InputError(o.fits + ": a factorization exports only as --format threejs (the other "
+                     "targets take a fit report or fit JSON)");
+  }
+  CheckOutputs({o.fits}, {{o.out, "-o"}});
+  const FactorFiles files = ReadFactorFiles(o.fits);
+  const std::string glsl = preview::FactoredBrdfSource(
+      files.sidecar.at("parameterization").get<std::string>(), static_cast<int>(files.terms.size()));
+  const exports::ExportOutcome r = exports::WriteFactoredThreejs(files, o.fits, glsl, o.out);
+  for (const std::string& a : r.fidelity.approximations) {
+    fmt::print(stderr, "brdfit: export: approximate: {}\n", a);
+  }
+  if (!o.quiet) fmt::print("{} -> {}\n", o.fits, o.out);
+  return kExitOk;
+}
+
 int RunExport(const ExportOptions& o) {
   const exports::Format format = exports::FormatFromString(o.format);
+  if (IsFactorSidecar(o.fits)) return RunFactorExport(o, format);
   std::vector<PlannedOutput> outs = {{o.out, "-o"}};
   if (format == exports::Format::kGltf) {
     outs.push_back({fs::path(o.out).replace_extension(".bin"), "-o (its .bin)"});
@@ -51,7 +77,9 @@ Registrar reg{
     "export", "Write a fitted material for glTF 2.0, Mitsuba 3, pbrt-v4, Blender (a sphere scene with it) or three.js",
     [](CLI::App& sub) {
       auto o = std::make_shared<ExportOptions>();
-      sub.add_option("fits", o->fits, "fit report (.h5) or JSON parameters of brdfit fit")
+      sub.add_option("fits", o->fits,
+                     "fit report (.h5), JSON parameters of brdfit fit, or (threejs) a "
+                     "factorization's .factor.json")
           ->required();
       sub.add_option("--format", o->format, "gltf (.gltf + .bin) | glb | mitsuba | pbrt | blender (a .py) | threejs (a .mjs)")
           ->required();

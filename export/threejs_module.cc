@@ -2,6 +2,9 @@
 
 #include <fmt/core.h>
 
+#include <cmath>
+#include <cstring>
+
 namespace brdfit::exports {
 
 namespace {
@@ -82,40 +85,150 @@ void main() {
 
 }  // namespace
 
-std::string ThreejsModule(const ThreejsAnalytic& a, const Provenance& p) {
+std::uint16_t ToHalf(float f, bool* clipped) {
+  std::uint32_t x = 0;
+  std::memcpy(&x, &f, sizeof x);
+  const std::uint16_t sign = static_cast<std::uint16_t>((x >> 16) & 0x8000u);
+  const float a = std::fabs(f);
+  if (!(a < 65520.0f)) {  // rounds beyond 65504 (or NaN): clip to the largest half
+    *clipped = true;
+    return static_cast<std::uint16_t>(sign | 0x7bffu);
+  }
+  if (a < 6.103515625e-05f) {  // below 2^-14: subnormal, m 2^-24 (m = 1024 is 2^-14, normal)
+    return static_cast<std::uint16_t>(sign | static_cast<std::uint16_t>(std::nearbyint(a * 16777216.0f)));
+  }
+  const std::uint32_t ax = x & 0x7fffffffu, mant = ax & 0x7fffffu;
+  const std::uint32_t exp = (ax >> 23) - 127 + 15;
+  std::uint32_t h = (exp << 10) | (mant >> 13);
+  const std::uint32_t rest = mant & 0x1fffu;
+  if (rest > 0x1000u || (rest == 0x1000u && (h & 1u))) ++h;  // a carry into the exponent is right
+  return static_cast<std::uint16_t>(sign | h);
+}
+
+namespace {
+
+std::string Base64(const std::vector<std::uint8_t>& bytes) {
+  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::uint32_t b0 = bytes[i], b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0,
+                        b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0;
+    const std::uint32_t v = (b0 << 16) | (b1 << 8) | b2;
+    out += k[(v >> 18) & 63];
+    out += k[(v >> 12) & 63];
+    out += i + 1 < bytes.size() ? k[(v >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? k[v & 63] : '=';
+  }
+  return out;
+}
+
+// RGB float32 -> RGBA half, little endian (every WebGL platform's byte order), alpha 1.
+std::string HalfRgbaBase64(const RgbImage& img, bool* clipped) {
+  std::vector<std::uint8_t> bytes;
+  bytes.reserve(8 * static_cast<std::size_t>(img.width) * img.height);
+  auto put = [&](std::uint16_t h) {
+    bytes.push_back(static_cast<std::uint8_t>(h & 0xff));
+    bytes.push_back(static_cast<std::uint8_t>(h >> 8));
+  };
+  for (std::size_t i = 0; i + 2 < img.rgb.size(); i += 3) {
+    for (int c = 0; c < 3; ++c) put(ToHalf(img.rgb[i + c], clipped));
+    put(0x3c00);  // 1.0
+  }
+  return Base64(bytes);
+}
+
+std::string Header(const Provenance& p, const char* what) {
   std::string s;
   for (const std::string& line : p.Lines()) s += "// " + line + "\n";
-  s += "//\n// A three.js ShaderMaterial of the fitted model, with brdfit's own GLSL (the preview's).\n"
+  s += std::string("//\n// A three.js ShaderMaterial of ") + what +
+       ", with brdfit's own GLSL (the preview's).\n"
        "// Lit by the scene's DirectionalLights (other light types are ignored); linear radiance\n"
        "// out, converted to the renderer's output colour space; no tone mapping.\n"
        "// Use: import createMaterial from './this.mjs'; mesh.material = createMaterial();\n"
-       "// (docs/exports.md, \"three.js ShaderMaterial\")\n";
-  s += "import * as THREE from 'three';\n\n";
-  s += "export const brdfit = {\n";
-  s += "  version: " + JsString(p.version) + ",\n";
-  s += "  source: " + JsString(p.source) + ",\n";
-  s += "  material: " + JsString(p.material) + ",\n";
-  s += "  model: " + JsString(a.model) + ",\n";
-  s += "  metrics: " + JsString(p.metrics) + ",\n";
-  s += "  params: [";
-  for (std::size_t i = 0; i < a.params.size(); ++i) {
-    s += fmt::format("{}{:.9g}", i ? ", " : "", a.params[i]);
-  }
-  s += "],\n};\n\n";
-  s += "export const vertexShader = `" + TemplateLiteral(kVertex) + "`;\n\n";
-  s += "export const fragmentShader = `" + TemplateLiteral(a.brdf_glsl) +
-       TemplateLiteral(kFragmentMain) + "`;\n\n";
-  s += "export default function createMaterial() {\n"
-       "  return new THREE.ShaderMaterial({\n"
-       "    name: 'brdfit-' + brdfit.material,\n"
+       "// (docs/exports.md, \"three.js ShaderMaterial\")\n"
+       "import * as THREE from 'three';\n\n";
+  return s;
+}
 
-       "    lights: true,\n"
-       "    uniforms: THREE.UniformsUtils.merge([THREE.UniformsLib.lights,\n"
-       "                                         { uParams: { value: brdfit.params.slice() } }]),\n"
-       "    vertexShader,\n"
-       "    fragmentShader,\n"
-       "  });\n"
-       "}\n";
+std::string ProvenanceObject(const Provenance& p, const std::string& extra) {
+  return "export const brdfit = {\n  version: " + JsString(p.version) +
+         ",\n  source: " + JsString(p.source) + ",\n  material: " + JsString(p.material) +
+         ",\n  model: " + JsString(p.model) + ",\n  metrics: " + JsString(p.metrics) + ",\n" +
+         extra + "};\n\n";
+}
+
+std::string Shaders(const std::string& brdf_glsl) {
+  return "export const vertexShader = `" + TemplateLiteral(kVertex) + "`;\n\n" +
+         "export const fragmentShader = `" + TemplateLiteral(brdf_glsl) +
+         TemplateLiteral(kFragmentMain) + "`;\n\n";
+}
+
+std::string CreateMaterial(const std::string& uniforms) {
+  return "export default function createMaterial() {\n"
+         "  return new THREE.ShaderMaterial({\n"
+         "    name: 'brdfit-' + brdfit.material,\n"
+         "    lights: true,\n"
+         "    uniforms: THREE.UniformsUtils.merge([THREE.UniformsLib.lights, {\n" +
+         uniforms +
+         "    }]),\n"
+         "    vertexShader,\n"
+         "    fragmentShader,\n"
+         "  });\n"
+         "}\n";
+}
+
+}  // namespace
+
+std::string ThreejsModule(const ThreejsAnalytic& a, const Provenance& p) {
+  std::string params = "  params: [";
+  for (std::size_t i = 0; i < a.params.size(); ++i) {
+    params += fmt::format("{}{:.9g}", i ? ", " : "", a.params[i]);
+  }
+  params += "],\n";
+  return Header(p, "the fitted model") + ProvenanceObject(p, params) + Shaders(a.brdf_glsl) +
+         CreateMaterial("      uParams: { value: brdfit.params.slice() },\n");
+}
+
+std::string ThreejsFactoredModule(const ThreejsFactored& f, const Provenance& p,
+                                  Fidelity* fidelity) {
+  std::string s = Header(p, "the factorization");
+  s += "// The texels are rounded to half floats (relative error <= 2^-11); the lookup is the\n"
+       "// preview's (bilinear, texel centres, clamp to edge).\n\n";
+  s += ProvenanceObject(
+      p, fmt::format("  parameterization: {},\n  rank: {},\n  diffuse: [{:.9g}, {:.9g}, {:.9g}],\n",
+                     JsString(f.parameterization), f.p.size(), f.diffuse[0], f.diffuse[1],
+                     f.diffuse[2]));
+  s += "// Half-float RGBA texels, little endian, row 0 first (texture coordinate t = 0).\n"
+       "function halfTexture(base64, width, height, repeatRows) {\n"
+       "  const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));\n"
+       "  const t = new THREE.DataTexture(new Uint16Array(bytes.buffer), width, height,\n"
+       "                                  THREE.RGBAFormat, THREE.HalfFloatType);\n"
+       "  t.minFilter = THREE.LinearFilter;\n  t.magFilter = THREE.LinearFilter;\n"
+       "  t.generateMipmaps = false;\n  t.wrapS = THREE.ClampToEdgeWrapping;\n"
+       "  t.wrapT = repeatRows ? THREE.RepeatWrapping : THREE.ClampToEdgeWrapping;\n"
+       "  t.colorSpace = THREE.NoColorSpace;\n  t.needsUpdate = true;\n  return t;\n}\n\n";
+  bool clipped = false;
+  std::string uniforms = fmt::format(
+      "      uFactorDiffuse: {{ value: new THREE.Vector3({:.9g}, {:.9g}, {:.9g}) }},\n",
+      f.diffuse[0], f.diffuse[1], f.diffuse[2]);
+  const bool repeat_q = f.parameterization == "halfdiff";
+  s += "const textures = {\n";
+  for (std::size_t k = 0; k < f.p.size(); ++k) {
+    const std::string n = k == 0 ? "" : std::to_string(k + 1);
+    for (const bool q : {false, true}) {
+      const RgbImage& img = q ? f.q[k] : f.p[k];
+      const std::string name = std::string(q ? "uFactorQ" : "uFactorP") + n;
+      s += fmt::format("  {}: [\"{}\", {}, {}, {}],\n", name, HalfRgbaBase64(img, &clipped),
+                       img.width, img.height, q && repeat_q ? "true" : "false");
+      uniforms += fmt::format("      {0}: {{ value: halfTexture(...textures.{0}) }},\n", name);
+    }
+  }
+  s += "};\n\n";
+  if (clipped) {
+    fidelity->approximations.push_back(
+        "texels above 65504 (the largest half float) are clipped to it");
+  }
+  s += Shaders(f.brdf_glsl) + CreateMaterial(uniforms);
   return s;
 }
 

@@ -1,5 +1,7 @@
 #include "export/write_export.h"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -10,6 +12,7 @@
 #include "export/provenance.h"
 #include "export/scene_text.h"
 #include "export/threejs_module.h"
+#include "core/provenance.h"
 #include "io/atomic_file.h"
 
 namespace brdfit::exports {
@@ -150,6 +153,53 @@ ExportOutcome WriteExport(const FitReportEntry& entry, const std::string& fits_p
     case Format::kThreejs:
       break;  // written above
   }
+  return o;
+}
+
+ExportOutcome WriteFactoredThreejs(const FactorFiles& files, const fs::path& json,
+                                   const std::string& brdf_glsl, const fs::path& out) {
+  ThreejsFactored f;
+  f.parameterization = files.sidecar.at("parameterization").get<std::string>();
+  f.diffuse = files.diffuse;
+  for (const FactorTermFiles& t : files.terms) {
+    f.p.push_back(t.p.image);
+    f.q.push_back(t.q.image);
+  }
+  f.brdf_glsl = brdf_glsl;
+  const nlohmann::json& sc = files.sidecar;
+  Provenance p;
+  p.version = std::string(BrdfitVersion());
+  p.fits = json.string();
+  std::string stem = json.filename().string();
+  const std::string suffix = ".factor.json";
+  if (stem.size() > suffix.size() && stem.ends_with(suffix)) stem.resize(stem.size() - suffix.size());
+  p.material = stem;
+  const nlohmann::json src = sc.value("source", nlohmann::json::object());
+  p.source = src.is_object() ? src.value("file", "?") : "?";
+  p.source_hash = src.is_object() ? src.value("hash", "") : "";
+  const bool diffuse = f.diffuse[0] > 0 || f.diffuse[1] > 0 || f.diffuse[2] > 0;
+  p.model = fmt::format("factorization {}, rank {}{}", f.parameterization, f.p.size(),
+                        diffuse ? " + diffuse" : "");
+  p.target = "three.js";
+  const nlohmann::json m = sc.value("metrics", nlohmann::json::object());
+  const nlohmann::json r = m.is_object() ? m.value("rendered", nlohmann::json()) : nlohmann::json();
+  if (r.is_object() && r.value("ok", false)) {
+    p.metrics = fmt::format(
+        "rendered error psnr {:.2f} dB, median relative {:.2f} %, p95 {:.2f} % (docs/accuracy.md)",
+        r.value("psnr_db", 0.0), 100 * r.value("median_rel_error", 0.0),
+        100 * r.value("p95_rel_error", 0.0));
+  } else {
+    p.metrics = "no rendered error in the sidecar";
+  }
+  ExportOutcome o;
+  std::string text = ThreejsFactoredModule(f, p, &o.fidelity);
+  if (!o.fidelity.Exact()) {  // the header states it: once more, now that the texels told
+    p.fidelity = o.fidelity;
+    Fidelity again;
+    text = ThreejsFactoredModule(f, p, &again);
+  }
+  WriteTextAtomically(out, text);
+  o.written.push_back(out);
   return o;
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "export/targets.h"
+#include "io/factor_io.h"
 #include "io/fit_report.h"
 
 namespace brdfit::exports {
@@ -36,5 +37,11 @@ struct ExportOutcome {
 // does not include preview/).
 ExportOutcome WriteExport(const FitReportEntry& entry, const std::string& fits_path, Format format,
                           const std::filesystem::path& out, const std::string& brdf_glsl = {});
+
+// A factorization (`brdfit factor`'s sidecar `json` and its textures, read by ReadFactorFiles)
+// as a three.js ShaderMaterial module; `brdf_glsl` = preview::FactoredBrdfSource of its
+// parameterization and rank.
+ExportOutcome WriteFactoredThreejs(const FactorFiles& files, const std::filesystem::path& json,
+                                   const std::string& brdf_glsl, const std::filesystem::path& out);
 
 }  // namespace brdfit::exports
