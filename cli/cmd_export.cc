@@ -1,6 +1,7 @@
-// `brdfit export FITS --format gltf|glb|mitsuba|pbrt|blender [--material NAME] [--model NAME] -o OUT`:
-// one fit of a fit report or JSON parameters as a glTF 2.0 asset, a Mitsuba 3 scene, a pbrt-v4
-// scene or a Blender Python script (export/, docs/exports.md). What the target cannot express exactly is said in the file
+// `brdfit export FITS --format gltf|glb|mitsuba|pbrt|blender|threejs [--material NAME] [--model
+// NAME] -o OUT`: one fit of a fit report or JSON parameters (or a factorization, threejs) as a
+// glTF 2.0 asset, a Mitsuba 3 scene, a pbrt-v4 scene, a Blender Python script or a three.js
+// module (export/, docs/exports.md). What the target cannot express exactly is said in the file
 // and on stderr.
 #include <fmt/core.h>
 
@@ -8,8 +9,8 @@
 #include <string>
 
 #include "cli/command.h"
-#include "export/write_export.h"
 #include "core/error.h"
+#include "export/write_export.h"
 #include "io/factor_io.h"
 #include "io/fit_params_json.h"
 #include "io/output_policy.h"
@@ -33,13 +34,15 @@ bool IsFactorSidecar(const std::string& path) {
 // A factorization's sidecar: only the three.js module can carry its textures.
 int RunFactorExport(const ExportOptions& o, exports::Format format) {
   if (format != exports::Format::kThreejs) {
-    throw InputError(o.fits + ": a factorization exports only as --format threejs (the other "
+    throw InputError(o.fits +
+                     ": a factorization exports only as --format threejs (the other "
                      "targets take a fit report or fit JSON)");
   }
   CheckOutputs({o.fits}, {{o.out, "-o"}});
   const FactorFiles files = ReadFactorFiles(o.fits);
-  const std::string glsl = preview::FactoredBrdfSource(
-      files.sidecar.at("parameterization").get<std::string>(), static_cast<int>(files.terms.size()));
+  const std::string glsl =
+      preview::FactoredBrdfSource(files.sidecar.at("parameterization").get<std::string>(),
+                                  static_cast<int>(files.terms.size()));
   const exports::ExportOutcome r = exports::WriteFactoredThreejs(files, o.fits, glsl, o.out);
   for (const std::string& a : r.fidelity.approximations) {
     fmt::print(stderr, "brdfit: export: approximate: {}\n", a);
@@ -74,19 +77,24 @@ int RunExport(const ExportOptions& o) {
 }
 
 Registrar reg{
-    "export", "Write a fitted material for glTF 2.0, Mitsuba 3, pbrt-v4, Blender (a sphere scene with it) or three.js",
+    "export",
+    "Write a fitted material for glTF 2.0, Mitsuba 3, pbrt-v4, Blender (a sphere scene with it) or "
+    "three.js",
     [](CLI::App& sub) {
       auto o = std::make_shared<ExportOptions>();
       sub.add_option("fits", o->fits,
                      "fit report (.h5), JSON parameters of brdfit fit, or (threejs) a "
                      "factorization's .factor.json")
           ->required();
-      sub.add_option("--format", o->format, "gltf (.gltf + .bin) | glb | mitsuba | pbrt | blender (a .py) | threejs (a .mjs)")
+      sub.add_option(
+             "--format", o->format,
+             "gltf (.gltf + .bin) | glb | mitsuba | pbrt | blender (a .py) | threejs (a .mjs)")
           ->required();
       sub.add_option("--material", o->material, "material to export (when the fits hold several)");
       sub.add_option("--model", o->model,
                      "fit to export (default: the one exact for the target, lambert+ggx-hc; "
-                     "lambert+ggx for mitsuba and blender; else the chosen fit; threejs: any model, the chosen fit)");
+                     "lambert+ggx for mitsuba and blender; else the chosen fit; threejs: any "
+                     "model, the chosen fit)");
       sub.add_option("-o,--out", o->out, "output file")->required();
       sub.add_flag("-q,--quiet", o->quiet, "no summary line");
       sub.footer(

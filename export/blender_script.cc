@@ -43,7 +43,9 @@ def node_of_type(tree, kind):
 
 
 def exact_material():
-    """Diffuse BSDF (roughness 0: Lambert) + Glossy BSDF (GGX, no Fresnel): kd/pi + ks D G/(4 cos cos)."""
+    """Diffuse BSDF (roughness 0: Lambert) + Glossy BSDF (GGX, no Fresnel).
+
+    f = kd / pi + ks D G / (4 cos_i cos_o)."""
     mat = bpy.data.materials.new("brdfit-material")
     mat.use_nodes = True
     tree = mat.node_tree
@@ -175,14 +177,17 @@ std::string BlenderScript(const BlenderMaterial& m, const Provenance& p) {
   principled.fidelity = m.principled_fidelity;
   s += PythonComment("material brdfit-principled (not on the sphere; --material principled): " +
                      principled.FidelityLine());
-  s += "#\n# brdfit-material (on the sphere): Add Shader(Diffuse BSDF roughness 0, Glossy BSDF GGX)\n"
-       "#   = kd / pi + ks D G1 G1 / (4 cos_i cos_o)  (Cycles 3.4: Lambert; GGX, separable Smith)\n"
-       "# brdfit-principled: Principled BSDF (GGX), roughness sqrt(alpha), metallic 0 with base colour\n"
-       "#   kd and cspec0 = 0.08 specular ((1 - tint) + tint kd / lum(kd)) nearest to ks, or\n"
-       "#   metallic 1 with base colour ks when that is nearer\n"
-       "# Render: blender -b --factory-startup --python-exit-code 1 -P this.py -- --render out.png\n"
-       "#   [--material exact|principled] [--size 256] [--samples 16] [--save scene.blend]\n"
-       "# (docs/exports.md, \"Blender\")\n";
+  s +=
+      "#\n# brdfit-material (on the sphere): Add Shader(Diffuse BSDF roughness 0, Glossy BSDF "
+      "GGX)\n"
+      "#   = kd / pi + ks D G1 G1 / (4 cos_i cos_o)  (Cycles 3.4: Lambert; GGX, separable Smith)\n"
+      "# brdfit-principled: Principled BSDF (GGX), roughness sqrt(alpha), metallic 0 with base "
+      "colour\n"
+      "#   kd and cspec0 = 0.08 specular ((1 - tint) + tint kd / lum(kd)) nearest to ks, or\n"
+      "#   metallic 1 with base colour ks when that is nearer\n"
+      "# Render: blender -b --factory-startup --python-exit-code 1 -P this.py -- --render out.png\n"
+      "#   [--material exact|principled] [--size 256] [--samples 16] [--save scene.blend]\n"
+      "# (docs/exports.md, \"Blender\")\n";
   s += fmt::format(
       "\nEXACT = {{\"diffuse_color\": {}, \"glossy_color\": {}, \"roughness\": {:.9g}}}\n",
       Tuple3(m.diffuse_color), Tuple3(m.glossy_color), m.roughness);

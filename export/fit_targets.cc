@@ -9,17 +9,27 @@ namespace {
 
 const std::vector<FitTarget>& Targets() {
   static const std::vector<FitTarget> t = {
-      {"gltf", Format::kGlb, {"lambert+ggx-hc"},
+      {"gltf",
+       Format::kGlb,
+       {"lambert+ggx-hc"},
        "glTF 2.0 metallic-roughness + KHR_materials_specular, height-correlated masking as "
        "three.js and the Sample Viewer evaluate it: exact for a grey ks"},
-      {"threejs", Format::kThreejs, {},
+      {"threejs",
+       Format::kThreejs,
+       {},
        "three.js ShaderMaterial running brdfit's GLSL: every model exact"},
-      {"blender", Format::kBlender, {"lambert+ggx"},
+      {"blender",
+       Format::kBlender,
+       {"lambert+ggx"},
        "Blender 3.4 Cycles Diffuse + Glossy (GGX, separable masking) node tree: exact; its "
        "Principled BSDF material is approximate"},
-      {"mitsuba", Format::kMitsuba, {"lambert+ggx"},
+      {"mitsuba",
+       Format::kMitsuba,
+       {"lambert+ggx"},
        "Mitsuba 3 blendbsdf of diffuse and roughconductor (separable masking): exact"},
-      {"pbrt", Format::kPbrt, {"lambert+ggx-hc"},
+      {"pbrt",
+       Format::kPbrt,
+       {"lambert+ggx-hc"},
        "pbrt-v4 mix of diffuse and conductor (height-correlated masking): exact for a grey ks "
        "(to 1e-3)"},
   };

@@ -74,7 +74,7 @@ struct BlenderMaterial {
   double metallic = 0;
   double specular = 0.5;
   double specular_tint = 0;
-  Rgb principled_f0{};   // the cspec0 these give (Cycles' normal-incidence colour)
+  Rgb principled_f0{};  // the cspec0 these give (Cycles' normal-incidence colour)
   Fidelity principled_fidelity;
 };
 BlenderMaterial ToBlender(const LobeMaterial& m);

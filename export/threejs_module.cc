@@ -95,7 +95,8 @@ std::uint16_t ToHalf(float f, bool* clipped) {
     return static_cast<std::uint16_t>(sign | 0x7bffu);
   }
   if (a < 6.103515625e-05f) {  // below 2^-14: subnormal, m 2^-24 (m = 1024 is 2^-14, normal)
-    return static_cast<std::uint16_t>(sign | static_cast<std::uint16_t>(std::nearbyint(a * 16777216.0f)));
+    return static_cast<std::uint16_t>(sign |
+                                      static_cast<std::uint16_t>(std::nearbyint(a * 16777216.0f)));
   }
   const std::uint32_t ax = x & 0x7fffffffu, mant = ax & 0x7fffffu;
   const std::uint32_t exp = (ax >> 23) - 127 + 15;
@@ -208,9 +209,9 @@ std::string ThreejsFactoredModule(const ThreejsFactored& f, const Provenance& p,
        "  t.wrapT = repeatRows ? THREE.RepeatWrapping : THREE.ClampToEdgeWrapping;\n"
        "  t.colorSpace = THREE.NoColorSpace;\n  t.needsUpdate = true;\n  return t;\n}\n\n";
   bool clipped = false;
-  std::string uniforms = fmt::format(
-      "      uFactorDiffuse: {{ value: new THREE.Vector3({:.9g}, {:.9g}, {:.9g}) }},\n",
-      f.diffuse[0], f.diffuse[1], f.diffuse[2]);
+  std::string uniforms =
+      fmt::format("      uFactorDiffuse: {{ value: new THREE.Vector3({:.9g}, {:.9g}, {:.9g}) }},\n",
+                  f.diffuse[0], f.diffuse[1], f.diffuse[2]);
   const bool repeat_q = f.parameterization == "halfdiff";
   s += "const textures = {\n";
   for (std::size_t k = 0; k < f.p.size(); ++k) {

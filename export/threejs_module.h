@@ -15,9 +15,9 @@
 namespace brdfit::exports {
 
 struct ThreejsAnalytic {
-  std::string model;            // registry name
-  std::vector<double> params;   // in the model's parameter order (uParams)
-  std::string brdf_glsl;        // preview::AnalyticBrdfSource(model): EvalBrdf and what it needs
+  std::string model;           // registry name
+  std::vector<double> params;  // in the model's parameter order (uParams)
+  std::string brdf_glsl;       // preview::AnalyticBrdfSource(model): EvalBrdf and what it needs
 };
 
 // `import createMaterial from './m.mjs'; mesh.material = createMaterial();` (three.js r152+ on
@@ -30,8 +30,8 @@ std::string ThreejsModule(const ThreejsAnalytic& a, const Provenance& p);
 struct ThreejsFactored {
   std::string parameterization;  // "mccool" | "halfdiff"
   std::array<double, 3> diffuse{};
-  std::vector<RgbImage> p, q;    // one per term
-  std::string brdf_glsl;         // preview::FactoredBrdfSource(parameterization, rank)
+  std::vector<RgbImage> p, q;  // one per term
+  std::string brdf_glsl;       // preview::FactoredBrdfSource(parameterization, rank)
 };
 // `fidelity` receives what half floats could not hold (values above 65504 are clipped).
 std::string ThreejsFactoredModule(const ThreejsFactored& f, const Provenance& p,

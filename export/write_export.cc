@@ -6,13 +6,13 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/provenance.h"
 #include "export/blender_script.h"
 #include "export/gltf.h"
 #include "export/lobe_material.h"
 #include "export/provenance.h"
 #include "export/scene_text.h"
 #include "export/threejs_module.h"
-#include "core/provenance.h"
 #include "io/atomic_file.h"
 
 namespace brdfit::exports {
@@ -172,7 +172,8 @@ ExportOutcome WriteFactoredThreejs(const FactorFiles& files, const fs::path& jso
   p.fits = json.string();
   std::string stem = json.filename().string();
   const std::string suffix = ".factor.json";
-  if (stem.size() > suffix.size() && stem.ends_with(suffix)) stem.resize(stem.size() - suffix.size());
+  if (stem.size() > suffix.size() && stem.ends_with(suffix))
+    stem.resize(stem.size() - suffix.size());
   p.material = stem;
   const nlohmann::json src = sc.value("source", nlohmann::json::object());
   p.source = src.is_object() ? src.value("file", "?") : "?";

@@ -19,8 +19,8 @@ Format FormatFromString(const std::string& s);
 
 // The entry to export among `entries`: those of `material` (any when empty and there is one
 // material), of `model` when given, else the exportable one the target expresses exactly
-// (lambert+ggx for Mitsuba and Blender, lambert+ggx-hc for the others), else the chosen fit, else the
-// exportable fit with the lowest log_rmse. kThreejs evaluates every analytic model exactly:
+// (lambert+ggx for Mitsuba and Blender, lambert+ggx-hc for the others), else the chosen fit, else
+// the exportable fit with the lowest log_rmse. kThreejs evaluates every analytic model exactly:
 // `model`, else the chosen fit, else the lowest log_rmse. Throws InputError naming what is
 // available.
 const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,

@@ -118,8 +118,8 @@ std::string ShadeFragmentSource(const ShaderVariant& v) {
 }
 
 std::string AnalyticBrdfSource(const std::string& model) {
-  return "// ---- preview/glsl/common.glsl\n" + std::string(GlslSource("preview/glsl/common.glsl")) +
-         AnalyticEval(model);
+  return "// ---- preview/glsl/common.glsl\n" +
+         std::string(GlslSource("preview/glsl/common.glsl")) + AnalyticEval(model);
 }
 
 std::string FactoredBrdfSource(const std::string& parameterization, int rank) {

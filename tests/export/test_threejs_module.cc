@@ -21,12 +21,12 @@ TEST(ThreejsModule, HalfFloatBitPatterns) {
   EXPECT_EQ(ToHalf(1.0f, &clipped), 0x3c00);
   EXPECT_EQ(ToHalf(-2.0f, &clipped), 0xc000);
   EXPECT_EQ(ToHalf(0.5f, &clipped), 0x3800);
-  EXPECT_EQ(ToHalf(0.1f, &clipped), 0x2e66);            // 0.0999755859375
-  EXPECT_EQ(ToHalf(65504.0f, &clipped), 0x7bff);        // the largest half
-  EXPECT_EQ(ToHalf(6.103515625e-05f, &clipped), 0x0400);  // the smallest normal, 2^-14
+  EXPECT_EQ(ToHalf(0.1f, &clipped), 0x2e66);                     // 0.0999755859375
+  EXPECT_EQ(ToHalf(65504.0f, &clipped), 0x7bff);                 // the largest half
+  EXPECT_EQ(ToHalf(6.103515625e-05f, &clipped), 0x0400);         // the smallest normal, 2^-14
   EXPECT_EQ(ToHalf(5.9604644775390625e-08f, &clipped), 0x0001);  // the smallest subnormal
-  EXPECT_EQ(ToHalf(1.0f + 1.0f / 2048, &clipped), 0x3c00);  // halfway: to even (down)
-  EXPECT_EQ(ToHalf(1.0f + 3.0f / 2048, &clipped), 0x3c02);  // halfway: to even (up)
+  EXPECT_EQ(ToHalf(1.0f + 1.0f / 2048, &clipped), 0x3c00);       // halfway: to even (down)
+  EXPECT_EQ(ToHalf(1.0f + 3.0f / 2048, &clipped), 0x3c02);       // halfway: to even (up)
   EXPECT_FALSE(clipped);
   EXPECT_EQ(ToHalf(1e6f, &clipped), 0x7bff);
   EXPECT_TRUE(clipped);
@@ -47,7 +47,8 @@ exports::Provenance Prov() {
 }
 
 TEST(ThreejsModule, AnalyticModuleCarriesTheParamsAndEscapesTheGlsl) {
-  const exports::ThreejsAnalytic a{"lambert+ggx", {0.5, 0.25, 0.125, 0.04, 0.04, 0.04, 0.1},
+  const exports::ThreejsAnalytic a{"lambert+ggx",
+                                   {0.5, 0.25, 0.125, 0.04, 0.04, 0.04, 0.1},
                                    "// a `tick` and ${not_js} and \\\\ in GLSL\nvec3 EvalBrdf"};
   const std::string js = exports::ThreejsModule(a, Prov());
   EXPECT_NE(js.find("params: [0.5, 0.25, 0.125, 0.04, 0.04, 0.04, 0.1]"), std::string::npos);
