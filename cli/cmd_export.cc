@@ -1,6 +1,7 @@
-// `brdfit export FITS --format gltf|glb|mitsuba|pbrt [--material NAME] [--model NAME] -o OUT`:
-// one fit of a fit report or JSON parameters as a glTF 2.0 asset, a Mitsuba 3 scene or a pbrt-v4
-// scene (export/, docs/exports.md). What the target cannot express exactly is said in the file
+// `brdfit export FITS --format gltf|glb|mitsuba|pbrt|blender|threejs [--material NAME] [--model
+// NAME] -o OUT`: one fit of a fit report or JSON parameters (or a factorization, threejs) as a
+// glTF 2.0 asset, a Mitsuba 3 scene, a pbrt-v4 scene, a Blender Python script or a three.js
+// module (export/, docs/exports.md). What the target cannot express exactly is said in the file
 // and on stderr.
 #include <fmt/core.h>
 
@@ -8,9 +9,12 @@
 #include <string>
 
 #include "cli/command.h"
+#include "core/error.h"
 #include "export/write_export.h"
+#include "io/factor_io.h"
 #include "io/fit_params_json.h"
 #include "io/output_policy.h"
+#include "preview/shader_gen.h"
 
 namespace brdfit::cli {
 namespace {
@@ -22,8 +26,34 @@ struct ExportOptions {
   bool quiet = false;
 };
 
+bool IsFactorSidecar(const std::string& path) {
+  const std::string suffix = ".factor.json";
+  return path.size() >= suffix.size() && path.ends_with(suffix);
+}
+
+// A factorization's sidecar: only the three.js module can carry its textures.
+int RunFactorExport(const ExportOptions& o, exports::Format format) {
+  if (format != exports::Format::kThreejs) {
+    throw InputError(o.fits +
+                     ": a factorization exports only as --format threejs (the other "
+                     "targets take a fit report or fit JSON)");
+  }
+  CheckOutputs({o.fits}, {{o.out, "-o"}});
+  const FactorFiles files = ReadFactorFiles(o.fits);
+  const std::string glsl =
+      preview::FactoredBrdfSource(files.sidecar.at("parameterization").get<std::string>(),
+                                  static_cast<int>(files.terms.size()));
+  const exports::ExportOutcome r = exports::WriteFactoredThreejs(files, o.fits, glsl, o.out);
+  for (const std::string& a : r.fidelity.approximations) {
+    fmt::print(stderr, "brdfit: export: approximate: {}\n", a);
+  }
+  if (!o.quiet) fmt::print("{} -> {}\n", o.fits, o.out);
+  return kExitOk;
+}
+
 int RunExport(const ExportOptions& o) {
   const exports::Format format = exports::FormatFromString(o.format);
+  if (IsFactorSidecar(o.fits)) return RunFactorExport(o, format);
   std::vector<PlannedOutput> outs = {{o.out, "-o"}};
   if (format == exports::Format::kGltf) {
     outs.push_back({fs::path(o.out).replace_extension(".bin"), "-o (its .bin)"});
@@ -31,7 +61,9 @@ int RunExport(const ExportOptions& o) {
   CheckOutputs({o.fits}, outs);
   const std::vector<FitReportEntry> entries = ReadFitsAnyFormat(o.fits);
   const FitReportEntry& e = exports::SelectEntry(entries, o.material, o.model, format);
-  const exports::ExportOutcome r = exports::WriteExport(e, o.fits, format, o.out);
+  const std::string glsl =
+      format == exports::Format::kThreejs ? preview::AnalyticBrdfSource(e.result.model) : "";
+  const exports::ExportOutcome r = exports::WriteExport(e, o.fits, format, o.out, glsl);
   for (const std::string& a : r.fidelity.approximations) {
     fmt::print(stderr, "brdfit: export: approximate: {}\n", a);
   }
@@ -45,22 +77,30 @@ int RunExport(const ExportOptions& o) {
 }
 
 Registrar reg{
-    "export", "Write a fitted material for glTF 2.0, Mitsuba 3 or pbrt-v4 (a sphere scene with it)",
+    "export",
+    "Write a fitted material for glTF 2.0, Mitsuba 3, pbrt-v4, Blender (a sphere scene with it) or "
+    "three.js",
     [](CLI::App& sub) {
       auto o = std::make_shared<ExportOptions>();
-      sub.add_option("fits", o->fits, "fit report (.h5) or JSON parameters of brdfit fit")
+      sub.add_option("fits", o->fits,
+                     "fit report (.h5), JSON parameters of brdfit fit, or (threejs) a "
+                     "factorization's .factor.json")
           ->required();
-      sub.add_option("--format", o->format, "gltf (.gltf + .bin) | glb | mitsuba | pbrt")
+      sub.add_option(
+             "--format", o->format,
+             "gltf (.gltf + .bin) | glb | mitsuba | pbrt | blender (a .py) | threejs (a .mjs)")
           ->required();
       sub.add_option("--material", o->material, "material to export (when the fits hold several)");
       sub.add_option("--model", o->model,
                      "fit to export (default: the one exact for the target, lambert+ggx-hc; "
-                     "lambert+ggx for mitsuba; else the chosen fit)");
+                     "lambert+ggx for mitsuba and blender; else the chosen fit; threejs: any "
+                     "model, the chosen fit)");
       sub.add_option("-o,--out", o->out, "output file")->required();
       sub.add_flag("-q,--quiet", o->quiet, "no summary line");
       sub.footer(
           "Exit codes: 0 ok, 2 bad input or output. Exportable models: lambert+ggx-hc, "
-          "lambert+ggx, lambert+ggx-f0, ue4; docs/exports.md has the mappings.\n"
+          "lambert+ggx, lambert+ggx-f0, ue4 (threejs: any analytic model); docs/exports.md has the "
+          "mappings.\n"
           "Examples:\n  brdfit fit gold.binary --model ggx-hc --json fits.json\n"
           "  brdfit export fits.json --format glb -o gold.glb");
       return [o] { return RunExport(*o); };

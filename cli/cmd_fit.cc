@@ -23,6 +23,7 @@
 #include "cli/interrupt.h"
 #include "cli/progress.h"
 #include "core/error.h"
+#include "export/fit_targets.h"
 #include "io/atomic_file.h"
 #include "io/file_lock.h"
 #include "io/fit_report.h"
@@ -41,6 +42,8 @@ namespace fs = std::filesystem;
 struct FitCliOptions {
   std::vector<std::string> files;
   std::vector<std::string> models = {"auto"};
+  bool models_given = false;  // --model on the command line
+  std::string target;         // --target (export/fit_targets.h)
   std::string diffuse = "lambert";
   pipeline::FitSettings fit;  // --loss ... --threads (pipeline/fit_settings.h)
   int jobs = 1;
@@ -160,13 +163,33 @@ void OnInterrupt(RunState& st, const std::string& report, int sig, int drained) 
              st.on_disk.load(), report, name);
 }
 
+// --target: for each fit, whether its export to the target is exact, else what it approximates
+// (the exporters' own check, export/fit_targets.h).
+void PrintTargetFidelity(std::FILE* out, const exports::FitTarget& t,
+                         const std::vector<FitReportEntry>& fits) {
+  for (const FitReportEntry& e : fits) {
+    if (e.result.Failed()) continue;
+    const exports::Fidelity f = exports::ExportFidelity(e.result, t);
+    std::string what;
+    for (const std::string& a : f.approximations) what += (what.empty() ? "" : "; ") + a;
+    fmt::print(out, "target {}: {} {}: {}\n", t.name, e.material, e.result.model,
+               f.Exact() ? "exact export (brdfit export --format " +
+                               std::string(t.format == exports::Format::kGlb ? "glb" : t.name) +
+                               ")"
+                         : "approximate export: " + what);
+  }
+}
+
 int RunFit(const FitCliOptions& o) {
   pipeline::BatchFitRequest req;
   req.inputs = pipeline::ExpandInputs(o.files);
   if (req.inputs.empty()) throw InputError("no input files");
   if (o.jobs < 1 || o.jobs > 256) throw InputError("--jobs must be in [1, 256]");
   pipeline::ApplyFitSettings(o.fit, &req.samples, &req.fit);
-  req.models = pipeline::ResolveModelRuns(o.models, o.diffuse, !o.fit.loss.empty());
+  const exports::FitTarget* target = o.target.empty() ? nullptr : &exports::FitTargetOf(o.target);
+  const std::vector<std::string> models =
+      target && !o.models_given && !target->models.empty() ? target->models : o.models;
+  req.models = pipeline::ResolveModelRuns(models, o.diffuse, !o.fit.loss.empty());
   req.report = o.out;
   req.force = o.force;
   req.timings = !o.no_timings;
@@ -238,6 +261,7 @@ int RunFit(const FitCliOptions& o) {
                            : "",
                o.out, o.json.empty() || json_to_stdout ? "" : ", parameters " + o.json);
   }
+  if (target && !o.quiet) PrintTargetFidelity(json_to_stdout ? stderr : stdout, *target, run.fresh);
   for (const auto& e : run.input_errors) fmt::print(stderr, "brdfit: error: {}\n", e);
   if (!run.input_errors.empty()) return kExitBadInput;
   const bool failed = std::any_of(run.fresh.begin(), run.fresh.end(),
@@ -270,7 +294,7 @@ Registrar reg{
                      "tables (MERL .binary or brdfit .h5); nbrdf:NAME or nbrdf:all tabulates the "
                      "NBRDF networks of ../shared/data/merl_nbrdf.zip on the MERL grid")
           ->required();
-      sub.add_option("-m,--model", o->models,
+      CLI::Option* model_opt = sub.add_option("-m,--model", o->models,
                      "models, comma-separated (brdfit models lists them); NAME:N for N lobes, "
                      "e.g. lafortune:2, ggx:2; auto: fit the candidates of docs/accuracy.md and "
                      "mark the one chosen by rendered error")
@@ -334,8 +358,17 @@ Registrar reg{
           "  brdfit fit gold.binary --model ggx --json - | jq '.fits[0].params'\n"
           "  brdfit fit gold.binary --model ggx:2,lafortune:3 --loss cbrt --multistart 4\n"
           "  brdfit fit nbrdf:all --model ggx,beckmann,ward -j 2 -o nbrdf-fits.h5\n"
-          "  brdfit fit nbrdf:all --model auto --shard 3/8 -o shard-3.h5");
-      return [o] { return RunFit(*o); };
+          "  brdfit fit nbrdf:all --model auto --shard 3/8 -o shard-3.h5\n"
+          "  brdfit fit gold.binary --target gltf --json gold.json   # then brdfit export");
+      sub.add_option("--target", o->target,
+                     "gltf | threejs | blender | mitsuba | pbrt: without --model, fit the model the "
+                     "target renders exactly (lambert+ggx-hc for gltf and pbrt, lambert+ggx for "
+                     "blender and mitsuba, any for threejs); print per fit whether its export is "
+                     "exact and what it approximates");
+      return [o, model_opt] {
+        o->models_given = model_opt->count() > 0;
+        return RunFit(*o);
+      };
     }};
 
 DemoStepRegistrar demo_step{20, "fit models", DemoFit};

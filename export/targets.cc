@@ -181,4 +181,102 @@ PbrtMix ToPbrt(const LobeMaterial& m) {
   return p;
 }
 
+namespace {
+
+// Cycles 3.4 Principled BSDF (svm_closure.h): the luminance its Specular Tint divides by.
+double CyclesTintLuminance(const Rgb& c) {
+  return 0.3 * c[0] + 0.6 * c[1] + 0.1 * c[2];
+}
+
+// The nearest A + B kd to ks with A, B >= 0 (least squares over the channels): the colours a
+// metallic-0 Principled BSDF's cspec0 = 0.08 specular ((1 - t) + t kd / lum(kd)) can take.
+std::array<double, 2> GreyPlusTint(const Rgb& ks, const Rgb& kd) {
+  const double mk = (kd[0] + kd[1] + kd[2]) / 3, ms = (ks[0] + ks[1] + ks[2]) / 3;
+  double sxx = 0, sxy = 0;
+  for (int c = 0; c < 3; ++c) {
+    sxx += (kd[c] - mk) * (kd[c] - mk);
+    sxy += (kd[c] - mk) * (ks[c] - ms);
+  }
+  double b = sxx > 1e-18 ? sxy / sxx : 0, a = ms - b * mk;
+  if (b < 0 || CyclesTintLuminance(kd) <= 0) {
+    b = 0;
+    a = ms;
+  } else if (a < 0) {
+    double kk = 0, ksk = 0;
+    for (int c = 0; c < 3; ++c) {
+      kk += kd[c] * kd[c];
+      ksk += kd[c] * ks[c];
+    }
+    a = 0;
+    b = kk > 0 ? std::max(ksk / kk, 0.0) : 0;
+  }
+  return {std::max(a, 0.0), b};
+}
+
+}  // namespace
+
+BlenderMaterial ToBlender(const LobeMaterial& m) {
+  BlenderMaterial b;
+  b.roughness = std::sqrt(std::max(m.alpha, 0.0));
+  // The exact node tree: Diffuse BSDF + Glossy BSDF (GGX, no Fresnel, separable masking).
+  Fidelity& f = b.fidelity;
+  NoteMasking(m, Masking::kSeparable, "Cycles 3.4 Glossy BSDF (GGX)", &f);
+  const Rgb ks = ConstantWeight(m, "Blender", &f);
+  b.diffuse_color = m.kd;
+  b.glossy_color = ks;
+
+  // The Principled BSDF, metallic 0: base colour kd, cspec0 = A + B kd nearest to ks.
+  Fidelity& p = b.principled_fidelity;
+  b.base_color = m.kd;
+  const auto [a, slope] = GreyPlusTint(ks, m.kd);
+  const double lum = CyclesTintLuminance(m.kd);
+  const double grey_f0 = a + slope * lum;  // 0.08 specular
+  b.specular = grey_f0 / 0.08;
+  b.specular_tint = grey_f0 > 0 ? slope * lum / grey_f0 : 0;
+  double worst = 0, off = 0, kd_sum = 0;
+  for (int c = 0; c < 3; ++c) {
+    b.principled_f0[c] = a + slope * m.kd[c];
+    const double scale = std::max(std::abs(ks[c]), 1e-12);
+    worst = std::max(worst, std::abs(b.principled_f0[c] - ks[c]) / scale);
+    off += std::abs(b.principled_f0[c] - ks[c]);
+    kd_sum += m.kd[c];
+  }
+  if (kd_sum < off) {
+    // A coloured lobe over (nearly) no diffuse: metallic 1 makes cspec0 = base = ks exactly and
+    // drops the diffuse, which loses less (sum kd) than the metallic-0 colour error (sum |off|).
+    b.metallic = 1;
+    b.base_color = ks;
+    b.specular = 0.5;
+    b.specular_tint = 0;
+    b.principled_f0 = ks;
+    worst = 0;
+    if (kd_sum > 0) {
+      p.approximations.push_back(fmt::format(
+          "Principled: metallic 1 (base colour = ks) carries the coloured lobe; the diffuse "
+          "kd = {} is dropped",
+          Fmt3(m.kd)));
+    }
+  } else if (grey_f0 >= 0.999) {
+    b.specular = 0.999 / 0.08;
+    p.approximations.push_back(fmt::format(
+        "Principled: 0.08 specular = {:.4g} >= 1 has no IOR: specular clipped to {:.4g}", grey_f0,
+        b.specular));
+  }
+  p.approximations.push_back(
+      "Principled: Cycles' Fresnel rises from cspec0 at normal incidence to 1 at grazing (the "
+      "dielectric Fresnel of the IOR that Specular gives); the fit's ks is a constant weight");
+  p.approximations.push_back(fmt::format(
+      "Principled: Cycles' diffuse is Burley's (retro-reflection with the shared roughness "
+      "{:.4g}, (1 - FL/2)(1 - FV/2) falloff), the fit's Lambert",
+      b.roughness));
+  NoteMasking(m, Masking::kSeparable, "Cycles 3.4 Principled BSDF (GGX)", &p);
+  if (worst > 1e-6) {
+    p.approximations.push_back(fmt::format(
+        "Principled: ks = {} is not grey + a tint of the base colour: cspec0 = {} (channels up to "
+        "{:.3g} % off at normal incidence)",
+        Fmt3(ks), Fmt3(b.principled_f0), 100 * worst));
+  }
+  return b;
+}
+
 }  // namespace brdfit::exports

@@ -56,4 +56,27 @@ struct PbrtMix {
 };
 PbrtMix ToPbrt(const LobeMaterial& m);
 
+// Blender 3.4 Cycles. The sphere's material is an Add Shader of a Diffuse BSDF (roughness 0:
+// Lambert, colour kd) and a Glossy BSDF (GGX, colour ks, roughness sqrt(alpha)):
+// kd / pi + ks D G1 G1 / (4 cos_i cos_o), no Fresnel, separable Smith masking (Cycles 3.4's
+// microfacet closure) -- brdfit's lambert+ggx exactly. The script also builds a Principled BSDF
+// (3.4, distribution GGX) for glTF round trips and Blender users:
+// (1 - m) base / pi * Burley(r) + F D G1 G1 / (4 cos_i cos_o), F rising from
+// cspec0 = (1 - m) 0.08 specular ((1 - tint) + tint base / lum(base)) + m base to 1 at grazing;
+// metallic m is 0 (base kd) or, when that is nearer, 1 (base ks, no diffuse). It is never exact
+// for a brdfit model (docs/exports.md, "Blender").
+struct BlenderMaterial {
+  Rgb diffuse_color{};
+  Rgb glossy_color{};
+  double roughness = 0;  // sqrt(alpha), both shaders
+  Fidelity fidelity;     // of the Diffuse + Glossy node tree
+  Rgb base_color{};      // Principled: kd (metallic 0) or ks (metallic 1)
+  double metallic = 0;
+  double specular = 0.5;
+  double specular_tint = 0;
+  Rgb principled_f0{};  // the cspec0 these give (Cycles' normal-incidence colour)
+  Fidelity principled_fidelity;
+};
+BlenderMaterial ToBlender(const LobeMaterial& m);
+
 }  // namespace brdfit::exports

@@ -1,12 +1,18 @@
 #include "export/write_export.h"
 
+#include <fmt/core.h>
+
 #include <algorithm>
+#include <stdexcept>
 
 #include "core/error.h"
+#include "core/provenance.h"
+#include "export/blender_script.h"
 #include "export/gltf.h"
 #include "export/lobe_material.h"
 #include "export/provenance.h"
 #include "export/scene_text.h"
+#include "export/threejs_module.h"
 #include "io/atomic_file.h"
 
 namespace brdfit::exports {
@@ -18,7 +24,9 @@ Format FormatFromString(const std::string& s) {
   if (s == "glb") return Format::kGlb;
   if (s == "mitsuba") return Format::kMitsuba;
   if (s == "pbrt") return Format::kPbrt;
-  throw InputError("--format '" + s + "': expected gltf, glb, mitsuba or pbrt");
+  if (s == "blender") return Format::kBlender;
+  if (s == "threejs") return Format::kThreejs;
+  throw InputError("--format '" + s + "': expected gltf, glb, mitsuba, pbrt, blender or threejs");
 }
 
 const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
@@ -52,7 +60,18 @@ const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
     }
     throw InputError("no fit of model '" + model + "' (fitted: " + models + ")");
   }
-  const std::string exact = format == Format::kMitsuba ? "lambert+ggx" : "lambert+ggx-hc";
+  if (format == Format::kThreejs) {
+    for (const auto* e : of) {
+      if (e->chosen) return *e;
+    }
+    const FitReportEntry* best = of.front();
+    for (const auto* e : of) {
+      if (e->result.metrics.log_rmse < best->result.metrics.log_rmse) best = e;
+    }
+    return *best;
+  }
+  const std::string exact =
+      format == Format::kMitsuba || format == Format::kBlender ? "lambert+ggx" : "lambert+ggx-hc";
   for (const auto* e : of) {
     if (e->result.model == exact) return *e;
   }
@@ -72,9 +91,17 @@ const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
 }
 
 ExportOutcome WriteExport(const FitReportEntry& entry, const std::string& fits_path, Format format,
-                          const fs::path& out) {
-  const LobeMaterial m = FromFit(entry.result);
+                          const fs::path& out, const std::string& brdf_glsl) {
   ExportOutcome o;
+  if (format == Format::kThreejs) {
+    if (brdf_glsl.empty()) throw std::logic_error("WriteExport(threejs) without the model's GLSL");
+    const ThreejsAnalytic a{entry.result.model, entry.result.params, brdf_glsl};
+    WriteTextAtomically(out,
+                        ThreejsModule(a, ProvenanceOf(entry, fits_path, "three.js", o.fidelity)));
+    o.written.push_back(out);
+    return o;
+  }
+  const LobeMaterial m = FromFit(entry.result);
   switch (format) {
     case Format::kGltf:
     case Format::kGlb: {
@@ -115,7 +142,65 @@ ExportOutcome WriteExport(const FitReportEntry& entry, const std::string& fits_p
       o.written.push_back(out);
       break;
     }
+    case Format::kBlender: {
+      const BlenderMaterial b = ToBlender(m);
+      o.fidelity = b.fidelity;
+      WriteTextAtomically(
+          out, BlenderScript(b, ProvenanceOf(entry, fits_path, "Blender 3.4 Cycles", b.fidelity)));
+      o.written.push_back(out);
+      break;
+    }
+    case Format::kThreejs:
+      break;  // written above
   }
+  return o;
+}
+
+ExportOutcome WriteFactoredThreejs(const FactorFiles& files, const fs::path& json,
+                                   const std::string& brdf_glsl, const fs::path& out) {
+  ThreejsFactored f;
+  f.parameterization = files.sidecar.at("parameterization").get<std::string>();
+  f.diffuse = files.diffuse;
+  for (const FactorTermFiles& t : files.terms) {
+    f.p.push_back(t.p.image);
+    f.q.push_back(t.q.image);
+  }
+  f.brdf_glsl = brdf_glsl;
+  const nlohmann::json& sc = files.sidecar;
+  Provenance p;
+  p.version = std::string(BrdfitVersion());
+  p.fits = json.string();
+  std::string stem = json.filename().string();
+  const std::string suffix = ".factor.json";
+  if (stem.size() > suffix.size() && stem.ends_with(suffix))
+    stem.resize(stem.size() - suffix.size());
+  p.material = stem;
+  const nlohmann::json src = sc.value("source", nlohmann::json::object());
+  p.source = src.is_object() ? src.value("file", "?") : "?";
+  p.source_hash = src.is_object() ? src.value("hash", "") : "";
+  const bool diffuse = f.diffuse[0] > 0 || f.diffuse[1] > 0 || f.diffuse[2] > 0;
+  p.model = fmt::format("factorization {}, rank {}{}", f.parameterization, f.p.size(),
+                        diffuse ? " + diffuse" : "");
+  p.target = "three.js";
+  const nlohmann::json m = sc.value("metrics", nlohmann::json::object());
+  const nlohmann::json r = m.is_object() ? m.value("rendered", nlohmann::json()) : nlohmann::json();
+  if (r.is_object() && r.value("ok", false)) {
+    p.metrics = fmt::format(
+        "rendered error psnr {:.2f} dB, median relative {:.2f} %, p95 {:.2f} % (docs/accuracy.md)",
+        r.value("psnr_db", 0.0), 100 * r.value("median_rel_error", 0.0),
+        100 * r.value("p95_rel_error", 0.0));
+  } else {
+    p.metrics = "no rendered error in the sidecar";
+  }
+  ExportOutcome o;
+  std::string text = ThreejsFactoredModule(f, p, &o.fidelity);
+  if (!o.fidelity.Exact()) {  // the header states it: once more, now that the texels told
+    p.fidelity = o.fidelity;
+    Fidelity again;
+    text = ThreejsFactoredModule(f, p, &again);
+  }
+  WriteTextAtomically(out, text);
+  o.written.push_back(out);
   return o;
 }
 

@@ -7,19 +7,22 @@
 #include <vector>
 
 #include "export/targets.h"
+#include "io/factor_io.h"
 #include "io/fit_report.h"
 
 namespace brdfit::exports {
 
-enum class Format { kGltf, kGlb, kMitsuba, kPbrt };
+enum class Format { kGltf, kGlb, kMitsuba, kPbrt, kBlender, kThreejs };
 
-// "gltf" | "glb" | "mitsuba" | "pbrt"; throws InputError otherwise.
+// "gltf" | "glb" | "mitsuba" | "pbrt" | "blender" | "threejs"; throws InputError otherwise.
 Format FormatFromString(const std::string& s);
 
 // The entry to export among `entries`: those of `material` (any when empty and there is one
 // material), of `model` when given, else the exportable one the target expresses exactly
-// (lambert+ggx for Mitsuba, lambert+ggx-hc for the others), else the chosen fit, else the
-// exportable fit with the lowest log_rmse. Throws InputError naming what is available.
+// (lambert+ggx for Mitsuba and Blender, lambert+ggx-hc for the others), else the chosen fit, else
+// the exportable fit with the lowest log_rmse. kThreejs evaluates every analytic model exactly:
+// `model`, else the chosen fit, else the lowest log_rmse. Throws InputError naming what is
+// available.
 const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
                                   const std::string& material, const std::string& model,
                                   Format format);
@@ -29,8 +32,16 @@ struct ExportOutcome {
   Fidelity fidelity;
 };
 
-// Writes `out` (and, for kGltf, OUT_STEM.bin next to it).
+// Writes `out` (and, for kGltf, OUT_STEM.bin next to it). kThreejs needs `brdf_glsl`, the
+// preview's GLSL of the model (preview::AnalyticBrdfSource, composed by the caller: export/
+// does not include preview/).
 ExportOutcome WriteExport(const FitReportEntry& entry, const std::string& fits_path, Format format,
-                          const std::filesystem::path& out);
+                          const std::filesystem::path& out, const std::string& brdf_glsl = {});
+
+// A factorization (`brdfit factor`'s sidecar `json` and its textures, read by ReadFactorFiles)
+// as a three.js ShaderMaterial module; `brdf_glsl` = preview::FactoredBrdfSource of its
+// parameterization and rank.
+ExportOutcome WriteFactoredThreejs(const FactorFiles& files, const std::filesystem::path& json,
+                                   const std::string& brdf_glsl, const std::filesystem::path& out);
 
 }  // namespace brdfit::exports

@@ -3,6 +3,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "core/error.h"
 #include "preview/glsl_models.h"
 #include "preview/glsl_params.h"
 #include "preview/glsl_sources.h"
@@ -113,6 +114,28 @@ std::string ShadeFragmentSource(const ShaderVariant& v) {
     }
   }
   src += "// ---- preview/glsl/shade.frag\n" + std::string(GlslSource("preview/glsl/shade.frag"));
+  return src;
+}
+
+std::string AnalyticBrdfSource(const std::string& model) {
+  return "// ---- preview/glsl/common.glsl\n" +
+         std::string(GlslSource("preview/glsl/common.glsl")) + AnalyticEval(model);
+}
+
+std::string FactoredBrdfSource(const std::string& parameterization, int rank) {
+  if (parameterization != "mccool" && parameterization != "halfdiff") {
+    throw InputError("factorization parameterization '" + parameterization +
+                     "': expected mccool or halfdiff");
+  }
+  if (rank < 1 || rank > kMaxFactorTextureTerms) {
+    throw InputError("factorization of rank " + std::to_string(rank) + ": outside [1, " +
+                     std::to_string(kMaxFactorTextureTerms) + "]");
+  }
+  std::string src = Define("FACTOR_MCCOOL", parameterization == "mccool" ? 1 : 0) +
+                    Define("FACTOR_RANK", rank) + "// ---- preview/glsl/common.glsl\n" +
+                    std::string(GlslSource("preview/glsl/common.glsl"));
+  std::set<std::string> included;
+  Include("preview/glsl/factored.glsl", &included, &src);
   return src;
 }
 

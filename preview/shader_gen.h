@@ -27,6 +27,16 @@ struct ShaderVariant {
 std::string ShadeVertexSource(const ShaderVariant& v);
 std::string ShadeFragmentSource(const ShaderVariant& v);
 std::string ToneMapFragmentSource(ToneMap t, Encoding e);
+
+// The preview's BRDF code for an analytic model, without #version or #defines: common.glsl
+// (constants, light structs, BrdfGeometry, MakeBrdfGeometry, BuildFrame), the lobes' GLSL twins
+// and `uniform float uParams[N]; vec3 EvalBrdf(const in BrdfGeometry g)` -- for shaders outside
+// the preview (the three.js ShaderMaterial export, docs/exports.md).
+std::string AnalyticBrdfSource(const std::string& model);
+// The same for a factorization ("mccool" | "halfdiff", rank 1..kMaxFactorTextureTerms): the
+// FACTOR_* #defines, common.glsl and factored.glsl (uniforms uFactorDiffuse, uFactorP, uFactorQ,
+// uFactorP2, ...). Throws InputError for another parameterization or rank.
+std::string FactoredBrdfSource(const std::string& parameterization, int rank);
 std::string FullscreenVertexSource();
 
 }  // namespace brdfit::preview

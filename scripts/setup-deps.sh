@@ -13,6 +13,7 @@ PACKAGES=(
   libjs-chart.js chromium xvfb xauth time
   python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest  # python/ (docs/python.md)
   parallel slurmctld slurmd slurm-client  # the sharded-batch recipes and their tests (docs/scale.md)
+  blender  # Blender 3.4: export.blender_render renders the Blender exports (docs/exports.md)
 )
 # Extra packages for the sanitizer / fuzzing build (clang's runtimes).
 if [[ "${BRDFIT_WITH_CLANG:-0}" == 1 ]]; then

@@ -9,8 +9,11 @@
   parameters with bracketed values of that type, NamedMaterial and mix materials defined);
 - every .gltf and .glb passes the Khronos glTF-Validator (npm gltf-validator, pinned in
   tools/gltf/package-lock.json, installed with `npm ci` into the work folder) with no errors;
+- the Blender script compiles as Python (compile(); Blender 3.4 runs Python 3.10, and
+  export.blender_render runs it in Blender), the three.js module passes `node --check`;
 - each check fails on a planted defect (a "--" in an XML comment, an unclosed pbrt bracket, a
-  glTF accessor past its buffer), so none of them can pass vacuously.
+  glTF accessor past its buffer, a Python and a JS syntax error), so none of them can pass
+  vacuously.
 Exit 0 ok, 1 a check failed, 77 (ctest SKIP) when node/npm are missing.
 """
 import argparse
@@ -24,7 +27,8 @@ import xml.etree.ElementTree as ET
 
 from node_tools import ensure_tools
 
-FORMATS = {"gltf": ".gltf", "glb": ".glb", "mitsuba": ".xml", "pbrt": ".pbrt"}
+FORMATS = {"gltf": ".gltf", "glb": ".glb", "mitsuba": ".xml", "pbrt": ".pbrt", "blender": ".py",
+           "threejs": ".mjs"}
 PBRT_DIRECTIVES = {"LookAt", "Camera", "Film", "Sampler", "Integrator", "WorldBegin",
                    "LightSource", "MakeNamedMaterial", "NamedMaterial", "AttributeBegin",
                    "AttributeEnd", "Shape"}
@@ -142,6 +146,14 @@ def check_pbrt(path, text):
     return None
 
 
+def check_python(path, text):
+    try:
+        compile(text, path, "exec")
+    except SyntaxError as e:
+        return f"{path}: not Python: {e}"
+    return None
+
+
 def run(cmd, **kw):
     return subprocess.run(cmd, capture_output=True, text=True, **kw)
 
@@ -154,7 +166,7 @@ def main():
     shutil.rmtree(o.work, ignore_errors=True)
     os.makedirs(o.work)
     fits = json.load(open(o.fits))["fits"]
-    gltfs = []
+    gltfs, modules = [], []
     for f in fits:
         for fmt, ext in FORMATS.items():
             out = os.path.join(o.work, f"{f['material']}-{f['model']}{ext}")
@@ -168,12 +180,17 @@ def main():
             if fmt == "glb":
                 continue
             text = open(out, encoding="utf-8").read()
-            if ("approximate" in r.stderr) != ("approximate" in text):
+            if fmt == "threejs":
+                modules.append(out)
+            # A Blender script also states its (always approximate) Principled material, after.
+            own = text.split("# material brdfit-principled")[0] if fmt == "blender" else text
+            if ("approximate" in r.stderr) != ("approximate" in own):
                 fail(f"{out}: stderr and file disagree on approximate")
             if "brdfit 0.1.0" not in text or f["source"] not in text:
                 fail(f"{out}: no version or source table stated")
             err = check_mitsuba(out, text) if fmt == "mitsuba" else \
-                check_pbrt(out, text) if fmt == "pbrt" else None
+                check_pbrt(out, text) if fmt == "pbrt" else \
+                check_python(out, text) if fmt == "blender" else None
             if err:
                 fail(err)
     for g in sorted(os.listdir(o.golden)):
@@ -204,6 +221,10 @@ def main():
                                                "NamedMaterial \"nothing\"\n  Shape")) is None:
         fail("the pbrt check passed an undefined material")
 
+    good_py = open(os.path.join(o.work, "red-phenolic-lambert+ggx.py")).read()
+    if check_python("planted", good_py.replace("def build_scene(", "def build_scene((", 1)) is None:
+        fail("the Python check passed a syntax error")
+
     # The Khronos glTF-Validator.
     tools = os.path.join(o.work, "..", "node-tools")
     status, why = ensure_tools(o.tools, tools)
@@ -214,6 +235,15 @@ def main():
         print("SKIP glTF-Validator: " + why)
         return 1 if failures else 77
     node = shutil.which("node")
+    for m in modules:
+        r = run([node, "--check", m])
+        if r.returncode != 0:
+            fail(f"{m}: node --check: {r.stderr}")
+    planted_js = os.path.join(o.work, "planted.mjs")
+    open(planted_js, "w").write(open(modules[0]).read().replace("export default function",
+                                                                 "export default function (", 1))
+    if run([node, "--check", planted_js]).returncode == 0:
+        fail("node --check passed a JS syntax error")
     r = run([node, os.path.join(tools, "validate.cjs")] + gltfs)
     print(r.stdout, end="")
     if r.returncode != 0:
@@ -226,7 +256,8 @@ def main():
     r = run([node, os.path.join(tools, "validate.cjs"), bad])
     if r.returncode != 1:
         fail(f"the validator passed a planted defect: {r.stdout}")
-    print(f"{len(gltfs)} glTF files validated; {len(failures)} failures")
+    print(f"{len(gltfs)} glTF files validated, {len(modules)} three.js modules checked; "
+          f"{len(failures)} failures")
     return 1 if failures else 0
 
 

@@ -18,6 +18,11 @@ Cases and tolerances (levels):
   gold, red    the lambert+ggx-hc fits of data/fits.json (coloured ks: glTF's Fresnel whitens
                the lower channels at grazing): mean <= 2, p99 <= 10;
   red-ue4      the ue4 fit (approximate: masking and glTF's 1 - F diffuse): reported only.
+ShaderMaterial modules (`brdfit export --format threejs`, tools/gltf/render_three.cjs puts them
+on a 128 x 64 band sphere): the gold and red-ue4 fits, a mccool rank-2 + diffuse and a halfdiff
+factorization of a synthetic table: mean <= 0.5, p99 <= 2 (brdfit's own GLSL in float32 and
+half-float texels; the rest is the mesh's interpolated normals); planted: alpha exported as
+sqrt(alpha), must be caught.
 Exit 0 ok, 1 a case is outside its tolerance, 77 (ctest SKIP) when node, npm or chromium is
 missing, or in the sanitizer build (Chromium is not built with it; the preview's GL under ASan
 is covered by test_preview).
@@ -36,6 +41,7 @@ from node_tools import ensure_tools
 SIZE = 256
 LIGHT = [1, 1, 1]
 INTENSITY = 3.0
+SHADER_MEAN_TOL, SHADER_P99_TOL = 0.5, 2
 
 
 def read_png(path):
@@ -90,6 +96,93 @@ def compare(a_path, b_path):
                 diffs.append(abs(a[y][x * ca + k] - b[y][x * cb + k]))
     diffs.sort()
     return sum(diffs) / len(diffs), diffs[int(0.99 * (len(diffs) - 1))], diffs[-1]
+
+
+def render_three(tools, chromium, model, png):
+    r = subprocess.run(["node", os.path.join(tools, "render_three.cjs"), model, png, str(SIZE),
+                        ",".join(map(str, LIGHT)), str(INTENSITY)],
+                       capture_output=True, text=True, env=dict(os.environ, CHROMIUM=chromium))
+    if r.returncode != 0:
+        raise RuntimeError(f"three.js render of {model}: {r.stdout}{r.stderr}")
+    return png
+
+
+def shader_cases(o, tools, chromium, cases):
+    """The ShaderMaterial modules (--format threejs): the analytic fits (gold lambert+ggx-hc and
+    red ue4: brdfit's own GLSL, so both exact) and two factorizations of a synthetic table
+    (mccool rank 2 with diffuse, halfdiff rank 1; half-float textures), against brdfit render of
+    the same material: mean <= SHADER_MEAN_TOL, p99 <= SHADER_P99_TOL levels. Planted: alpha
+    exported as sqrt(alpha) must be caught. Returns the number of failures."""
+    work, bad = o.work, 0
+    brdfit = o.brdfit
+    table = os.path.join(work, "synthetic.h5")
+    subprocess.run([brdfit, "synth", "--model", "lambert+ggx", "--grid", "45,45,90", "-o", table,
+                    "--param", "ggx.alpha=0.2", "--param", "ggx.ks_r=0.3", "--param",
+                    "ggx.ks_g=0.2", "--param", "ggx.ks_b=0.1", "--param", "lambert.kd_r=0.3",
+                    "--param", "lambert.kd_g=0.1", "--param", "lambert.kd_b=0.05"],
+                   check=True, capture_output=True)
+    items = [(name, fit) for name, fit, _, _ in cases if name in ("gold", "red-ue4")]
+    for param, extra in (("mccool", ["--diffuse", "--rank", "2"]), ("halfdiff", [])):
+        out = os.path.join(work, "factor-" + param)
+        subprocess.run([brdfit, "factor", table, "--param", param, "--res", "32", "-q", "-o", out,
+                        *extra], check=True, capture_output=True)
+        items.append(("factor-" + param, os.path.join(out, "synthetic.factor.json")))
+    for name, src in items:
+        if isinstance(src, dict):
+            fits_json = os.path.join(work, "shader-" + name + ".json")
+            json.dump({"format": "brdfit-fit-params", "format_version": 1, "fits": [src]},
+                      open(fits_json, "w"))
+            material = {"type": "analytic", "model": src["model"], "params": src["params"]}
+        else:
+            fits_json = src
+            material = {"type": "factored", "factors": src}
+        module = os.path.join(work, "shader-" + name + ".mjs")
+        r = subprocess.run([brdfit, "export", fits_json, "--format", "threejs", "-q", "-o", module],
+                           capture_output=True, text=True)
+        if r.returncode != 0:
+            print(f"FAIL shader {name}: export: {r.stderr}")
+            return bad + 1
+        ref = brdfit_render(o, "shader-" + name, material)
+        mean, p99, worst = compare(ref, render_three(tools, chromium, module,
+                                                     os.path.join(work, "shader-" + name + "-three.png")))
+        ok = mean <= SHADER_MEAN_TOL and p99 <= SHADER_P99_TOL
+        bad += not ok
+        print(f"shader {name:16s} ShaderMaterial vs brdfit preview: mean {mean:.2f}, p99 {p99}, "
+              f"max {worst} levels: {'ok' if ok else 'OUTSIDE'}")
+        if name == "gold":
+            text = open(module).read()
+            alpha = src["params"]["ggx-hc.alpha"]
+            key = "%.9g]" % alpha
+            if key not in text:
+                print(f"FAIL planted: {key} not in {module}")
+                return bad + 1
+            planted = os.path.join(work, "shader-planted.mjs")
+            open(planted, "w").write(text.replace(key, "%.9g]" % alpha ** 0.5, 1))
+            mean, p99, worst = compare(ref, render_three(tools, chromium, planted,
+                                                         os.path.join(work, "shader-planted.png")))
+            caught = mean > SHADER_MEAN_TOL or p99 > SHADER_P99_TOL
+            bad += not caught
+            print(f"shader planted alpha = sqrt(alpha): mean {mean:.2f}, p99 {p99}, max {worst} "
+                  f"levels: {'caught' if caught else 'NOT CAUGHT'}")
+    return bad
+
+
+def brdfit_render(o, name, material):
+    scene = {"camera": {"position": [0, 0, 4], "target": [0, 0, 0], "up": [0, 1, 0],
+                        "fov_deg": 30},
+             "image": {"width": SIZE, "height": SIZE, "background": [0, 0, 0]},
+             "display": {"tone_map": "linear", "exposure": 1.0, "encoding": "srgb"},
+             "punctual_pi": False,
+             "lights": [{"name": "key", "type": "directional", "direction": LIGHT,
+                         "color": [1, 1, 1], "intensity": INTENSITY}],
+             "materials": {"m": material},
+             "objects": [{"name": "ball", "shape": "sphere", "centre": [0, 0, 0],
+                          "radius": 1, "material": "m"}]}
+    path = os.path.join(o.work, name + ".scene.json")
+    json.dump(scene, open(path, "w"), indent=1)
+    png = os.path.join(o.work, name + "-brdfit.png")
+    subprocess.run([o.brdfit, "render", path, "-o", png], check=True, capture_output=True)
+    return png
 
 
 def main():
@@ -169,6 +262,7 @@ def main():
             bad += not ok
         print(f"{name:8s} {fit['model']:15s} three.js vs brdfit preview: mean {mean:.2f}, "
               f"p99 {p99}, max {worst} levels: {verdict}")
+    bad += shader_cases(o, tools, chromium, cases)
     # Planted: the roughness trap (roughnessFactor = alpha instead of sqrt(alpha)) in the exact
     # case must fall outside the exact tolerance, or the comparison could not see it.
     glb = os.path.join(o.work, "exact.glb")
@@ -199,4 +293,8 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except (RuntimeError, subprocess.CalledProcessError) as e:
+        print(f"FAIL: {e}")
+        sys.exit(1)

@@ -1,10 +1,11 @@
-// Renders a .glb with three.js (pinned in package-lock.json) in headless Chromium (software
+// Renders a .glb, or the ShaderMaterial of an ES module written by `brdfit export --format
+// threejs` (a .mjs whose default export makes the material) on a 128 x 64 band sphere, with three.js (pinned in package-lock.json) in headless Chromium (software
 // WebGL 2, SwiftShader) and writes the canvas as an 8-bit sRGB PNG. The scene matches a brdfit
 // scene file with those values (docs/scenes.md): perspective camera at (0, 0, 4) looking at
 // the origin, 30 degree vertical field of view; one directional light towards DIR with
 // irradiance INTENSITY at normal incidence (three.js's physical lights, brdfit's
 // "punctual_pi": false); black background; no tone mapping; sRGB output.
-// Usage: node render_three.cjs GLB OUT.png SIZE DIR_X,DIR_Y,DIR_Z INTENSITY
+// Usage: node render_three.cjs GLB|MJS OUT.png SIZE DIR_X,DIR_Y,DIR_Z INTENSITY
 'use strict';
 const fs = require('fs');
 const http = require('http');
@@ -17,6 +18,7 @@ if (!intensity) {
   process.exit(2);
 }
 const three = path.join(__dirname, 'node_modules', 'three');
+const isModule = glb.endsWith('.mjs');
 
 const page = `<!DOCTYPE html><html><head><script type="importmap">
 {"imports": {"three": "/three/build/three.module.js", "three/addons/": "/three/examples/jsm/"}}
@@ -40,12 +42,29 @@ try {
   const light = new THREE.DirectionalLight(0xffffff, ${Number(intensity)});
   light.position.set(${dir.split(',').map(Number).join(',')});
   scene.add(light);
-  new GLTFLoader().load('/model.glb', (gltf) => {
-    scene.add(gltf.scene);
+  const done = () => {
     renderer.render(scene, camera);
-    out.textContent = 'PNG ' + renderer.domElement.toDataURL('image/png') + ' ' +
-                      THREE.REVISION;
-  }, undefined, (e) => { out.textContent = 'ERROR ' + e; });
+    const gl = renderer.getContext();
+    const err = gl.getError();
+    out.textContent = err ? 'ERROR WebGL error ' + err :
+        'PNG ' + renderer.domElement.toDataURL('image/png') + ' ' + THREE.REVISION;
+  };
+  renderer.debug.onShaderError = (gl, program, vs, fs) => {
+    out.textContent = 'ERROR shader: ' + gl.getProgramInfoLog(program) + ' ' +
+                      gl.getShaderInfoLog(vs) + ' ' + gl.getShaderInfoLog(fs);
+    throw new Error('shader');
+  };
+  if (${JSON.stringify(isModule)}) {
+    import('/model.mjs').then((m) => {
+      scene.add(new THREE.Mesh(new THREE.SphereGeometry(1, 128, 64), m.default()));
+      try { done(); } catch (e) { if (!out.textContent.startsWith('ERROR')) out.textContent = 'ERROR ' + e; }
+    }, (e) => { out.textContent = 'ERROR ' + e; });
+  } else {
+    new GLTFLoader().load('/model.glb', (gltf) => {
+      scene.add(gltf.scene);
+      done();
+    }, undefined, (e) => { out.textContent = 'ERROR ' + e; });
+  }
 } catch (e) {
   out.textContent = 'ERROR ' + e;
 }
@@ -58,13 +77,13 @@ const server = http.createServer((req, res) => {
     res.writeHead(200, { 'Content-Type': 'text/html' });
     return res.end(page);
   }
-  if (url === '/model.glb') file = glb;
+  if (url === '/model.glb' || url === '/model.mjs') file = glb;
   if (url.startsWith('/three/') && !url.includes('..')) file = path.join(three, url.slice(7));
   if (!file || !fs.existsSync(file)) {
     res.writeHead(404);
     return res.end();
   }
-  const type = file.endsWith('.js') ? 'text/javascript' : 'application/octet-stream';
+  const type = /\.m?js$/.test(file) ? 'text/javascript' : 'application/octet-stream';
   res.writeHead(200, { 'Content-Type': type });
   fs.createReadStream(file).pipe(res);
 });

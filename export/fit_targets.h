@@ -1,0 +1,31 @@
+// `brdfit fit --target T`: the models a target renderer evaluates exactly (so that fitting them
+// makes an exact export), and what the export of a given fit to T approximates
+// (docs/exports.md, docs/cli.md "fit").
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+#include "export/targets.h"
+#include "export/write_export.h"
+
+namespace brdfit::exports {
+
+struct FitTarget {
+  const char* name;                 // "gltf", ...
+  Format format;                    // the export it is checked with
+  std::vector<std::string> models;  // fitted when --model is not given; empty: any (threejs)
+  const char* note;                 // what the target is, for --help and messages
+};
+
+// "gltf" | "threejs" | "blender" | "mitsuba" | "pbrt"; throws InputError listing them.
+const FitTarget& FitTargetOf(const std::string& name);
+// "gltf, threejs, blender, mitsuba, pbrt".
+std::string FitTargetNames();
+
+// What exporting `fit` to `target` approximates (the exporters' own check): empty when exact;
+// a model the target cannot take gives one entry naming the exportable models.
+Fidelity ExportFidelity(const FitResult& fit, const FitTarget& target);
+
+}  // namespace brdfit::exports

@@ -1,0 +1,74 @@
+// `brdfit fit --target T` (export/fit_targets.h): the model each target is said to render
+// exactly really exports exactly (the exporters' own check, the one test_export_formulas holds
+// to the targets' documented BSDFs), the other masking does not, and what cannot be exported
+// is said.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "export/fit_targets.h"
+#include "models/registry.h"
+
+namespace brdfit {
+namespace {
+
+FitResult Fit(const std::string& model, const std::vector<double>& params) {
+  const ModelInfo* m = FindModel(model);
+  EXPECT_NE(m, nullptr) << model;
+  FitResult r;
+  r.model = model;
+  r.param_names = m->param_names;
+  r.params = params;
+  r.at_bound.assign(params.size(), false);
+  r.status = FitStatus::kConverged;
+  return r;
+}
+
+TEST(FitTargets, EachTargetsModelExportsExactlyAndTheOtherMaskingDoesNot) {
+  const std::vector<double> grey = {0.30, 0.20, 0.10, 0.25, 0.25, 0.25, 0.15};
+  for (const char* name : {"gltf", "blender", "mitsuba", "pbrt"}) {
+    const exports::FitTarget& t = exports::FitTargetOf(name);
+    ASSERT_EQ(t.models.size(), 1u) << name;
+    EXPECT_TRUE(exports::ExportFidelity(Fit(t.models[0], grey), t).Exact()) << name;
+    const std::string other = t.models[0] == "lambert+ggx" ? "lambert+ggx-hc" : "lambert+ggx";
+    const exports::Fidelity f = exports::ExportFidelity(Fit(other, grey), t);
+    ASSERT_FALSE(f.Exact()) << name;
+    EXPECT_NE(f.approximations[0].find("Smith G"), std::string::npos) << f.approximations[0];
+  }
+  // A coloured ks: exact where the target has a free RGB weight (Mitsuba, Blender's Glossy
+  // colour), not where a Fresnel rises to white (glTF, pbrt).
+  const std::vector<double> coloured = {0.05, 0.10, 0.30, 0.60, 0.35, 0.10, 0.2};
+  for (const char* name : {"mitsuba", "blender"}) {
+    const auto& t = exports::FitTargetOf(name);
+    EXPECT_TRUE(exports::ExportFidelity(Fit(t.models[0], coloured), t).Exact()) << name;
+  }
+  for (const char* name : {"gltf", "pbrt"}) {
+    const auto& t = exports::FitTargetOf(name);
+    EXPECT_FALSE(exports::ExportFidelity(Fit(t.models[0], coloured), t).Exact()) << name;
+  }
+}
+
+TEST(FitTargets, ThreejsTakesAnyModelAndOthersSayWhatTheyCannotTake) {
+  const exports::FitTarget& three = exports::FitTargetOf("threejs");
+  EXPECT_TRUE(three.models.empty());
+  const ModelInfo* ward = FindModel("lambert+ward");
+  ASSERT_NE(ward, nullptr);
+  const FitResult w = Fit("lambert+ward", std::vector<double>(ward->params.size(), 0.1));
+  EXPECT_TRUE(exports::ExportFidelity(w, three).Exact());
+  const exports::Fidelity f = exports::ExportFidelity(w, exports::FitTargetOf("gltf"));
+  ASSERT_EQ(f.approximations.size(), 1u);
+  EXPECT_NE(f.approximations[0].find("lambert+ggx-hc"), std::string::npos);
+  EXPECT_NE(f.approximations[0].find("lambert+ward"), std::string::npos);
+  try {
+    exports::FitTargetOf("unity");
+    FAIL() << "unity accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("gltf, threejs, blender, mitsuba, pbrt"),
+              std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace brdfit
