@@ -58,9 +58,10 @@ int MergeFactors(const MergeCliOptions& o, const std::vector<fs::path>& parts) {
   }
   const pipeline::MergedFactors m = pipeline::MergeFactorFolders(o.out, parts);
   if (!o.quiet) {
-    fmt::print("{} factorizations ({} files) from {} folders ({} identical files kept once); "
-               "folder {}\n",
-               m.sidecars, m.files, parts.size(), m.duplicates, o.out);
+    fmt::print(
+        "{} factorizations ({} files) from {} folders ({} identical files kept once); "
+        "folder {}\n",
+        m.sidecars, m.files, parts.size(), m.duplicates, o.out);
   }
   return kExitOk;
 }

@@ -313,8 +313,13 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
         }
         r.times.load = st.load_ms;
         r.times.prepare = st.prepare_ms;
-        FitReportEntry e{input, keys[t.input], t.options, std::move(r),
-                         /*chosen=*/false, /*choice=*/{}, /*source_hash=*/st.content_hash,
+        FitReportEntry e{input,
+                         keys[t.input],
+                         t.options,
+                         std::move(r),
+                         /*chosen=*/false,
+                         /*choice=*/{},
+                         /*source_hash=*/st.content_hash,
                          /*timed=*/false};
         std::lock_guard<std::mutex> lock(mu);
         if (req.on_fit_done) req.on_fit_done(e);

@@ -26,38 +26,38 @@ constexpr int kMaxShards = 100000;
 // docs/scale.md "Cost of a fit" has the command. Only the ratios matter.
 const std::map<std::string, int>& MeasuredRunCost() {
   static const std::map<std::string, int> costs = {
-    {"lambert", 11},
-    {"burley", 12},
-    {"oren-nayar", 12},
-    {"ggx", 14},
-    {"ggx-hc", 14},
-    {"lambert+ggx-hc", 14},
-    {"blinn-phong", 15},
-    {"lambert+ggx", 15},
-    {"lambert+ward", 15},
-    {"lambert+blinn-phong", 16},
-    {"lambert+phong", 16},
-    {"phong", 16},
-    {"ward", 16},
-    {"ggx-f0", 20},
-    {"lambert+beckmann", 20},
-    {"lambert+ggx-f0", 20},
-    {"oren-nayar+ggx", 20},
-    {"ward-duer", 22},
-    {"ue4", 23},
-    {"burley+ggx", 26},
-    {"lafortune", 26},
-    {"lambert+lafortune", 28},
-    {"beckmann", 29},
-    {"lambert+ggx+ggx", 29},
-    {"cook-torrance", 31},
-    {"lambert+cook-torrance", 32},
-    {"sgd", 44},
-    {"abc", 45},
-    {"lambert+sgd", 52},
-    {"lambert+abc", 58},
-    {"lambert+lafortune+lafortune", 109},
-    {"lambert+lafortune+lafortune+lafortune", 289},
+      {"lambert", 11},
+      {"burley", 12},
+      {"oren-nayar", 12},
+      {"ggx", 14},
+      {"ggx-hc", 14},
+      {"lambert+ggx-hc", 14},
+      {"blinn-phong", 15},
+      {"lambert+ggx", 15},
+      {"lambert+ward", 15},
+      {"lambert+blinn-phong", 16},
+      {"lambert+phong", 16},
+      {"phong", 16},
+      {"ward", 16},
+      {"ggx-f0", 20},
+      {"lambert+beckmann", 20},
+      {"lambert+ggx-f0", 20},
+      {"oren-nayar+ggx", 20},
+      {"ward-duer", 22},
+      {"ue4", 23},
+      {"burley+ggx", 26},
+      {"lafortune", 26},
+      {"lambert+lafortune", 28},
+      {"beckmann", 29},
+      {"lambert+ggx+ggx", 29},
+      {"cook-torrance", 31},
+      {"lambert+cook-torrance", 32},
+      {"sgd", 44},
+      {"abc", 45},
+      {"lambert+sgd", 52},
+      {"lambert+abc", 58},
+      {"lambert+lafortune+lafortune", 109},
+      {"lambert+lafortune+lafortune+lafortune", 289},
   };
   return costs;
 }
@@ -93,7 +93,9 @@ int ModelRunCost(const std::string& model) {
   return kUnmeasuredBase + (m ? static_cast<int>(m->params.size()) : 0);
 }
 
-bool HasMeasuredRunCost(const std::string& model) { return MeasuredRunCost().count(model) > 0; }
+bool HasMeasuredRunCost(const std::string& model) {
+  return MeasuredRunCost().count(model) > 0;
+}
 
 std::vector<bool> ShardMembership(const std::vector<std::string>& inputs,
                                   const std::vector<ShardRun>& runs, const Shard& shard) {
