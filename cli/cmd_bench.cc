@@ -22,6 +22,8 @@
 #include "io/nbrdf.h"
 #include "pipeline/bench_sweep.h"
 #include "pipeline/inputs.h"
+#include "pipeline/material_keys.h"
+#include "pipeline/shard.h"
 #include "report/bench_csv.h"
 #include "report/html_report.h"
 #include "report/report_inputs.h"
@@ -41,8 +43,30 @@ struct BenchCliOptions {
   double cutoff_deg = SampleOptions{}.cutoff_deg;
   int repeat = 1;
   int threads = 1;
+  std::string shard;  // "I/N" (pipeline/shard.h); empty: every table
+  bool no_timings = false;
   bool quiet = false;
 };
+
+struct BenchInput {
+  std::string file;
+  std::string material;  // pipeline/material_keys.h
+};
+
+// The tables this run sweeps, by material key (the CSV's order): every input, or the shard's
+// whole tables (one unit per table: with fewer tables than shards some shards have none).
+std::vector<BenchInput> RunInputs(const std::vector<std::string>& files, const std::string& shard) {
+  const std::vector<std::string> keys = pipeline::MaterialKeys(files);
+  const pipeline::Shard s = shard.empty() ? pipeline::Shard{} : pipeline::ParseShard(shard);
+  const std::vector<bool> in = pipeline::ShardMembership(keys, {{"bench", ""}}, s);
+  std::vector<BenchInput> out;
+  for (std::size_t f = 0; f < files.size(); ++f) {
+    if (in[f]) out.push_back({files[f], keys[f]});
+  }
+  std::stable_sort(out.begin(), out.end(),
+                   [](const auto& a, const auto& b) { return a.material < b.material; });
+  return out;
+}
 
 struct Plan {
   std::vector<Budget> budgets;
@@ -83,12 +107,13 @@ fs::path PlotPath(const BenchCliOptions& o) {
 
 int RunBench(BenchCliOptions o, std::vector<fs::path>* written = nullptr) {
   o.files = pipeline::ExpandInputs(o.files);
+  const std::vector<BenchInput> inputs = RunInputs(o.files, o.shard);
   const Plan plan = CheckOptions(o);
   CheckOutputs(pipeline::InputFiles(o.files),
                {{o.out, "-o"}, {PlotPath(o), o.plot.empty() ? "the plot (-o as .html)" : "--plot"}});
   const std::string chart_js = report::ReadChartJs();  // fail before any fit
   const std::size_t fits_per_table = plan.budgets.size() * plan.losses.size() * o.models.size();
-  Progress bar(o.files.size() * fits_per_table, "bench", !o.quiet);
+  Progress bar(inputs.size() * fits_per_table, "bench", !o.quiet);
   std::vector<report::BenchPoint> points;
   int code = kExitOk;
   FitOptions fo;
@@ -119,18 +144,21 @@ int RunBench(BenchCliOptions o, std::vector<fs::path>* written = nullptr) {
                  re.ok ? fmt::format("{:.1f}%", 100 * re.median_rel_error) : "-");
     }
   };
-  for (const std::string& file : o.files) {
-    const pipeline::BenchTable table{report::MaterialName(file), file, pipeline::LoadInput(file)};
+  for (const BenchInput& in : inputs) {
+    const pipeline::BenchTable table{in.material, in.file, pipeline::LoadInput(in.file)};
     const auto rows = pipeline::RunBenchSweep(table, config, callbacks);
     points.insert(points.end(), rows.begin(), rows.end());
   }
   bar.Done();
+  if (o.no_timings) {
+    for (report::BenchPoint& b : points) b.time_ms = b.prepare_ms = b.init_ms = b.solve_ms = 0;
+  }
   report::WriteBenchCsv(o.out, points);
   report::Report r;
   r.title = "brdfit bench: run time against error";
   r.metric_definition = MetricsDefinition();
   r.bench = points;
-  for (const auto& f : o.files) r.inputs.push_back(f);
+  for (const BenchInput& in : inputs) r.inputs.push_back(in.file);
   r.notes.push_back(fmt::format(
       "Time: preparing the samples of the budget + initializer + Levenberg-Marquardt, median of "
       "{} run{} per fit, {} Ceres thread{}; loading the table is not counted.",
@@ -170,6 +198,11 @@ Registrar reg{
       sub.add_option("--repeat", o->repeat, "runs per fit; times are medians")
           ->capture_default_str();
       sub.add_option("--threads", o->threads, "Ceres threads per fit")->capture_default_str();
+      sub.add_option("--shard", o->shard,
+                     "I/N: sweep only the I-th of N slices of the tables (whole tables, "
+                     "docs/scale.md); join the CSVs with brdfit merge");
+      sub.add_flag("--no-timings", o->no_timings,
+                   "write the times as 0 (byte-identical reruns and merges of the CSV)");
       sub.add_flag("-q,--quiet", o->quiet, "no table on stdout, no progress bar");
       sub.footer(
           "Every fit's metrics are computed on all valid cells inside the cut-off, whatever its "
@@ -179,7 +212,8 @@ Registrar reg{
           "Examples:\n"
           "  brdfit bench mats/*.binary --models lambert+ggx,lambert+beckmann -o bench.csv\n"
           "  brdfit bench gold.binary --budgets full,stride:8,stride:32,random:20000 \\\n"
-          "      --losses log,cbrt --repeat 5 -o gold-bench.csv --plot gold-bench.html");
+          "      --losses log,cbrt --repeat 5 -o gold-bench.csv --plot gold-bench.html\n"
+          "  brdfit bench nbrdf:all --models lambert+ggx --shard 1/4 -o bench-1.csv");
       return [o] { return RunBench(*o); };
     }};
 

@@ -32,6 +32,8 @@
 #include "pipeline/factor_export.h"
 #include "pipeline/factor_settings.h"
 #include "pipeline/inputs.h"
+#include "pipeline/material_keys.h"
+#include "pipeline/shard.h"
 #include "report/report_inputs.h"
 
 namespace brdfit::cli {
@@ -65,8 +67,30 @@ struct FactorCliOptions {
   std::string refine_loss = "rel";
   bool auto_form = kDefaultAutoForm;  // cleared by any option that names the form
   std::string suffix;                 // appended to each output stem (the demo writes both forms)
+  std::string shard;                  // "I/N" (pipeline/shard.h); empty: every table
+  bool no_timings = false;            // nothing run-dependent in the outputs
   bool quiet = false;
 };
+
+// A table of the run: its input and its material key (pipeline/material_keys.h).
+struct FactorInput {
+  std::string file;
+  std::string material;
+};
+
+// The tables this run factors: every input, or the shard's whole tables (pipeline/shard.h; one
+// unit per table, so with fewer tables than shards some shards have none).
+std::vector<FactorInput> RunInputs(const FactorCliOptions& o) {
+  const std::vector<std::string> files = pipeline::ExpandInputs(o.files);
+  const std::vector<std::string> keys = pipeline::MaterialKeys(files);
+  const pipeline::Shard shard = o.shard.empty() ? pipeline::Shard{} : pipeline::ParseShard(o.shard);
+  const std::vector<bool> in = pipeline::ShardMembership(keys, {{"factor", ""}}, shard);
+  std::vector<FactorInput> out;
+  for (std::size_t f = 0; f < files.size(); ++f) {
+    if (in[f]) out.push_back({files[f], keys[f]});
+  }
+  return out;
+}
 
 // The rendered score of one candidate or rank, for the sidecar (null where the metric failed)
 // and for the printed line.
@@ -124,23 +148,25 @@ nlohmann::json SourceJson(const fs::path& file, const Table& t) {
             {"missing_fraction", p.missing_fraction}}}};
 }
 
-// The stem of a table's outputs: its material name, which may come from inside an archive,
-// made one safe path component (core/file_stem.h).
-std::string OutputStem(const std::string& file, const std::string& suffix) {
-  return SafeFileStem(report::MaterialName(file) + suffix);
+// The stem of a table's outputs: its material key (pipeline/material_keys.h: "a/x" for
+// a/x.binary beside b/x.binary), which may come from inside an archive, made one safe path
+// component (core/file_stem.h): "a_x".
+std::string OutputStem(const std::string& material, const std::string& suffix) {
+  return SafeFileStem(material + suffix);
 }
 
 // Validates everything that can be checked before any work: options, inputs, output names.
-FactorOptions CheckOptions(const FactorCliOptions& o) {
+FactorOptions CheckOptions(const FactorCliOptions& o, const std::vector<FactorInput>& inputs) {
   const FactorOptions f = pipeline::MakeFactorOptions(
       {o.param, o.resolution, o.lambda, o.weighting, o.max_theta_deg, o.diffuse, o.rank, o.refine,
        o.refine_iterations, o.refine_loss});
   std::map<std::string, std::string> stems;
-  const std::vector<std::string> inputs = pipeline::ExpandInputs(o.files);
   std::vector<PlannedOutput> outputs;
-  for (const std::string& file : inputs) {
+  std::vector<std::string> files;
+  for (const auto& [file, material] : inputs) {
+    files.push_back(file);
     if (!IsNbrdfInput(file)) CheckInputFile(file);
-    const std::string stem = OutputStem(file, o.suffix);
+    const std::string stem = OutputStem(material, o.suffix);
     if (auto [it, fresh] = stems.emplace(stem, file); !fresh) {
       throw InputError(file, fmt::format("writes the same outputs ({}.*) as {}", stem, it->second));
     }
@@ -150,7 +176,7 @@ FactorOptions CheckOptions(const FactorCliOptions& o) {
     }
   }
   CheckOutputFolder(o.out_dir, "-o");
-  CheckOutputs(pipeline::InputFiles(inputs), outputs);
+  CheckOutputs(pipeline::InputFiles(files), outputs);
   return f;
 }
 
@@ -195,7 +221,8 @@ void PrintSummary(const std::string& stem, const Factorization& r, double ln_rms
 }
 
 int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullptr) {
-  const FactorOptions options = CheckOptions(o);
+  const std::vector<FactorInput> inputs = RunInputs(o);
+  const FactorOptions options = CheckOptions(o, inputs);
   MakeOutputFolder(o.out_dir);
   SampleOptions metric_samples;
   metric_samples.cutoff_deg = o.metric_cutoff_deg;
@@ -208,8 +235,9 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
         "table", "form", "res", "cells", "f<=0", "ln-rmse", "E2-log", "cbrt", "psnr_dB", "med_lum",
         "tex_KiB", "fetches", "system", "time");
   }
-  const std::vector<std::string> files = pipeline::ExpandInputs(o.files);
-  for (const std::string& file : files) {
+  for (const FactorInput& input : inputs) {
+    const std::string& file = input.file;
+    const bool last = &input == &inputs.back();
     try {
       const Table table = pipeline::LoadInput(file);
       Factorization r;
@@ -223,7 +251,6 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
         } else {
           std::vector<Factorization> tried;
           std::vector<FactorScore> scores;
-          const bool last = &file == &files.back();
           for (const FactorCandidate& c : kAutoFactorCandidates) {
             // On the last table, a parameterization's system goes once its candidates are done.
             if (last && !tried.empty() && tried.back().options.param != c.param) cache.Clear();
@@ -244,7 +271,7 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
             nlohmann::json c = ScoreJson(e);
             c["form"] = kAutoFactorCandidates[k].name;
             c["texture_bytes"] = scores[k].cost.texture_bytes;
-            c["seconds"] = tried[k].stats.seconds;
+            if (!o.no_timings) c["seconds"] = tried[k].stats.seconds;
             choice["candidates"].push_back(std::move(c));
             if (!o.quiet) {
               fmt::print("  candidate {:<16} {}{}\n", kAutoFactorCandidates[k].name, ScoreText(e),
@@ -259,7 +286,7 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
       }
       // The factored systems (~100 MB each on the MERL grid) serve the next tables; after the
       // last one they are dropped before the metrics' own per-cell arrays are made.
-      if (&file == &files.back()) cache.Clear();
+      if (last) cache.Clear();
       const double ln_rmse = FactorLnRatioRmse(table, r.brdf, options.max_theta);
       // What each product bought: the lower ranks met on the way, scored like the result.
       nlohmann::json ranks;
@@ -283,17 +310,20 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
         }
       }
       const FitMetrics m = ScoreFactorization(table, r.brdf, metric_samples);
-      const std::string stem = OutputStem(file, o.suffix);
-      const RunProvenance run = CurrentRunProvenance(true);
-      nlohmann::json extra = {{"source", SourceJson(file, table)},
+      const std::string stem = OutputStem(input.material, o.suffix);
+      const RunProvenance run = CurrentRunProvenance(!o.no_timings);
+      nlohmann::json provenance = {{"brdfit_version", run.version}};
+      if (!o.no_timings) {
+        provenance["command_line"] = run.command_line;
+        provenance["created"] = run.created;
+      }
+      nlohmann::json extra = {{"material", input.material},
+                              {"source", SourceJson(file, table)},
                               {"metrics", MetricsJson(m, re, ln_rmse)},
-                              {"provenance",
-                               {{"brdfit_version", run.version},
-                                {"command_line", run.command_line},
-                                {"created", run.created}}}};
+                              {"provenance", provenance}};
       if (!choice.is_null()) extra["choice"] = choice;
       if (!ranks.is_null()) extra["ranks"] = ranks;
-      const FactorPaths paths = SaveFactorization(r, o.out_dir, stem, extra);
+      const FactorPaths paths = SaveFactorization(r, o.out_dir, stem, extra, !o.no_timings);
       if (written) {
         for (const fs::path& p : paths.All()) written->push_back(p);
       }
@@ -368,6 +398,12 @@ Registrar reg{
       sub.add_option("--refine-iterations", o->refine_iterations,
                      "Levenberg-Marquardt iterations of the refinement, at most")
           ->capture_default_str();
+      sub.add_option("--shard", o->shard,
+                     "I/N: factor only the I-th of N slices of the tables (whole tables, "
+                     "docs/scale.md); join the output folders with brdfit merge");
+      sub.add_flag("--no-timings", o->no_timings,
+                   "leave the times, the factored system's reuse, the command line and the date "
+                   "out of the sidecars and textures (byte-identical reruns and merges)");
       sub.add_flag("-q,--quiet", o->quiet, "no table on stdout");
       sub.footer(
           "Exit codes: 0 ok, 1 a solve failed, 2 bad input (named, the other tables are still "
@@ -382,7 +418,8 @@ Registrar reg{
           "  brdfit factor gold-paint.binary -o out\n"
           "  brdfit factor gold-paint.binary --diffuse --rank 2 -o out\n"
           "  brdfit factor mats/*.binary --param halfdiff --res 32 --lambda 1e-4 -o out\n"
-          "  brdfit factor nbrdf:all --res 32 -o nbrdf-factors");
+          "  brdfit factor nbrdf:all --res 32 -o nbrdf-factors\n"
+          "  brdfit factor nbrdf:all --shard 2/8 --no-timings -o factors-2");
       return [o] { return RunFactor(*o); };
     }};
 

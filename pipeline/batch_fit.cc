@@ -21,7 +21,7 @@
 #include "fit/fitter.h"
 #include "models/registry.h"
 #include "pipeline/inputs.h"
-#include "report/report_inputs.h"
+#include "pipeline/material_keys.h"
 
 namespace brdfit::pipeline {
 namespace {
@@ -89,15 +89,34 @@ std::string SpecularPartsOf(const std::string& diffuse) {
   return out;
 }
 
-// MarkChosenFits, then no mark on the sources split over shards.
+// MarkChosenFits, then no mark on the materials split over shards.
 void MarkShardChosenFits(std::vector<FitReportEntry>& entries,
-                         const std::set<std::string>& split_sources) {
+                         const std::set<std::string>& split_materials) {
   MarkChosenFits(entries);
-  if (split_sources.empty()) return;
+  if (split_materials.empty()) return;
   for (FitReportEntry& e : entries) {
-    if (!split_sources.count(e.source)) continue;
+    if (!split_materials.count(e.material)) continue;
     e.chosen = false;
     e.choice.clear();
+  }
+}
+
+// A report holds one source per material key: a kept entry of one of this run's keys but of
+// another source (b/x.binary fitted into a report of a/x.binary, both "x") would be mistaken for
+// it. InputError naming both.
+void CheckKeptMaterials(const std::vector<FitReportEntry>& kept,
+                        const std::vector<std::string>& inputs,
+                        const std::vector<std::string>& keys, const fs::path& report) {
+  std::map<std::string, const std::string*> source_of;
+  for (std::size_t f = 0; f < inputs.size(); ++f) source_of[keys[f]] = &inputs[f];
+  for (const FitReportEntry& e : kept) {
+    const auto it = source_of.find(e.material);
+    if (it == source_of.end() || e.source == *it->second) continue;
+    throw InputError(report, "holds material '" + e.material + "' fitted from " + e.source +
+                                 ", and this run's " + *it->second +
+                                 " has the same material key (docs/scale.md, \"Material "
+                                 "identity\"): write another report (-o), give both tables in one "
+                                 "run, or --force");
   }
 }
 
@@ -185,13 +204,16 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
     run_options.push_back(OptionsJson(req.samples, fo));
   }
   const std::vector<std::string>& inputs = req.inputs;
+  // Fits are identified by (material key, model, options) (pipeline/material_keys.h).
+  const std::vector<std::string> keys = MaterialKeys(inputs);
 
   // Resume: keep what the report holds; skip fits already done with the same options.
   std::vector<FitReportEntry> kept = ReadKept(req.report, req.force);
   if (req.on_report_written) req.on_report_written(kept.size());  // reliability hook
+  CheckKeptMaterials(kept, inputs, keys, req.report);
   std::set<std::tuple<std::string, std::string, std::string>> done;
   for (const auto& e : kept) {
-    if (!e.result.Failed()) done.insert({e.source, e.result.model, e.options});
+    if (!e.result.Failed()) done.insert({e.material, e.result.model, e.options});
   }
   BatchFitResult result;
   // The shard's slice of the work list, before resuming: it never depends on what is done.
@@ -199,8 +221,8 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
   for (std::size_t k = 0; k < req.models.size(); ++k) {
     shard_runs.push_back({req.models[k].model, run_options[k]});
   }
-  const std::vector<bool> in_shard = ShardMembership(inputs, shard_runs, req.shard);
-  std::set<std::string> split_sources;  // sources with fits in this shard and in others
+  const std::vector<bool> in_shard = ShardMembership(keys, shard_runs, req.shard);
+  std::set<std::string> split_materials;  // materials with fits in this shard and in others
   std::vector<Task> tasks;
   std::vector<std::unique_ptr<InputState>> states;
   for (std::size_t f = 0; f < inputs.size(); ++f) {
@@ -208,7 +230,7 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
     const auto row = in_shard.begin() + static_cast<std::ptrdiff_t>(f * req.models.size());
     const auto n_in = std::count(row, row + static_cast<std::ptrdiff_t>(req.models.size()), true);
     if (n_in > 0 && n_in < static_cast<std::ptrdiff_t>(req.models.size())) {
-      split_sources.insert(inputs[f]);
+      split_materials.insert(keys[f]);
     }
     for (std::size_t k = 0; k < req.models.size(); ++k) {
       const std::string& m = req.models[k].model;
@@ -216,7 +238,7 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
         ++result.other_shards;
         continue;
       }
-      if (done.count({inputs[f], m, run_options[k]})) {
+      if (done.count({keys[f], m, run_options[k]})) {
         ++result.skipped;
         continue;
       }
@@ -226,10 +248,10 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
   }
   result.planned = tasks.size();
   std::set<std::tuple<std::string, std::string, std::string>> planned_keys;
-  for (const Task& t : tasks) planned_keys.insert({inputs[t.input], t.model, t.options});
+  for (const Task& t : tasks) planned_keys.insert({keys[t.input], t.model, t.options});
   // Entries replaced by this run leave the kept set.
   std::erase_if(kept, [&](const FitReportEntry& e) {
-    return planned_keys.count({e.source, e.result.model, e.options}) > 0;
+    return planned_keys.count({e.material, e.result.model, e.options}) > 0;
   });
 
   std::mutex mu;                   // guards result, progress, checkpoints and write_error
@@ -241,7 +263,7 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
     // Nothing fitted (every input unreadable) and no report before: none is written.
     std::error_code ec;
     if (final && all.empty() && !fs::exists(req.report, ec)) return;
-    MarkShardChosenFits(all, split_sources);
+    MarkShardChosenFits(all, split_materials);
     const std::size_t entries = all.size();
     WriteFitReport(std::move(all), req.report, req.timings);
     if (req.on_report_written) req.on_report_written(entries);  // reliability hook
@@ -258,7 +280,7 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
       InputState& st = *states[t.input];
       if (on_start) {
         std::lock_guard<std::mutex> lock(mu);
-        on_start(tasks.size(), report::MaterialName(input) + " " + t.model);
+        on_start(tasks.size(), keys[t.input] + " " + t.model);
       }
       {
         std::lock_guard<std::mutex> lock(st.mu);
@@ -291,8 +313,13 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
         }
         r.times.load = st.load_ms;
         r.times.prepare = st.prepare_ms;
-        FitReportEntry e{input, report::MaterialName(input), t.options, std::move(r),
-                         /*chosen=*/false, /*choice=*/{}, /*source_hash=*/st.content_hash,
+        FitReportEntry e{input,
+                         keys[t.input],
+                         t.options,
+                         std::move(r),
+                         /*chosen=*/false,
+                         /*choice=*/{},
+                         /*source_hash=*/st.content_hash,
                          /*timed=*/false};
         std::lock_guard<std::mutex> lock(mu);
         if (req.on_fit_done) req.on_fit_done(e);
@@ -328,12 +355,12 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
   write_report(true);
   result.all = kept;
   result.all.insert(result.all.end(), result.fresh.begin(), result.fresh.end());
-  MarkShardChosenFits(result.all, split_sources);
+  MarkShardChosenFits(result.all, split_materials);
   SortEntries(result.all);
   // The fresh entries carry the same marks as in the report.
   result.fresh.clear();
   for (const FitReportEntry& e : result.all) {
-    if (!planned_keys.count({e.source, e.result.model, e.options})) continue;
+    if (!planned_keys.count({e.material, e.result.model, e.options})) continue;
     result.fresh.push_back(e);
   }
   std::sort(result.input_errors.begin(), result.input_errors.end());
@@ -341,13 +368,13 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
 }
 
 void MarkChosenFits(std::vector<FitReportEntry>& entries) {
-  std::map<std::string, std::vector<std::size_t>> by_source;
+  std::map<std::string, std::vector<std::size_t>> by_material;
   for (std::size_t i = 0; i < entries.size(); ++i) {
     entries[i].chosen = false;
     entries[i].choice.clear();
-    by_source[entries[i].source].push_back(i);
+    by_material[entries[i].material].push_back(i);
   }
-  for (const auto& [source, indices] : by_source) {
+  for (const auto& [material, indices] : by_material) {
     std::vector<const FitResult*> fits;
     for (std::size_t i : indices) fits.push_back(&entries[i].result);
     const std::optional<ModelChoice> c = ChooseFit(fits);

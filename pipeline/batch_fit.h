@@ -3,8 +3,11 @@
 //
 //  * Parallel over (input, model) with `jobs` workers; each input is loaded and prepared once
 //    (fit/fitter.h PrepareTable), shared by its models' fits, and freed after its last fit.
-//  * Resume: entries already in the report with the same source, model and options are kept
-//    and skipped (unless `force`); entries this run redoes replace the old ones.
+//  * Fits are identified by (material key, model, options): the key is unique in the batch and
+//    the same on every machine (pipeline/material_keys.h); a report holds one source per key.
+//  * Resume: entries already in the report with the same key, model and options are kept
+//    and skipped (unless `force`); entries this run redoes replace the old ones. A kept entry of
+//    one of the run's keys but another source is an InputError (the report is not resumed).
 //  * Checkpoints: the report is rewritten (atomically, io/atomic_file.h) at most every 5 s
 //    while fits finish, and once at the end, so a killed run loses at most the fits in flight.
 //  * A table that cannot be loaded is an input error of the batch (reported, not thrown); a
@@ -53,7 +56,7 @@ struct BatchFitRequest {
   bool force = false;            // redo fits the report already holds
   bool timings = true;           // false: no timings in the report (byte-identical reruns)
   int jobs = 1;                  // fits in parallel
-  // Only this shard's slice of the (input x model run) work list (pipeline/shard.h). A source
+  // Only this shard's slice of the (input x model run) work list (pipeline/shard.h). A material
   // whose fits are split over shards gets no `chosen` mark here (the shard cannot know the
   // choice among fits it does not hold): `brdfit merge` marks it over all the fits.
   Shard shard;
@@ -82,9 +85,9 @@ using BatchProgress = std::function<void(std::size_t planned, const std::string&
 // written.
 BatchFitResult RunBatchFit(const BatchFitRequest& request, const BatchProgress& on_start = nullptr);
 
-// Marks, per source, the fit core/model_choice.h recommends among the entries of that source
+// Marks, per material key, the fit core/model_choice.h recommends among the entries of that key
 // (`chosen`, with the reason in `choice`); clears every other mark. RunBatchFit does it before
-// every write, over everything the report holds (but for the split sources of a shard), and
+// every write, over everything the report holds (but for the split materials of a shard), and
 // `brdfit merge` over everything the merged report holds.
 void MarkChosenFits(std::vector<FitReportEntry>& entries);
 

@@ -147,10 +147,19 @@ nlohmann::json DescribeFactorization(const Factorization& r) {
 }
 
 FactorPaths SaveFactorization(const Factorization& r, const std::filesystem::path& dir,
-                              const std::string& stem, const nlohmann::json& extra) {
+                              const std::string& stem, const nlohmann::json& extra,
+                              bool include_timings) {
   const FactorParamSpec& spec = r.brdf.spec();
   FactorFiles files;
   files.sidecar = DescribeFactorization(r);
+  if (!include_timings) {
+    // What depends on the run, not on the table and the options: the times, and whether the
+    // factored system came from an earlier table of the same process.
+    for (const char* k : {"system_seconds", "seconds", "refine_seconds", "system_reused",
+                          "system_rebuilt_for_mask"}) {
+      files.sidecar["stats"].erase(k);
+    }
+  }
   files.sidecar.update(extra, /*merge_objects=*/true);
   files.diffuse = r.brdf.diffuse();
   // Provenance in every texture's header too (docs/formats.md): an EXR copied away from its

@@ -15,10 +15,14 @@ namespace brdfit {
 // .factor.json, with the diffuse value and rank in the sidecar. `extra` members (e.g.
 // "source", "metrics", "provenance") are merged into the sidecar; the string members of
 // "provenance" and the source's "file" and "hash" also go into every EXR header (as
-// brdfit:<member>, brdfit:source, brdfit:source_hash). Returns the paths written.
+// brdfit:<member>, brdfit:source, brdfit:source_hash). Without timings, the sidecar's stats
+// leave out what depends on the run (system_seconds, seconds, refine_seconds, system_reused,
+// system_rebuilt_for_mask): the same table and options give the same bytes in any process.
+// Returns the paths written.
 FactorPaths SaveFactorization(const Factorization& r, const std::filesystem::path& dir,
                               const std::string& stem,
-                              const nlohmann::json& extra = nlohmann::json::object());
+                              const nlohmann::json& extra = nlohmann::json::object(),
+                              bool include_timings = true);
 
 // Reads a sidecar and its textures (every term, the diffuse value; version 1 files are rank 1
 // without diffuse) into an evaluable BRDF. Throws InputError naming the file if the sidecar is

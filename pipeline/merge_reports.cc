@@ -19,7 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-using Key = std::tuple<std::string, std::string, std::string>;  // source, model, options
+using Key = std::tuple<std::string, std::string, std::string>;  // material, model, options
 
 // A scratch folder for comparing entries, removed on destruction.
 class Scratch {
@@ -59,12 +59,22 @@ MergedReports MergeFitReports(const std::vector<fs::path>& parts) {
   MergedReports out;
   std::map<Key, std::size_t> seen;  // key -> index into out.entries
   std::vector<std::size_t> from;    // part of each kept entry
+  std::map<std::string, std::pair<std::string, std::size_t>> source_of;  // material -> source, part
   std::unique_ptr<Scratch> scratch;
   for (std::size_t p = 0; p < parts.size(); ++p) {
     std::vector<FitReportEntry> entries = ReadFitReport(parts[p]);
     out.read += entries.size();
     for (FitReportEntry& e : entries) {
-      const Key key{e.source, e.result.model, e.options};
+      // One source per material key (pipeline/material_keys.h).
+      const auto [src, fresh] = source_of.emplace(e.material, std::make_pair(e.source, p));
+      if (!fresh && src->second.first != e.source) {
+        throw InputError(fmt::format(
+            "material '{}' is {} in {} but {} in {}: two tables under one material key; "
+            "refusing to merge (fit both in one run, or give every shard the same paths)",
+            e.material, src->second.first, parts[src->second.second].string(), e.source,
+            parts[p].string()));
+      }
+      const Key key{e.material, e.result.model, e.options};
       const auto it = seen.find(key);
       if (it == seen.end()) {
         seen.emplace(key, out.entries.size());

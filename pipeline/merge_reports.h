@@ -4,7 +4,9 @@
 // the report's order (io/fit_report.h SortEntries). With parts written without timings, the
 // merged file is byte-identical to the single-process `--no-timings` report.
 //
-//  * Duplicates (same source, model and options in two parts, or twice in one): kept once when
+//  * One source per material key (pipeline/material_keys.h): a key with two sources is a
+//    conflict (InputError naming both files).
+//  * Duplicates (same material key, model and options in two parts, or twice in one): kept once when
 //    their results are identical (everything the report stores but timings and choice marks,
 //    compared as the bytes of the entry written alone); a conflict otherwise (InputError
 //    naming both files).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
+#include <map>
 #include <numeric>
 #include <queue>
 #include <tuple>
@@ -15,6 +16,55 @@ namespace brdfit::pipeline {
 namespace {
 
 constexpr int kMaxShards = 100000;
+
+// The measured cost of one fit of each catalog model, in units of 10 ms of one core: the mean
+// initializer + Levenberg-Marquardt time of `brdfit bench` at the default budget (stride:32,
+// 30,778 samples), one thread, over the five MERL proxies of bench/bench_tables.h and the
+// losses rel and logratio (10 fits per model), plus 100 ms for the metric pass every fit pays
+// (the model at every cell and the rendered-image metric: 75-167 ms in bench/bench_fit_cli,
+// whatever the model). Measured 2026-12-02 on the 2-core development machine, load 4-6:
+// docs/scale.md "Cost of a fit" has the command. Only the ratios matter.
+const std::map<std::string, int>& MeasuredRunCost() {
+  static const std::map<std::string, int> costs = {
+      {"lambert", 11},
+      {"burley", 12},
+      {"oren-nayar", 12},
+      {"ggx", 14},
+      {"ggx-hc", 14},
+      {"lambert+ggx-hc", 14},
+      {"blinn-phong", 15},
+      {"lambert+ggx", 15},
+      {"lambert+ward", 15},
+      {"lambert+blinn-phong", 16},
+      {"lambert+phong", 16},
+      {"phong", 16},
+      {"ward", 16},
+      {"ggx-f0", 20},
+      {"lambert+beckmann", 20},
+      {"lambert+ggx-f0", 20},
+      {"oren-nayar+ggx", 20},
+      {"ward-duer", 22},
+      {"ue4", 23},
+      {"burley+ggx", 26},
+      {"lafortune", 26},
+      {"lambert+lafortune", 28},
+      {"beckmann", 29},
+      {"lambert+ggx+ggx", 29},
+      {"cook-torrance", 31},
+      {"lambert+cook-torrance", 32},
+      {"sgd", 44},
+      {"abc", 45},
+      {"lambert+sgd", 52},
+      {"lambert+abc", 58},
+      {"lambert+lafortune+lafortune", 109},
+      {"lambert+lafortune+lafortune+lafortune", 289},
+  };
+  return costs;
+}
+
+// A model without a measurement (added to the catalog since): the metric pass plus one unit
+// per parameter, a rough guess of the same scale.
+constexpr int kUnmeasuredBase = 10;
 
 // A non-negative decimal number of at most 6 digits, or -1.
 int ParseCount(const std::string& s) {
@@ -36,8 +86,15 @@ Shard ParseShard(const std::string& text) {
 }
 
 int ModelRunCost(const std::string& model) {
+  if (const auto it = MeasuredRunCost().find(model); it != MeasuredRunCost().end()) {
+    return it->second;
+  }
   const ModelInfo* m = FindModel(model);
-  return (m ? static_cast<int>(m->params.size()) : 0) + 2;
+  return kUnmeasuredBase + (m ? static_cast<int>(m->params.size()) : 0);
+}
+
+bool HasMeasuredRunCost(const std::string& model) {
+  return MeasuredRunCost().count(model) > 0;
 }
 
 std::vector<bool> ShardMembership(const std::vector<std::string>& inputs,

@@ -5,12 +5,11 @@
 //  * The slicing depends only on the set of items (input strings, model names, options JSON)
 //    and N: not on the order the inputs were given in (a shell glob sorts by locale), not on
 //    the machine, its cores or --jobs.
-//  * Cost of an item: ModelRunCost(model), an estimate of its fit time in arbitrary units:
-//    parameters + 2. Levenberg-Marquardt's cost per iteration is the Jacobian, samples × P
-//    (Ceres, dense QR of a P-column system), and every fit pays a fixed part (the grid
-//    initializer and the rendered-image metric, fit/rendered_error.h) worth about two
-//    parameters' Jacobian at the default budget. Every table of a batch is taken to cost the
-//    same (tables are on the MERL grid or one close to it).
+//  * Cost of an item: ModelRunCost(model), the model's measured fit time (initializer +
+//    Levenberg-Marquardt at the default budget, plus the metric pass every fit pays; shard.cc
+//    has the table and how it was measured), in units of 10 ms. The parameter count does not
+//    predict it (lambert+abc, 9 parameters, costs 4 times lambert+ggx, 7). Every table of a
+//    batch is taken to cost the same (tables are on the MERL grid or one close to it).
 //  * Unit of a slice: a whole input (all its model runs) when there are at least N inputs, so
 //    that each table is loaded and prepared once over all shards and its fits' choice
 //    (core/model_choice.h) is made in one shard; with fewer inputs than shards, single
@@ -36,8 +35,12 @@ struct Shard {
 // "I/N" with 0 <= I < N <= 100000. Throws InputError naming --shard.
 Shard ParseShard(const std::string& text);
 
-// The expected cost of one fit of `model` (a registry name), in the units above.
+// The expected cost of one fit of `model` (a registry name), in the units above: measured for
+// every model of the catalog when it was calibrated; 10 + parameters for a model added since.
 int ModelRunCost(const std::string& model);
+
+// Whether `model` has a measured cost (tests: every fittable model should).
+bool HasMeasuredRunCost(const std::string& model);
 
 struct ShardRun {
   std::string model;    // registry name

@@ -161,8 +161,12 @@ Entry FactorEntry(const fs::path& sidecar, std::string* material, std::string* t
   }
   const std::string file = root.Child("source").String(root.Object(j, "source"), "file", "");
   *table = file;
-  // The stem of the sidecar minus the ".factor" part, when the sidecar names no source.
-  *material = file.empty() ? MaterialName(fs::path(sidecar.stem()).stem()) : MaterialName(file);
+  // The material key brdfit factor recorded (pipeline/material_keys.h); in older sidecars,
+  // the source's material name, or the stem of the sidecar minus the ".factor" part.
+  const std::string key = root.String(j, "material", "");
+  *material = !key.empty()   ? key
+              : file.empty() ? MaterialName(fs::path(sidecar.stem()).stem())
+                             : MaterialName(file);
   return e;
 }
 

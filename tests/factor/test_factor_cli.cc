@@ -207,12 +207,18 @@ TEST_F(FactorCli, BadInputsExitTwoNamingTheFile) {
     EXPECT_NE(r.err.find("brdfit: error:"), std::string::npos) << r.err;
   }
 
-  // Two inputs that would write the same outputs.
-  fs::create_directories(dir_ / "other");
-  fs::copy_file(table_, dir_ / "other" / "product.h5");
-  r = Brdfit({"factor", table_, (dir_ / "other" / "product.h5").string(), "-o", out}, dir_);
+  // Two inputs that would write the same outputs: the material keys a_b/product and
+  // a/b/product (pipeline/material_keys.h) are both the file stem a_b_product. (One stem in two
+  // folders is two materials with two stems: tests/pipeline/test_shard_factor_bench.cc.)
+  fs::create_directories(dir_ / "a_b");
+  fs::create_directories(dir_ / "a" / "b");
+  fs::copy_file(table_, dir_ / "a_b" / "product.h5");
+  fs::copy_file(table_, dir_ / "a" / "b" / "product.h5");
+  r = Brdfit({"factor", (dir_ / "a_b" / "product.h5").string(),
+              (dir_ / "a" / "b" / "product.h5").string(), "-o", out},
+             dir_);
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("same outputs"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("same outputs (a_b_product.*)"), std::string::npos) << r.err;
 }
 
 // The factored form's options: validated before any work, recorded in the sidecar's solver

@@ -21,6 +21,7 @@
 
 #include "core/error.h"
 #include "core/synth.h"
+#include "fit/fitter.h"
 #include "io/fit_report.h"
 #include "io/hdf5_table.h"
 #include "models/registry.h"
@@ -91,6 +92,22 @@ TEST(ShardMembership, PartitionsTheWorkListAndBalancesItsCost) {
           << n_inputs << " inputs, " << n << " shards";
     }
   }
+}
+
+// The costs are measured (pipeline/shard.cc, docs/scale.md "Cost of a fit") for every model of
+// the catalog; a model added since needs its measurement. What the measurement found and the
+// parameter count did not predict: lambert+abc costs far more than lambert+ggx+ggx.
+TEST(ShardMembership, EveryFittableModelHasAMeasuredCost) {
+  for (const std::string& m : FittableModels()) {
+    EXPECT_TRUE(pipeline::HasMeasuredRunCost(m))
+        << m << ": no measured cost; measure it as docs/scale.md \"Cost of a fit\" says";
+    EXPECT_GT(pipeline::ModelRunCost(m), 0) << m;
+  }
+  EXPECT_GT(pipeline::ModelRunCost("lambert+abc"), pipeline::ModelRunCost("lambert+ggx+ggx"));
+  EXPECT_LT(FindModel("lambert+abc")->params.size(), FindModel("lambert+ggx+ggx")->params.size());
+  // Unmeasured: the rough guess, 10 + parameters.
+  EXPECT_FALSE(pipeline::HasMeasuredRunCost("no-such-model"));
+  EXPECT_EQ(pipeline::ModelRunCost("no-such-model"), 10);
 }
 
 // A shell glob sorts by locale: the same set of inputs in another order gives each item the
