@@ -45,13 +45,13 @@ TEST(ModelAuto, CandidatesKeepTheirLossesUnlessALossIsGiven) {
 
 TEST(ModelAuto, TheCandidateThatExpressesTheTableIsChosen) {
   ScratchDir dir;
-  // A Lambert + GGX-with-Schlick-F0 table: lambert+ggx-f0 reproduces it exactly, the other
-  // candidates (two GGX lobes with constant ks, ABC, Burley + GGX) only approximately.
+  // An Oren-Nayar + GGX table: oren-nayar+ggx reproduces it exactly, the other candidates (two
+  // GGX lobes, Burley + GGX, ABC) only approximately.
   const std::vector<double> truth = testing::Params(
-      "lambert+ggx-f0", {"lambert.kd_r=0.20", "lambert.kd_g=0.12", "lambert.kd_b=0.06",
-                         "ggx-f0.f0_r=0.9", "ggx-f0.f0_g=0.6", "ggx-f0.f0_b=0.3",
-                         "ggx-f0.alpha=0.18"});
-  const Table t = testing::SynthModel("lambert+ggx-f0", truth, testing::SmallGrid());
+      "oren-nayar+ggx", {"oren-nayar.kd_r=0.30", "oren-nayar.kd_g=0.18", "oren-nayar.kd_b=0.08",
+                         "oren-nayar.sigma=0.6", "ggx.ks_r=0.5", "ggx.ks_g=0.4", "ggx.ks_b=0.3",
+                         "ggx.alpha=0.15"});
+  const Table t = testing::SynthModel("oren-nayar+ggx", truth, testing::SmallGrid());
   const fs::path table = dir.path() / "t.h5", report = dir.path() / "fits.h5",
                  json = dir.path() / "fits.json";
   SaveTable(t, table);
@@ -71,13 +71,14 @@ TEST(ModelAuto, TheCandidateThatExpressesTheTableIsChosen) {
       continue;
     }
     ++chosen;
-    EXPECT_EQ(f["model"], "lambert+ggx-f0");
-    EXPECT_EQ(f["options"]["loss"], "logratio");
+    EXPECT_EQ(f["model"], "oren-nayar+ggx");
+    EXPECT_EQ(f["options"]["loss"], "rel");
     EXPECT_FALSE(f["choice"].get<std::string>().empty());
     // Exact recovery; the PSNR is then limited by the measured side's trilinear lookup between
-    // cell centres (about 67 dB on this 30 x 30 x 60 grid).
+    // cell centres (about 65 dB on this 30 x 30 x 60 grid).
     EXPECT_GT(f["metrics"]["rendered"]["psnr_db"].get<double>(), 55.0);
-    EXPECT_NEAR(f["params"]["ggx-f0.alpha"].get<double>(), 0.18, 1e-4);
+    EXPECT_NEAR(f["params"]["oren-nayar.sigma"].get<double>(), 0.6, 1e-4);
+    EXPECT_NEAR(f["params"]["ggx.alpha"].get<double>(), 0.15, 1e-4);
   }
   EXPECT_EQ(chosen, 1);
 
