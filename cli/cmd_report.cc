@@ -231,7 +231,7 @@ Registrar reg{
       sub.footer(
           "The page needs no network: Chart.js (Debian's libjs-chart.js) and the renders are "
           "inlined.\nSlices and renders need each material's table: the one a result names, or give "
-          "it.\nBest result per material: highest PSNR - 20 x median luminance error of the "
+          "it.\nBest result per material: highest min(PSNR, 60 dB) - 20 x median luminance error of the "
           "rendered-image\nmetric; lowest log_rmse when no result has it (docs/accuracy.md).\n"
           "Exit codes: 0 written, 2 bad input (a file missing, unreadable, damaged or of no known "
           "kind: nothing written; with --keep-going the page is written, then exit 2).\n"

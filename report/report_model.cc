@@ -105,10 +105,10 @@ BestPick PickBest(const std::vector<Entry>& entries) {
 std::string BestRule(BestBy by) {
   switch (by) {
     case BestBy::kChosen:
-      return "best = the fit brdfit fit chose (highest PSNR − 20 × median luminance error, the "
+      return "best = the fit brdfit fit chose (highest min(PSNR, 60 dB) − 20 × median luminance error, the "
              "fewest parameters within 0.5 dB of it; core/model_choice.h)";
     case BestBy::kRendered:
-      return "best = highest PSNR − 20 × median luminance error (rendered-image metric, "
+      return "best = highest min(PSNR, 60 dB) − 20 × median luminance error (rendered-image metric, "
              "docs/accuracy.md) among the results that have it";
     case BestBy::kLogRmse:
       return "best = lowest log_rmse: no result has a rendered-image error (a report written "
