@@ -88,17 +88,9 @@ class BlockCost final : public ceres::CostFunction {
   // (sum a_j^2) grad f grad f^T and J^T r gains (sum a_j b_j) grad f (b_j the weighted,
   // robustified residual): one rank-1 row [sqrt(sum a^2) grad f, sum a b / sqrt(sum a^2)].
   bool WithJacobian(const double* x, double* residuals, double* jacobian) const {
-    constexpr int kCols = P + 1;
-    constexpr int kChunk = 64;
-    std::array<double, kChunk * kCols> rows;
-    std::array<double, kCols * kCols> gram{};
-    int filled = 0;
-
+    GramRows<P + 1> gram;
     Jet p[P];
-    for (int i = 0; i < P; ++i) {
-      const Jet xi(x[i], i);
-      p[i] = layout_.specs[i].log_scale ? exp(xi) : xi;
-    }
+    SeedParams<Jet, P>(layout_, x, p);
     double cost = 0;
     for (std::size_t s = begin_; s < end_; ++s) {
       Jet rgb[3];
@@ -116,17 +108,13 @@ class BlockCost final : public ceres::CostFunction {
         }
         if (!(saa > 0)) continue;
         const double sq = std::sqrt(saa);
-        double* row = &rows[filled * kCols];
+        double* row = gram.Next();
         for (int i = 0; i < P; ++i) row[i] = sq * rgb[ch].v[i];
         row[P] = sab / sq;
-        if (++filled == kChunk) {
-          AccumulateGram(rows.data(), filled, kCols, gram.data());
-          filled = 0;
-        }
+        gram.Commit();
       }
     }
-    AccumulateGram(rows.data(), filled, kCols, gram.data());
-    return CompressGram(gram.data(), P, cost, residuals, jacobian);
+    return CompressGram(gram.Finish(), P, cost, residuals, jacobian);
   }
 
   const Samples& s_;

@@ -94,16 +94,9 @@ class PixelCost final : public ceres::CostFunction {
       residuals[P] = std::sqrt(cost);
       return true;
     }
-    constexpr int kCols = P + 1;
-    constexpr int kChunk = 64;
-    std::array<double, kChunk * kCols> rows;
-    std::array<double, kCols * kCols> gram{};
-    int filled = 0;
+    GramRows<P + 1> gram;
     Jet p[P];
-    for (int i = 0; i < P; ++i) {
-      const Jet xi(x[i], i);
-      p[i] = layout_.specs[i].log_scale ? exp(xi) : xi;
-    }
+    SeedParams<Jet, P>(layout_, x, p);
     double cost = 0;
     for (std::size_t s = begin_; s < end_; ++s) {
       Jet f[3], r[4];
@@ -111,17 +104,13 @@ class PixelCost final : public ceres::CostFunction {
       PixelResiduals(px_, s, f, r);
       for (const Jet& e : r) {
         cost += e.a * e.a;
-        double* row = &rows[filled * kCols];
+        double* row = gram.Next();
         for (int i = 0; i < P; ++i) row[i] = e.v[i];
         row[P] = e.a;
-        if (++filled == kChunk) {
-          AccumulateGram(rows.data(), filled, kCols, gram.data());
-          filled = 0;
-        }
+        gram.Commit();
       }
     }
-    AccumulateGram(rows.data(), filled, kCols, gram.data());
-    return CompressGram(gram.data(), P, cost, residuals, jacobians[0]);
+    return CompressGram(gram.Finish(), P, cost, residuals, jacobians[0]);
   }
 
  private:

@@ -21,6 +21,7 @@
 #include "io/hdf5_table.h"
 #include "models/registry.h"
 #include "pipeline/material_keys.h"
+#include "tests/pipeline/lab_tables.h"
 
 namespace brdfit {
 namespace {
@@ -67,55 +68,16 @@ TEST(MaterialKeys, TheSameTableTwiceIsRefusedNamingBoth) {
   EXPECT_THROW(MaterialKeys({"nbrdf:gold", "nbrdf:gold"}), InputError);
 }
 
-std::string ReadAll(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
+using testing::ReadAll;
 
-class MaterialKeyCli : public ::testing::Test {
+class MaterialKeyCli : public testing::LabTables {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("brdfit-keys-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    // a/x.h5, b/x.h5 (different roughness) and a/y.h5 on a 16x16x32 grid.
-    Grid g;
-    g.n_theta_h = 16;
-    g.n_theta_d = 16;
-    g.n_phi_d = 32;
-    const ModelInfo* m = FindModel("lambert+ggx");
-    const std::vector<std::string> names = {"a/x.h5", "b/x.h5", "a/y.h5"};
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      const double alpha = 0.08 + 0.15 * static_cast<double>(i);
-      const std::vector<double> p = {0.3, 0.25, 0.2, 0.4, 0.4, 0.4, alpha};
-      SynthOptions so;
-      so.noise = 0.02;
-      so.seed = i + 1;
-      const Table t = SynthesizeTable(
-          g, [&](const Geometry& geo, double rgb[3]) { m->eval(p.data(), geo, rgb); }, so);
-      fs::create_directories((dir_ / "lab" / names[i]).parent_path());
-      WriteHdf5Table(t, dir_ / "lab" / names[i]);
-    }
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  // `brdfit ARGS` run in the test folder; the exit code, stdout and stderr in *log.
-  int Run(const std::string& args, std::string* log) {
-    const std::string cmd = "cd '" + dir_.string() + "' && '" + std::string(BRDFIT_EXE) + "' " +
-                            args + " > cli.log 2>&1";
-    const int status = std::system(cmd.c_str());
-    *log = ReadAll(dir_ / "cli.log");
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
+  void SetUp() override { MakeTables("keys", {0.3, 0.25, 0.2, 0.4, 0.4, 0.4}, 0.08, 0.15, 1); }
   static std::string Fit(const std::string& extra) {
     return "fit lab/a/x.h5 lab/b/x.h5 lab/a/y.h5 --model ggx,ward --budget full --no-timings "
            "--no-progress -q " +
            extra;
   }
-  fs::path dir_;
 };
 
 TEST_F(MaterialKeyCli, SameStemInTwoFoldersFitsAsTwoMaterialsAndShardsMerge) {

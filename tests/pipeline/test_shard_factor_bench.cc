@@ -20,16 +20,14 @@
 #include "io/hdf5_table.h"
 #include "models/registry.h"
 #include "report/bench_csv.h"
+#include "tests/pipeline/lab_tables.h"
 
 namespace brdfit {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string ReadAll(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
+using testing::ReadAll;
 
 // Every regular file of a folder: name -> bytes.
 std::map<std::string, std::string> Folder(const fs::path& dir) {
@@ -40,42 +38,9 @@ std::map<std::string, std::string> Folder(const fs::path& dir) {
   return out;
 }
 
-class ShardFactorBench : public ::testing::Test {
+class ShardFactorBench : public testing::LabTables {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("brdfit-shard-fb-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    Grid g;
-    g.n_theta_h = 16;
-    g.n_theta_d = 16;
-    g.n_phi_d = 32;
-    const ModelInfo* m = FindModel("lambert+ggx");
-    const std::vector<std::string> names = {"a/x.h5", "b/x.h5", "a/y.h5"};
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      const double alpha = 0.1 + 0.12 * static_cast<double>(i);
-      const std::vector<double> p = {0.3, 0.2, 0.15, 0.5, 0.5, 0.5, alpha};
-      SynthOptions so;
-      so.noise = 0.02;
-      so.seed = i + 7;
-      const Table t = SynthesizeTable(
-          g, [&](const Geometry& geo, double rgb[3]) { m->eval(p.data(), geo, rgb); }, so);
-      fs::create_directories((dir_ / "lab" / names[i]).parent_path());
-      WriteHdf5Table(t, dir_ / "lab" / names[i]);
-    }
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  int Run(const std::string& args, std::string* log) {
-    const std::string cmd = "cd '" + dir_.string() + "' && SOURCE_DATE_EPOCH=1700000000 '" +
-                            std::string(BRDFIT_EXE) + "' " + args + " > cli.log 2>&1";
-    const int status = std::system(cmd.c_str());
-    *log = ReadAll(dir_ / "cli.log");
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
+  void SetUp() override { MakeTables("shard-fb", {0.3, 0.2, 0.15, 0.5, 0.5, 0.5}, 0.1, 0.12, 7); }
   static constexpr const char* kTables = "lab/a/x.h5 lab/b/x.h5 lab/a/y.h5";
   static std::string Factor(const std::string& extra) {
     return std::string("factor ") + kTables + " --no-auto --param halfdiff --res 8 -q " + extra;
@@ -84,7 +49,6 @@ class ShardFactorBench : public ::testing::Test {
     return std::string("bench ") + kTables +
            " --models lambert+ggx --budgets full,stride:4 --losses log -q " + extra;
   }
-  fs::path dir_;
 };
 
 TEST_F(ShardFactorBench, FactorShardsMergeToTheUnshardedFolderByteForByte) {
