@@ -43,6 +43,7 @@ struct BenchCliOptions {
   double cutoff_deg = SampleOptions{}.cutoff_deg;
   int repeat = 1;
   int threads = 1;
+  std::string polish = "none";  // the sweep's fits stop at the table's loss unless asked
   std::string shard;  // "I/N" (pipeline/shard.h); empty: every table
   bool no_timings = false;
   bool quiet = false;
@@ -76,6 +77,7 @@ struct Plan {
 // Everything that can be checked before the first fit.
 Plan CheckOptions(const BenchCliOptions& o) {
   Plan p;
+  FromString<PolishKind>(o.polish);  // a bad name before any work
   if (o.models.empty() || o.budgets.empty() || o.losses.empty()) {
     throw InputError("--models, --budgets and --losses each need at least one value");
   }
@@ -118,6 +120,7 @@ int RunBench(BenchCliOptions o, std::vector<fs::path>* written = nullptr) {
   int code = kExitOk;
   FitOptions fo;
   fo.threads = o.threads;
+  fo.polish = FromString<PolishKind>(o.polish);
   if (!o.quiet) {
     fmt::print("{:<24} {:<16} {:<5} {:<11} {:<14} {:>10} {:>10} {:>10} {:>9} {:>8} {:>8}\n",
                "table", "model", "loss", "budget", "status", "time ms", "log_rmse", "cbrt_rmse",
@@ -198,6 +201,10 @@ Registrar reg{
       sub.add_option("--repeat", o->repeat, "runs per fit; times are medians")
           ->capture_default_str();
       sub.add_option("--threads", o->threads, "Ceres threads per fit")->capture_default_str();
+      sub.add_option("--polish", o->polish,
+                     "none | rendered: end each fit with the rendered polish, as brdfit fit "
+                     "does (its time is in solve_ms)")
+          ->capture_default_str();
       sub.add_option("--shard", o->shard,
                      "I/N: sweep only the I-th of N slices of the tables (whole tables, "
                      "docs/scale.md); join the CSVs with brdfit merge");

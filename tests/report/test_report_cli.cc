@@ -10,6 +10,7 @@
 #include <regex>
 #include <sstream>
 
+#include "core/model_choice.h"
 #include "factor/factor_form.h"
 #include "io/fit_report.h"
 #include "models/registry.h"
@@ -176,6 +177,32 @@ TEST_F(Cli, BenchOnTwoSyntheticTablesWritesCsvAndPlot) {
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.err.find("no-such-model"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir_ / "x.csv"));
+}
+
+// `bench --polish rendered` makes brdfit fit's fits: on a table one lobe cannot express, the
+// rendered score is at least the unpolished one's (fit/rendered_polish.h); a bad name exits 2.
+TEST_F(Cli, BenchPolishIsTheFitsPolish) {
+  const CliRun s = Brdfit(
+      "synth --model lambert+ggx+ggx --param ggx1.alpha=0.05 --param ggx2.alpha=0.35 "
+      "--grid 24,24,48 -o " + P("two.h5"));
+  ASSERT_EQ(s.code, 0) << s.err;
+  double score[2] = {0, 0};
+  int k = 0;
+  for (const char* polish : {"none", "rendered"}) {
+    const std::string csv = std::string(polish) + ".csv";
+    const CliRun r = Brdfit("bench " + P("two.h5") + " --budgets full --losses rel --polish " +
+                            polish + " -q -o " + P(csv));
+    ASSERT_EQ(r.code, 0) << r.out << r.err;
+    const auto pts = ReadBenchCsv(dir_ / csv);
+    ASSERT_EQ(pts.size(), 1u);
+    ASSERT_TRUE(pts[0].metrics.rendered.ok);
+    score[k++] = RenderedScoreDb(pts[0].metrics.rendered);
+  }
+  EXPECT_GT(score[1], score[0]);
+  const CliRun bad = Brdfit("bench " + P("two.h5") + " --polish bogus -o " + P("bad.csv"));
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("unknown polish 'bogus'"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir_ / "bad.csv"));
 }
 
 // Fit reports of `brdfit fit` (io/fit_report.h): two materials fitted with lambert+ggx.
