@@ -78,16 +78,10 @@ LmRun RunLm(const ModelOps& ops, const Samples& s, const LossData& l,
             const ceres::LossFunction* robust, const FitOptions& opt, double* x) {
   const ParamLayout& layout = ops.layout;
   const int P = static_cast<int>(layout.size());
-  ceres::Solver::Options so;
-  so.minimizer_type = ceres::TRUST_REGION;
-  so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.num_threads = std::max(opt.threads, 1);
+  ceres::Solver::Options so = LmSolverOptions(opt.threads);
   so.function_tolerance = opt.function_tolerance;
   so.parameter_tolerance = opt.parameter_tolerance;
   so.gradient_tolerance = opt.gradient_tolerance;
-  so.logging_type = ceres::SILENT;
-  so.minimizer_progress_to_stdout = false;
 
   LmRun run;
   std::vector<int> held = OnBounds(layout, x);
@@ -145,6 +139,17 @@ LmRun RunLm(const ModelOps& ops, const Samples& s, const LossData& l,
 }
 
 }  // namespace
+
+ceres::Solver::Options LmSolverOptions(int threads) {
+  ceres::Solver::Options so;
+  so.minimizer_type = ceres::TRUST_REGION;
+  so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.num_threads = std::max(threads, 1);
+  so.logging_type = ceres::SILENT;
+  so.minimizer_progress_to_stdout = false;
+  return so;
+}
 
 FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& loss,
                      const Samples& metric, const FitOptions& opt,

@@ -6,6 +6,7 @@
 
 #include <ceres/cost_function.h>
 #include <ceres/loss_function.h>
+#include <ceres/solver.h>
 
 #include <string>
 #include <vector>
@@ -40,6 +41,10 @@ inline constexpr std::size_t kShards = 3;
 void RegisterModels0(std::vector<ModelOps>& out);
 void RegisterModels1(std::vector<ModelOps>& out);
 void RegisterModels2(std::vector<ModelOps>& out);
+
+// Levenberg-Marquardt (Ceres trust region, dense QR, silent) with `threads` threads: the
+// settings every solve of the engine and the rendered polish shares (fit/fit_engine.cc).
+ceres::Solver::Options LmSolverOptions(int threads);
 
 // The engine (fit/fit_engine.cc).
 // polish_on: the rendered reference of options.polish == kRendered (nullptr: no polish).

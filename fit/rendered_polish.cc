@@ -102,13 +102,8 @@ RenderedPolishOutcome PolishOnRendered(const ModelOps& ops, const RenderedRefere
   px.rel_w.assign(n, 0.0);
   px.delta.assign(n, 0.0);
 
-  ceres::Solver::Options so;
-  so.minimizer_type = ceres::TRUST_REGION;
-  so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.num_threads = std::max(o.threads, 1);
+  ceres::Solver::Options so = LmSolverOptions(o.threads);
   so.max_num_iterations = o.max_iterations;
-  so.logging_type = ceres::SILENT;
 
   std::vector<double> cur = x;
   for (int round = 0; round < o.rounds; ++round) {

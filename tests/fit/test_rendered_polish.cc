@@ -106,6 +106,21 @@ TEST(RenderedPolish, PixelBlockMatchesIndependentResiduals) {
   EXPECT_DOUBLE_EQ(res2[P] * res2[P], block_cost);
 }
 
+// The fit of `model` without and with the polish, on one prepared table (loss rel).
+struct PlainAndPolished {
+  PreparedTable prepared;
+  FitResult plain, polished;
+};
+PlainAndPolished FitBoth(const std::string& model, const Table& t) {
+  FitOptions o;
+  o.loss = LossKind::kRel;
+  PlainAndPolished r{PrepareTable(t, SampleOptions{}, o), {}, {}};
+  r.plain = FitPrepared(model, r.prepared, o);
+  o.polish = PolishKind::kRendered;
+  r.polished = FitPrepared(model, r.prepared, o);
+  return r;
+}
+
 // A model that cannot express the table (one lobe for two): the polish raises S, and the
 // outcome it reports is the metric of the fit it returns.
 TEST(RenderedPolish, RaisesTheRenderedScoreOfAMismatchedFit) {
@@ -114,12 +129,7 @@ TEST(RenderedPolish, RaisesTheRenderedScoreOfAMismatchedFit) {
                                                         "lambert.kd_r=0.02", "lambert.kd_g=0.02",
                                                         "lambert.kd_b=0.02"}),
                              kGrid);
-  FitOptions o;
-  o.loss = LossKind::kRel;
-  const PreparedTable prepared = PrepareTable(t, SampleOptions{}, o);
-  const FitResult plain = FitPrepared("lambert+ggx", prepared, o);
-  o.polish = PolishKind::kRendered;
-  const FitResult polished = FitPrepared("lambert+ggx", prepared, o);
+  const auto [prepared, plain, polished] = FitBoth("lambert+ggx", t);
   ASSERT_FALSE(plain.Failed());
   ASSERT_FALSE(polished.Failed());
   const double s0 = RenderedScoreDb(plain.metrics.rendered);
@@ -131,6 +141,8 @@ TEST(RenderedPolish, RaisesTheRenderedScoreOfAMismatchedFit) {
       ScoreRendered(prepared.rendered, ModelBrdf(*FindModel("lambert+ggx"), polished.params));
   EXPECT_DOUBLE_EQ(RenderedScoreDb(again), s1);
   // And the options say so (reports key fits by them).
+  FitOptions o;
+  o.polish = PolishKind::kRendered;
   EXPECT_NE(OptionsJson(SampleOptions{}, o).find("\"polish\":\"rendered\""), std::string::npos);
   EXPECT_EQ(OptionsJson(SampleOptions{}, FitOptions{}).find("polish"), std::string::npos);
 }
@@ -140,12 +152,7 @@ TEST(RenderedPolish, RaisesTheRenderedScoreOfAMismatchedFit) {
 TEST(RenderedPolish, LeavesAnExactFitAlone) {
   const std::vector<double> truth = Params("lambert+ggx", {"ggx.alpha=0.2"});
   const Table t = SynthModel("lambert+ggx", truth, kGrid);
-  FitOptions o;
-  o.loss = LossKind::kRel;
-  const PreparedTable prepared = PrepareTable(t, SampleOptions{}, o);
-  const FitResult plain = FitPrepared("lambert+ggx", prepared, o);
-  o.polish = PolishKind::kRendered;
-  const FitResult polished = FitPrepared("lambert+ggx", prepared, o);
+  const auto [prepared, plain, polished] = FitBoth("lambert+ggx", t);
   ASSERT_FALSE(polished.Failed());
   EXPECT_EQ(polished.params, plain.params);
   EXPECT_EQ(polished.iterations, plain.iterations);
@@ -156,12 +163,7 @@ TEST(RenderedPolish, LeavesAnExactFitAlone) {
 TEST(RenderedPolish, KeepsANoisyFitNearTheTruth) {
   const std::vector<double> truth = Params("lambert+ggx", {"ggx.alpha=0.2"});
   const Table t = SynthModel("lambert+ggx", truth, Grid{45, 45, 90, ThetaHMapping::kSqrt}, 0.05);
-  FitOptions o;
-  o.loss = LossKind::kRel;
-  const PreparedTable prepared = PrepareTable(t, SampleOptions{}, o);
-  const FitResult plain = FitPrepared("lambert+ggx", prepared, o);
-  o.polish = PolishKind::kRendered;
-  const FitResult polished = FitPrepared("lambert+ggx", prepared, o);
+  const auto [prepared, plain, polished] = FitBoth("lambert+ggx", t);
   ASSERT_FALSE(polished.Failed());
   EXPECT_GT(polished.iterations, plain.iterations);  // it ran
   EXPECT_GE(RenderedScoreDb(polished.metrics.rendered), RenderedScoreDb(plain.metrics.rendered));
