@@ -1,7 +1,11 @@
 // The rendered polish over the MERL proxies (docs/accuracy.md, "The rendered polish"): per table,
 // the `--model auto` candidates fitted without and with the polish, each set's chosen fit
 // (core/model_choice.h), scored on the metric's lights and on six lights it never saw.
-//   bench_rendered_polish [--nbrdf all|NAME,...] [--jobs N]
+//   bench_rendered_polish [--nbrdf all|NAME,...] [--jobs N] [--noise SIGMA]
+// With --noise, the fits are made on a copy of each table with log-normal noise (every valid
+// cell's channels times exp(SIGMA n), n standard normal, seeded by the material), and the
+// "hold" column scores the chosen fits against the noise-free table under the metric's own
+// lights: does the polish fit the noise?
 // One line per table, RATIO lines (the polish's factor on each candidate's table loss), and a
 // summary line; scripts/rendered_polish_summary.py makes docs/accuracy.md's table of the output.
 #include <fmt/core.h>
@@ -10,6 +14,7 @@
 #include <atomic>
 #include <cmath>
 #include <mutex>
+#include <random>
 #include <thread>
 
 #include "bench/bench_tables.h"
@@ -33,10 +38,12 @@ RenderedError Score(const RenderedReference& ref, const ModelInfo& m, const std:
 int main(int argc, char** argv) {
   std::vector<std::string> names = {"all"};
   int jobs = 2;
+  double noise = 0;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], v = argv[i + 1];
     if (a == "--nbrdf") names = bench::SplitList(v);
     if (a == "--jobs") jobs = std::atoi(v.c_str());
+    if (a == "--noise") noise = std::atof(v.c_str());
   }
   const auto inputs = bench::NbrdfStudyInputs(names);
   RenderedErrorOptions hold;
@@ -50,7 +57,13 @@ int main(int argc, char** argv) {
   } sum;
   auto worker = [&] {
     for (std::size_t i = next++; i < inputs.size(); i = next++) {
-      const Table table = pipeline::LoadInput(inputs[i]);
+      const Table clean = pipeline::LoadInput(inputs[i]);
+      Table table = clean;
+      if (noise > 0) {
+        std::mt19937_64 rng(1000 + i);
+        std::normal_distribution<double> n01;
+        for (std::size_t c = 0; c < table.rgb.size(); ++c) table.rgb[c] *= std::exp(noise * n01(rng));
+      }
       SampleOptions so;
       so.budget = DefaultFitBudget();
       std::vector<FitResult> plain, pol;
@@ -80,7 +93,8 @@ int main(int argc, char** argv) {
       if (!c0 || !c1) continue;
       const FitResult& f0 = plain[c0->index];
       const FitResult& f1 = pol[c1->index];
-      const RenderedReference href = PrepareRenderedReference(table, hold);
+      const RenderedReference href =
+          noise > 0 ? PrepareRenderedReference(clean) : PrepareRenderedReference(table, hold);
       const RenderedError a0 = f0.metrics.rendered, a1 = f1.metrics.rendered;
       const RenderedError b0 = Score(href, *FindModel(f0.model), f0.params),
                           b1 = Score(href, *FindModel(f1.model), f1.params);

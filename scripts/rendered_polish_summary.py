@@ -16,7 +16,7 @@ print(f"PSNR mean {st.mean(P0):.2f} -> {st.mean(P1):.2f}; min {min(P0):.2f} -> {
 print(f"median lum: median {st.median(M0):.1f} -> {st.median(M1):.1f}; worst {max(M0):.1f} -> {max(M1):.1f}")
 print(f">=30 dB {sum(p>=30 for p in P0)} -> {sum(p>=30 for p in P1)}; <=15% {sum(m<=15 for m in M0)} -> {sum(m<=15 for m in M1)}")
 print(f"S lower: {sum(b<a-1e-9 for a,b in zip(S0,S1))}; holdout S lower by >0.1: {sum(b<a-0.1 for a,b in zip(H0,H1))}, min holdout gain {min(b-a for a,b in zip(H0,H1)):.2f}")
-print(f"solve cpu per table (5 candidates) median {st.median(c0):.0f} -> {st.median(c1):.0f} ms")
+print(f"solve cpu per table (all candidates) median {st.median(c0):.0f} -> {st.median(c1):.0f} ms")
 from collections import Counter
 print("chosen plain", Counter(r[1] for r in rows).most_common())
 print("chosen polished", Counter(r[2] for r in rows).most_common())
