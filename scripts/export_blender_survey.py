@@ -9,16 +9,14 @@ error against its table and the image differences in 8-bit levels.
 
 Usage: scripts/export_blender_survey.py BUILD_DIR WORK_DIR
 (needs blender, and ../shared/data/merl_nbrdf.zip for the nbrdf: inputs)."""
-import json
 import os
-import subprocess
 import sys
 from types import SimpleNamespace
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tests", "export"))
 from check_blender import Bench  # noqa: E402
 from check_threejs import compare  # noqa: E402
-from export_threejs_survey import DEMO, NBRDF  # noqa: E402
+from export_threejs_survey import survey_fits  # noqa: E402
 
 
 def main():
@@ -26,23 +24,11 @@ def main():
     brdfit = os.path.join(build, "brdfit")
     os.makedirs(work, exist_ok=True)
     os.chdir(work)
-    inputs = []
-    for name, (kd, ks, alpha, noise, missing) in DEMO.items():
-        args = [brdfit, "synth", "--model", "lambert+ggx", "-o", name + ".binary",
-                "--noise", str(noise), "--missing", str(missing), "--param", f"ggx.alpha={alpha}"]
-        for c, v in zip("rgb", kd.split()):
-            args += ["--param", f"lambert.kd_{c}={v}"]
-        for c, v in zip("rgb", ks.split()):
-            args += ["--param", f"ggx.ks_{c}={v}"]
-        subprocess.run(args, check=True, capture_output=True)
-        inputs.append(name + ".binary")
-    inputs += ["nbrdf:" + m for m in NBRDF]
-    subprocess.run([brdfit, "fit", *inputs, "--model", "ggx", "-j", "2", "-o", "fits.h5",
-                    "--json", "fits.json", "-q", "--no-progress", "--force"], check=True)
+    fits = survey_fits(brdfit, "ggx")
     b = Bench(SimpleNamespace(brdfit=brdfit, work=work), "blender")
     print("| material | alpha | ks | fit vs table (PSNR, median) | node tree vs preview | "
           "Principled vs preview |")
-    for f in json.load(open("fits.json"))["fits"]:
+    for f in fits:
         name = f["material"]
         script, ref = b.export(name, f), b.preview(name, f)
         exact = compare(ref, b.render(script, name + "-blender.png"))

@@ -14,7 +14,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tests", "export"))
-from check_threejs import compare  # noqa: E402
+from check_threejs import analytic, compare, preview_scene  # noqa: E402
 
 DEMO = {
     "red-plastic": ("0.45 0.06 0.05", "0.04 0.04 0.04", 0.08, 0.0, 0.0),
@@ -24,11 +24,9 @@ DEMO = {
 NBRDF = ["gold-metallic-paint", "red-phenolic", "blue-acrylic", "chrome-steel", "pink-fabric"]
 
 
-def main():
-    build, work = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
-    brdfit, tools = os.path.join(build, "brdfit"), os.path.join(build, "tests/export/node-tools")
-    os.makedirs(work, exist_ok=True)
-    os.chdir(work)
+def survey_fits(brdfit, model):
+    """Synthesizes the demo tables in the working folder, fits `model` to them and the NBRDF
+    proxies (fits.h5, fits.json) and returns the JSON's fits."""
     inputs = []
     for name, (kd, ks, alpha, noise, missing) in DEMO.items():
         args = [brdfit, "synth", "--model", "lambert+ggx", "-o", name + ".binary",
@@ -40,25 +38,23 @@ def main():
         subprocess.run(args, check=True, capture_output=True)
         inputs.append(name + ".binary")
     inputs += ["nbrdf:" + m for m in NBRDF]
-    subprocess.run([brdfit, "fit", *inputs, "--model", "ggx-hc", "-j", "2", "-o", "fits.h5",
+    subprocess.run([brdfit, "fit", *inputs, "--model", model, "-j", "2", "-o", "fits.h5",
                     "--json", "fits.json", "-q", "--no-progress", "--force"], check=True)
-    for f in json.load(open("fits.json"))["fits"]:
+    return json.load(open("fits.json"))["fits"]
+
+
+def main():
+    build, work = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
+    brdfit, tools = os.path.join(build, "brdfit"), os.path.join(build, "tests/export/node-tools")
+    os.makedirs(work, exist_ok=True)
+    os.chdir(work)
+    for f in survey_fits(brdfit, "ggx-hc"):
         name = f["material"]
         json.dump({"format": "brdfit-fit-params", "format_version": 1, "fits": [f]},
                   open(name + ".fit.json", "w"))
         e = subprocess.run([brdfit, "export", name + ".fit.json", "--format", "glb", "-q", "-o",
                             name + ".glb"], capture_output=True, text=True, check=True)
-        scene = {"camera": {"position": [0, 0, 4], "target": [0, 0, 0], "up": [0, 1, 0],
-                            "fov_deg": 30},
-                 "image": {"width": 256, "height": 256, "background": [0, 0, 0]},
-                 "display": {"tone_map": "linear", "exposure": 1.0, "encoding": "srgb"},
-                 "punctual_pi": False,
-                 "lights": [{"name": "key", "type": "directional", "direction": [1, 1, 1],
-                             "color": [1, 1, 1], "intensity": 3}],
-                 "materials": {"m": {"type": "analytic", "model": f["model"],
-                                     "params": f["params"]}},
-                 "objects": [{"name": "ball", "shape": "sphere", "centre": [0, 0, 0],
-                              "radius": 1, "material": "m"}]}
+        scene = preview_scene(analytic(f))
         json.dump(scene, open(name + ".scene.json", "w"))
         subprocess.run([brdfit, "render", name + ".scene.json", "-o", name + "-brdfit.png"],
                        check=True, capture_output=True)

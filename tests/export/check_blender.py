@@ -32,9 +32,8 @@ import shutil
 import subprocess
 import sys
 
-from check_threejs import compare
+from check_threejs import SIZE, analytic, compare, preview_scene  # the scene of the three.js checks
 
-SIZE = 256
 MEAN_TOL, P99_TOL = 1.0, 3
 NOISE_MEAN_MAX, NOISE_P99_MAX = 0.25, 2
 
@@ -63,17 +62,7 @@ class Bench:
 
     def preview(self, name, fit):
         """brdfit render of the fit in the scene the Blender script builds."""
-        scene = {"camera": {"position": [0, 0, 4], "target": [0, 0, 0], "up": [0, 1, 0],
-                            "fov_deg": 30},
-                 "image": {"width": SIZE, "height": SIZE, "background": [0, 0, 0]},
-                 "display": {"tone_map": "linear", "exposure": 1.0, "encoding": "srgb"},
-                 "punctual_pi": False,
-                 "lights": [{"name": "key", "type": "directional", "direction": [1, 1, 1],
-                             "color": [1, 1, 1], "intensity": 3.0}],
-                 "materials": {"m": {"type": "analytic", "model": fit["model"],
-                                     "params": fit["params"]}},
-                 "objects": [{"name": "ball", "shape": "sphere", "centre": [0, 0, 0],
-                              "radius": 1, "material": "m"}]}
+        scene = preview_scene(analytic(fit))
         path = os.path.join(self.o.work, name + ".scene.json")
         json.dump(scene, open(path, "w"), indent=1)
         png = os.path.join(self.o.work, name + "-brdfit.png")

@@ -167,17 +167,27 @@ def shader_cases(o, tools, chromium, cases):
     return bad
 
 
+def preview_scene(material):
+    """The scene every export is compared in (docs/scenes.md): a unit sphere, one directional
+    light LIGHT of INTENSITY, SIZE x SIZE, linear tone map, sRGB."""
+    return {"camera": {"position": [0, 0, 4], "target": [0, 0, 0], "up": [0, 1, 0],
+                       "fov_deg": 30},
+            "image": {"width": SIZE, "height": SIZE, "background": [0, 0, 0]},
+            "display": {"tone_map": "linear", "exposure": 1.0, "encoding": "srgb"},
+            "punctual_pi": False,
+            "lights": [{"name": "key", "type": "directional", "direction": LIGHT,
+                        "color": [1, 1, 1], "intensity": INTENSITY}],
+            "materials": {"m": material},
+            "objects": [{"name": "ball", "shape": "sphere", "centre": [0, 0, 0],
+                         "radius": 1, "material": "m"}]}
+
+
+def analytic(fit):
+    return {"type": "analytic", "model": fit["model"], "params": fit["params"]}
+
+
 def brdfit_render(o, name, material):
-    scene = {"camera": {"position": [0, 0, 4], "target": [0, 0, 0], "up": [0, 1, 0],
-                        "fov_deg": 30},
-             "image": {"width": SIZE, "height": SIZE, "background": [0, 0, 0]},
-             "display": {"tone_map": "linear", "exposure": 1.0, "encoding": "srgb"},
-             "punctual_pi": False,
-             "lights": [{"name": "key", "type": "directional", "direction": LIGHT,
-                         "color": [1, 1, 1], "intensity": INTENSITY}],
-             "materials": {"m": material},
-             "objects": [{"name": "ball", "shape": "sphere", "centre": [0, 0, 0],
-                          "radius": 1, "material": "m"}]}
+    scene = preview_scene(material)
     path = os.path.join(o.work, name + ".scene.json")
     json.dump(scene, open(path, "w"), indent=1)
     png = os.path.join(o.work, name + "-brdfit.png")
@@ -230,17 +240,7 @@ def main():
         if r.returncode != 0:
             print(f"FAIL {name}: export: {r.stderr}")
             return 1
-        scene = {"camera": {"position": [0, 0, 4], "target": [0, 0, 0], "up": [0, 1, 0],
-                            "fov_deg": 30},
-                 "image": {"width": SIZE, "height": SIZE, "background": [0, 0, 0]},
-                 "display": {"tone_map": "linear", "exposure": 1.0, "encoding": "srgb"},
-                 "punctual_pi": False,
-                 "lights": [{"name": "key", "type": "directional", "direction": LIGHT,
-                             "color": [1, 1, 1], "intensity": INTENSITY}],
-                 "materials": {"m": {"type": "analytic", "model": fit["model"],
-                                     "params": fit["params"]}},
-                 "objects": [{"name": "ball", "shape": "sphere", "centre": [0, 0, 0],
-                              "radius": 1, "material": "m"}]}
+        scene = preview_scene(analytic(fit))
         scene_path = os.path.join(o.work, name + ".scene.json")
         json.dump(scene, open(scene_path, "w"), indent=1)
         ref, img = os.path.join(o.work, name + "-brdfit.png"), os.path.join(o.work, name + "-three.png")
