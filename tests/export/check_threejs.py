@@ -132,7 +132,7 @@ def shader_cases(o, tools, chromium, cases):
             fits_json = os.path.join(work, "shader-" + name + ".json")
             json.dump({"format": "brdfit-fit-params", "format_version": 1, "fits": [src]},
                       open(fits_json, "w"))
-            material = {"type": "analytic", "model": src["model"], "params": src["params"]}
+            material = analytic(src)
         else:
             fits_json = src
             material = {"type": "factored", "factors": src}
@@ -191,7 +191,9 @@ def brdfit_render(o, name, material):
     path = os.path.join(o.work, name + ".scene.json")
     json.dump(scene, open(path, "w"), indent=1)
     png = os.path.join(o.work, name + "-brdfit.png")
-    subprocess.run([o.brdfit, "render", path, "-o", png], check=True, capture_output=True)
+    r = subprocess.run([o.brdfit, "render", path, "-o", png], capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError(f"brdfit render of {path}: {r.stderr}")
     return png
 
 
@@ -240,19 +242,11 @@ def main():
         if r.returncode != 0:
             print(f"FAIL {name}: export: {r.stderr}")
             return 1
-        scene = preview_scene(analytic(fit))
-        scene_path = os.path.join(o.work, name + ".scene.json")
-        json.dump(scene, open(scene_path, "w"), indent=1)
-        ref, img = os.path.join(o.work, name + "-brdfit.png"), os.path.join(o.work, name + "-three.png")
-        r = subprocess.run([o.brdfit, "render", scene_path, "-o", ref], capture_output=True, text=True)
-        if r.returncode != 0:
-            print(f"FAIL {name}: brdfit render: {r.stderr}")
-            return 1
-        r = subprocess.run(["node", os.path.join(tools, "render_three.cjs"), glb, img, str(SIZE),
-                            ",".join(map(str, LIGHT)), str(INTENSITY)],
-                           capture_output=True, text=True, env=dict(os.environ, CHROMIUM=chromium))
-        if r.returncode != 0:
-            print(f"FAIL {name}: three.js render: {r.stdout}{r.stderr}")
+        try:
+            ref = brdfit_render(o, name, analytic(fit))
+            img = render_three(tools, chromium, glb, os.path.join(o.work, name + "-three.png"))
+        except RuntimeError as e:
+            print(f"FAIL {name}: {e}")
             return 1
         mean, p99, worst = compare(ref, img)
         verdict = "reported"
@@ -278,12 +272,10 @@ def main():
     out = struct.pack("<III", 0x46546C67, 2, 12 + 8 + len(text) + len(rest))
     out += struct.pack("<II", len(text), 0x4E4F534A) + text + rest
     open(planted, "wb").write(out)
-    img = os.path.join(o.work, "planted-three.png")
-    rr = subprocess.run(["node", os.path.join(tools, "render_three.cjs"), planted, img, str(SIZE),
-                         ",".join(map(str, LIGHT)), str(INTENSITY)],
-                        capture_output=True, text=True, env=dict(os.environ, CHROMIUM=chromium))
-    if rr.returncode != 0:
-        print(f"FAIL planted: three.js render: {rr.stdout}{rr.stderr}")
+    try:
+        img = render_three(tools, chromium, planted, os.path.join(o.work, "planted-three.png"))
+    except RuntimeError as e:
+        print(f"FAIL planted: {e}")
         return 1
     mean, p99, worst = compare(os.path.join(o.work, "exact-brdfit.png"), img)
     caught = mean > 1.0 or p99 > 4
