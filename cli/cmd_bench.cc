@@ -72,12 +72,13 @@ std::vector<BenchInput> RunInputs(const std::vector<std::string>& files, const s
 struct Plan {
   std::vector<Budget> budgets;
   std::vector<LossKind> losses;
+  PolishKind polish = PolishKind::kNone;
 };
 
 // Everything that can be checked before the first fit.
 Plan CheckOptions(const BenchCliOptions& o) {
   Plan p;
-  FromString<PolishKind>(o.polish);  // a bad name before any work
+  p.polish = FromString<PolishKind>(o.polish);
   if (o.models.empty() || o.budgets.empty() || o.losses.empty()) {
     throw InputError("--models, --budgets and --losses each need at least one value");
   }
@@ -120,7 +121,7 @@ int RunBench(BenchCliOptions o, std::vector<fs::path>* written = nullptr) {
   int code = kExitOk;
   FitOptions fo;
   fo.threads = o.threads;
-  fo.polish = FromString<PolishKind>(o.polish);
+  fo.polish = plan.polish;
   if (!o.quiet) {
     fmt::print("{:<24} {:<16} {:<5} {:<11} {:<14} {:>10} {:>10} {:>10} {:>9} {:>8} {:>8}\n",
                "table", "model", "loss", "budget", "status", "time ms", "log_rmse", "cbrt_rmse",

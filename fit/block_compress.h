@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 
 #include "fit/param_layout.h"
 
@@ -16,6 +17,15 @@ void AccumulateGram(const double* rows, int n, int cols, double* gram);
 // cost, writes residuals (P + 1) and the row-major (P + 1) x P Jacobian of the compressed block:
 // R^T R = J^T J, R^T z = J^T r, |z|^2 + rho^2 = cost (fit/block_cost.h). False if non-finite.
 bool CompressGram(const double* gram, int P, double cost, double* residuals, double* jacobian);
+
+// The cost-only evaluation of a compressed block: P zeros and sqrt(cost), so that the residuals'
+// squares sum to the directly summed cost. False if the cost is not finite.
+inline bool CostOnlyResiduals(int P, double cost, double* residuals) {
+  if (!std::isfinite(cost)) return false;
+  for (int i = 0; i < P; ++i) residuals[i] = 0.0;
+  residuals[P] = std::sqrt(cost);
+  return true;
+}
 
 // Rows [grad r, r] (kCols = P + 1 wide) gathered in chunks and added to the Gram matrix.
 template <int kCols>

@@ -52,11 +52,7 @@ class BlockCost final : public ceres::CostFunction {
                 double** jacobians) const override {
     const double* x = parameters[0];
     if (jacobians == nullptr || jacobians[0] == nullptr) {
-      const double cost = CostOnly(x);
-      if (!std::isfinite(cost)) return false;
-      for (int i = 0; i < P; ++i) residuals[i] = 0.0;
-      residuals[P] = std::sqrt(cost);
-      return true;
+      return CostOnlyResiduals(P, CostOnly(x), residuals);
     }
     return WithJacobian(x, residuals, jacobians[0]);
   }

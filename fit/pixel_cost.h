@@ -89,10 +89,7 @@ class PixelCost final : public ceres::CostFunction {
         PixelResiduals(px_, s, f, r);
         for (double e : r) cost += e * e;
       }
-      if (!std::isfinite(cost)) return false;
-      for (int i = 0; i < P; ++i) residuals[i] = 0.0;
-      residuals[P] = std::sqrt(cost);
-      return true;
+      return CostOnlyResiduals(P, cost, residuals);
     }
     GramRows<P + 1> gram;
     Jet p[P];
