@@ -109,7 +109,7 @@ void BM_FactorReused(benchmark::State& state) {
 // (factor/factor_choice.h), then a few more of docs/nbrdf-results.md's table.
 const std::vector<FactorCandidate>& RefinedForms() {
   static const std::vector<FactorCandidate> forms = [] {
-    std::vector<FactorCandidate> f = kAutoFactorCandidates;
+    std::vector<FactorCandidate> f(kAutoFactorCandidates.begin(), kAutoFactorCandidates.end());
     f.push_back({"mccool+ref+lr", FactorParam::kMcCool, false, true, 1, RefineLoss::kLogRatio});
     f.push_back({"mccool+d+lr", FactorParam::kMcCool, true, true, 1, RefineLoss::kLogRatio});
     f.push_back({"halfdiff+d+lr", FactorParam::kHalfDiff, true, true, 1, RefineLoss::kLogRatio});

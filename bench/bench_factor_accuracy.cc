@@ -7,6 +7,7 @@
 //   bench_factor_accuracy --csv FILE [--params mccool,halfdiff,mccool+d+r2,...] [--res 64]
 //                         [--lambda 1e-8]
 //                         [--nbrdf all|m1,m2] [--jobs 2] [--rendered-only 1]
+//                         [--refine-iterations 30] [--refine-rows 16384]
 //
 // Each material is scored exactly as `brdfit factor` scores it (factor/factor_metrics.h: the
 // float32 textures through FactoredBrdf::Eval, what the preview draws; the default scene). One
@@ -98,6 +99,7 @@ int main(int argc, char** argv) {
   double lambda = FactorOptions{}.lambda;
   int jobs = 2;
   bool rendered_only = false;  // --rendered-only 1: skip ln-ratio RMSE and E2 (the slow part)
+  FactorOptions refine_budget;  // --refine-iterations, --refine-rows (the refinement's budget)
   for (int i = 1; i < argc; i += 2) {
     const std::string a = argv[i];
     if (i + 1 >= argc) {
@@ -118,6 +120,10 @@ int main(int argc, char** argv) {
       nbrdf = bench::SplitList(v);
     } else if (a == "--rendered-only") {
       rendered_only = v == "1";
+    } else if (a == "--refine-iterations") {
+      refine_budget.refine_iterations = std::atoi(v.c_str());
+    } else if (a == "--refine-rows") {
+      refine_budget.refine_rows = static_cast<std::size_t>(std::atoll(v.c_str()));
     } else if (a == "--jobs") {
       jobs = std::max(1, std::atoi(v.c_str()));
     } else {
@@ -157,6 +163,8 @@ int main(int argc, char** argv) {
         o.rank = configs[c].rank;
         o.refine = configs[c].refine;
         o.refine_loss = configs[c].logratio ? RefineLoss::kLogRatio : RefineLoss::kRel;
+        o.refine_iterations = refine_budget.refine_iterations;
+        o.refine_rows = refine_budget.refine_rows;
         try {
           const Factorization r = Factor(table, o, &cache);
           row.factor_ms = 1e3 * r.stats.seconds;

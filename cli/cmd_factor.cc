@@ -271,6 +271,7 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
             nlohmann::json c = ScoreJson(e);
             c["form"] = kAutoFactorCandidates[k].name;
             c["texture_bytes"] = scores[k].cost.texture_bytes;
+            c["fetches_per_light"] = scores[k].cost.fetches_per_light;
             if (!o.no_timings) c["seconds"] = tried[k].stats.seconds;
             choice["candidates"].push_back(std::move(c));
             if (!o.quiet) {

@@ -39,7 +39,7 @@ struct FactorOptions : FactorSystemOptions {
   int rank = 1;
   bool refine = false;
   int refine_iterations = 30;         // LM iterations per channel, at most
-  std::size_t refine_rows = 1 << 14;  // rows the refinement uses at most (deterministic stride)
+  std::size_t refine_rows = 1 << 13;  // rows the refinement uses at most (deterministic stride)
   bool NeedsRefinement() const { return refine || diffuse || rank > 1; }
 };
 

@@ -9,15 +9,6 @@
 
 namespace brdfit {
 
-// Chosen over the 100 MERL proxies (docs/factorization.md, "Choosing the form"): with these
-// four, the kept form beats the best single analytic lobe on 94 materials (rendered score).
-const std::vector<FactorCandidate> kAutoFactorCandidates = {
-    {"mccool+ref", FactorParam::kMcCool, false, true, 1, RefineLoss::kRel},
-    {"mccool+d+r2", FactorParam::kMcCool, true, true, 2, RefineLoss::kRel},
-    {"mccool+d+r2+lr", FactorParam::kMcCool, true, true, 2, RefineLoss::kLogRatio},
-    {"halfdiff", FactorParam::kHalfDiff, false, false, 1, RefineLoss::kRel},
-};
-
 FactorOptions CandidateOptions(const FactorOptions& base, const FactorCandidate& c) {
   FactorOptions o = base;
   o.param = c.param;

@@ -18,10 +18,17 @@ namespace {
 constexpr double kMaxLog = 80;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kMaxTerms = 16;
+// Unknowns of one term up to which a term's start is solved densely on the refinement's rows.
+constexpr int kDenseStartLimit = 1024;
 
-// The rows the refinement uses: every stride-th row of the system with finite values.
+// The rows the refinement uses: every stride-th row of the system with finite values, their
+// sparse entries copied into one compact CSR (the strided rows of the system are far apart in
+// memory: reading them in place cost a cache miss per array per row).
 struct RowSet {
-  std::vector<std::uint32_t> row;
+  std::vector<std::uint32_t> row;  // the system's row index (for the pattern)
+  std::vector<int> start{0};       // compact CSR: entries of row i in [start[i], start[i + 1])
+  std::vector<int> col;
+  std::vector<double> val;
   std::vector<double> w;
   RowValues m;
   double weight_sum = 0;
@@ -37,6 +44,11 @@ RowSet PickRows(const FactorSystem& sys, const Table& table, std::size_t max_row
     const double* v = table.Value(sys.row_cells()[r]);
     if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) continue;
     s.row.push_back(static_cast<std::uint32_t>(r));
+    for (int j = sys.row_start()[r]; j < sys.row_start()[r + 1]; ++j) {
+      s.col.push_back(sys.cols()[j]);
+      s.val.push_back(sys.vals()[j]);
+    }
+    s.start.push_back(static_cast<int>(s.col.size()));
     s.w.push_back(sys.row_weights()[r] * static_cast<double>(stride));
     s.weight_sum += s.w.back();
     m.push_back({v[0], v[1], v[2]});
@@ -48,36 +60,59 @@ RowSet PickRows(const FactorSystem& sys, const Table& table, std::size_t max_row
   return s;
 }
 
-// a_r^T x for one block of unknowns.
+// a_r^T x for one block of unknowns: row r of the system, or row i of a RowSet.
 inline double RowLog(const FactorSystem& sys, std::uint32_t r, const double* x) {
   const int b = sys.row_start()[r], e = sys.row_start()[r + 1];
   double s = 0;
   for (int j = b; j < e; ++j) s += sys.vals()[j] * x[sys.cols()[j]];
   return s;
 }
+inline double RowLog(const RowSet& rows, std::size_t i, const double* x) {
+  double s = 0;
+  for (int j = rows.start[i]; j < rows.start[i + 1]; ++j) s += rows.val[j] * x[rows.col[j]];
+  return s;
+}
 
 // The data residual of one row and its derivative in f (w: the row's weight):
 //   rel:      sqrt(w) (f - m) / (|m| + eps)                 (fit/loss.h, Sun et al. 2018)
 //   logratio: sqrt(w) (ln(f + eps) - ln(m + eps))           (fit/loss.h GuardedLogOffset)
-inline double Residual(RefineLoss loss, double f, double m, double w, double* dres_df) {
-  const double sw = std::sqrt(w);
+// written as scale (f - target) and scale (ln(f + eps) - target) with the per-row parts,
+// target and scale, computed once (DataTerms).
+struct DataTerms {
+  RowValues target, scale;
+};
+
+DataTerms MakeDataTerms(RefineLoss loss, const RowSet& rows) {
+  DataTerms t{rows.m, rows.m};
+  for (Eigen::Index i = 0; i < rows.m.rows(); ++i) {
+    const double sw = std::sqrt(rows.w[static_cast<std::size_t>(i)]);
+    for (int c = 0; c < 3; ++c) {
+      const double m = rows.m(i, c);
+      t.target(i, c) = loss == RefineLoss::kRel ? m : GuardedLogOffset(m);
+      t.scale(i, c) = loss == RefineLoss::kRel ? sw / (std::abs(m) + kRelEpsilon) : sw;
+    }
+  }
+  return t;
+}
+
+inline double Residual(RefineLoss loss, double f, double target, double scale,
+                       double* dres_df) {
   if (loss == RefineLoss::kRel) {
-    const double s = sw / (std::abs(m) + kRelEpsilon);
-    *dres_df = s;
-    return s * (f - m);
+    *dres_df = scale;
+    return scale * (f - target);
   }
   // f >= 0 here (a sum of exponentials and d >= 0): the logarithm's own branch.
-  *dres_df = sw / (f + kLogRatioEpsilon);
-  return sw * (std::log(f + kLogRatioEpsilon) - GuardedLogOffset(m));
+  *dres_df = scale / (f + kLogRatioEpsilon);
+  return scale * (std::log(f + kLogRatioEpsilon) - target);
 }
 
 // One channel's problem. Unknowns theta = [x_0 (n), ..., x_{K-1} (n), d (if diffuse)].
 class ChannelProblem {
  public:
-  ChannelProblem(const FactorSystem& sys, const RowSet& rows, int channel, int rank, bool diffuse,
-                 RefineLoss loss, const Eigen::SparseMatrix<double>& sts)
-      : sys_(sys),
-        rows_(rows),
+  ChannelProblem(const FactorSystem& sys, const RowSet& rows, const DataTerms& data, int channel,
+                 int rank, bool diffuse, RefineLoss loss, const Eigen::SparseMatrix<double>& sts)
+      : rows_(rows),
+        data_(data),
         ch_(channel),
         rank_(rank),
         diffuse_(diffuse),
@@ -94,13 +129,14 @@ class ChannelProblem {
     for (std::size_t i = 0; i < rows_.row.size(); ++i) {
       double f = diffuse_ ? th[nt_ - 1] : 0.0;
       for (int k = 0; k < rank_; ++k) {
-        const double lg = RowLog(sys_, rows_.row[i], th.data() + k * n_);
+        const double lg = RowLog(rows_, i, th.data() + k * n_);
         if (!(lg <= kMaxLog)) return kInf;
         f += std::exp(lg);
       }
       double unused;
       const double res =
-          Residual(loss_, f, rows_.m(static_cast<Eigen::Index>(i), ch_), rows_.w[i], &unused);
+          Residual(loss_, f, data_.target(static_cast<Eigen::Index>(i), ch_),
+                   data_.scale(static_cast<Eigen::Index>(i), ch_), &unused);
       cost += res * res;
     }
     return cost;
@@ -115,29 +151,41 @@ class ChannelProblem {
     return cost;
   }
 
-  // Levenberg-Marquardt from *th; returns the iterations taken.
+  // Levenberg-Marquardt from *th; returns the iterations taken. A trial is costed first and
+  // linearized only if accepted (linearizing every trial was slower: many are rejected). The
+  // damping follows the gain ratio rho = actual / predicted reduction (Nielsen 1999; Madsen,
+  // Nielsen & Tingleff 2004, "Methods for Non-Linear Least Squares Problems", eq. 3.15):
+  // accepted: mu *= max(1/3, 1 - (2 rho - 1)^3), nu = 2; rejected: mu *= nu, nu *= 2.
   int Minimize(Eigen::VectorXd* th, int max_iterations, std::size_t dense_limit, double tolerance) {
     const bool dense = static_cast<std::size_t>(nt_) <= dense_limit;
     double cost = Linearize(*th, dense);
     if (!std::isfinite(cost)) return 0;
-    double mu = 1e-4;
+    double mu = 1e-4, nu = 2;
     int it = 0;
     for (; it < max_iterations; ++it) {
-      Eigen::VectorXd step = dense ? DenseStep(mu) : SparseStep(mu);
+      const Eigen::VectorXd step = dense ? DenseStep(mu) : SparseStep(mu);
       Eigen::VectorXd trial = *th + step;
       if (diffuse_) trial[nt_ - 1] = std::max(0.0, trial[nt_ - 1]);
       const double c = trial.allFinite() ? Cost(trial) : kInf;
       if (c < cost) {
+        // cost = |r|^2: its quadratic model at th is cost + 2 g.s + s.H s.
+        const Eigen::VectorXd s = trial - *th;
+        const double hs = dense ? s.dot(h_.selfadjointView<Eigen::Upper>() * s)
+                                : s.dot(hs_.selfadjointView<Eigen::Upper>() * s);
+        const double predicted = -(2 * g_.dot(s) + hs);
+        const double rho = predicted > 0 ? (cost - c) / predicted : 0.0;
         const double gain = (cost - c) / cost;
         *th = trial;
-        mu = std::max(mu / 3, 1e-10);
+        mu = std::max(mu * std::max(1.0 / 3, 1 - std::pow(2 * rho - 1, 3)), 1e-12);
+        nu = 2;
         if (gain < tolerance) {
           ++it;
           break;
         }
         cost = Linearize(*th, dense);
       } else {
-        mu *= 4;
+        mu *= nu;
+        nu *= 2;
         if (mu > 1e10) break;
       }
     }
@@ -162,27 +210,27 @@ class ChannelProblem {
     std::vector<double> val;
     double cost = 0;
     for (std::size_t i = 0; i < rows; ++i) {
-      const std::uint32_t r = rows_.row[i];
       double f = diffuse_ ? th[nt_ - 1] : 0.0;
       for (int k = 0; k < rank_; ++k) {
-        const double lg = RowLog(sys_, r, th.data() + k * n_);
+        const double lg = RowLog(rows_, i, th.data() + k * n_);
         if (!(lg <= kMaxLog)) return kInf;
         ce[k] = std::exp(lg);
         f += ce[k];
       }
       double s;
       const double res =
-          Residual(loss_, f, rows_.m(static_cast<Eigen::Index>(i), ch_), rows_.w[i], &s);
+          Residual(loss_, f, data_.target(static_cast<Eigen::Index>(i), ch_),
+                   data_.scale(static_cast<Eigen::Index>(i), ch_), &s);
       for (int k = 0; k < rank_; ++k) ce[k] *= s;
       ce[rank_] = s;
       cost += res * res;
       idx.clear();
       val.clear();
-      const int b = sys_.row_start()[r], e = sys_.row_start()[r + 1];
+      const int b = rows_.start[i], e = rows_.start[i + 1];
       for (int k = 0; k < rank_; ++k) {
         for (int j = b; j < e; ++j) {
-          idx.push_back(k * n_ + sys_.cols()[j]);
-          val.push_back(ce[k] * sys_.vals()[j]);
+          idx.push_back(k * n_ + rows_.col[j]);
+          val.push_back(ce[k] * rows_.val[j]);
         }
       }
       if (diffuse_) {
@@ -249,11 +297,10 @@ class ChannelProblem {
     using Triplet = Eigen::Triplet<double>;
     std::vector<Triplet> t;
     std::vector<int> idx;
-    for (std::uint32_t r : rows_.row) {
+    for (std::size_t i = 0; i < rows_.row.size(); ++i) {
       idx.clear();
-      const int b = sys_.row_start()[r], e = sys_.row_start()[r + 1];
       for (int k = 0; k < rank_; ++k) {
-        for (int j = b; j < e; ++j) idx.push_back(k * n_ + sys_.cols()[j]);
+        for (int j = rows_.start[i]; j < rows_.start[i + 1]; ++j) idx.push_back(k * n_ + rows_.col[j]);
       }
       if (diffuse_) idx.push_back(nt_ - 1);
       for (std::size_t x = 0; x < idx.size(); ++x) {
@@ -285,8 +332,8 @@ class ChannelProblem {
     return hs_.valuePtr()[it - hs_.innerIndexPtr()];
   }
 
-  const FactorSystem& sys_;
   const RowSet& rows_;
+  const DataTerms& data_;
   int ch_, rank_;
   bool diffuse_;
   RefineLoss loss_;
@@ -304,14 +351,14 @@ class ChannelProblem {
 RowValues ModelRows(const FactorSystem& sys, const std::vector<Eigen::MatrixX3d>& terms,
                     const std::array<double, 3>& d) {
   RowValues f(static_cast<Eigen::Index>(sys.num_rows()), 3);
-  for (std::size_t r = 0; r < sys.num_rows(); ++r) {
+  for (int c = 0; c < 3; ++c) f.col(c).setConstant(d[c]);
+  for (const auto& x : terms) {
     for (int c = 0; c < 3; ++c) {
-      double v = d[c];
-      for (const auto& x : terms) {
-        const Eigen::VectorXd col = x.col(c);
-        v += std::exp(std::min(kMaxLog, RowLog(sys, static_cast<std::uint32_t>(r), col.data())));
+      const double* xc = x.col(c).data();  // column-major: a channel's unknowns are contiguous
+      for (std::size_t r = 0; r < sys.num_rows(); ++r) {
+        f(static_cast<Eigen::Index>(r), c) +=
+            std::exp(std::min(kMaxLog, RowLog(sys, static_cast<std::uint32_t>(r), xc)));
       }
-      f(static_cast<Eigen::Index>(r), c) = v;
     }
   }
   return f;
@@ -341,6 +388,56 @@ Eigen::MatrixX3d SolveRemainder(const FactorSystem& sys, const Table& table, con
   return x;
 }
 
+// The model value of every row of `rows` (channels as columns).
+RowValues ModelRows(const RowSet& rows, const std::vector<Eigen::MatrixX3d>& terms,
+                    const std::array<double, 3>& d) {
+  RowValues f(static_cast<Eigen::Index>(rows.row.size()), 3);
+  for (int c = 0; c < 3; ++c) f.col(c).setConstant(d[c]);
+  for (const auto& x : terms) {
+    for (int c = 0; c < 3; ++c) {
+      const double* xc = x.col(c).data();
+      for (std::size_t i = 0; i < rows.row.size(); ++i) {
+        f(static_cast<Eigen::Index>(i), c) += std::exp(std::min(kMaxLog, RowLog(rows, i, xc)));
+      }
+    }
+  }
+  return f;
+}
+
+// The log-linear solve of max(m - f, floor * m) on the refinement's rows only:
+//   (A_s^T W_s A_s + S^T S) x = A_s^T W_s y_s,
+// the cached system's normal equations (factor_system.h) restricted to the rows the refinement
+// minimizes over, solved densely (one matrix for the three channels). For systems with few
+// unknowns (mccool's radial profiles): a pass over these rows instead of every cell's, which
+// cost ~60 ms per start at MERL resolution. Rows with a channel <= 0 are left out, as Solve
+// leaves out `removed`.
+Eigen::MatrixX3d SolveRemainderOnRows(const RowSet& rows, const Eigen::SparseMatrix<double>& sts,
+                                      int n, const RowValues& f, double floor,
+                                      const Eigen::MatrixX3d& fallback) {
+  Eigen::MatrixXd a = Eigen::MatrixXd(sts);
+  Eigen::MatrixX3d b = Eigen::MatrixX3d::Zero(n, 3);
+  for (std::size_t i = 0; i < rows.row.size(); ++i) {
+    const auto ii = static_cast<Eigen::Index>(i);
+    if (!(rows.m(ii, 0) > 0 && rows.m(ii, 1) > 0 && rows.m(ii, 2) > 0)) continue;
+    double y[3];
+    for (int c = 0; c < 3; ++c) {
+      y[c] = std::log(std::max(rows.m(ii, c) - f(ii, c), floor * rows.m(ii, c)));
+    }
+    const double w = rows.w[i];
+    for (int j = rows.start[i]; j < rows.start[i + 1]; ++j) {
+      const double wa = w * rows.val[j];
+      for (int c = 0; c < 3; ++c) b(rows.col[j], c) += wa * y[c];
+      for (int k = rows.start[i]; k < rows.start[i + 1]; ++k) {
+        a(rows.col[j], rows.col[k]) += wa * rows.val[k];
+      }
+    }
+  }
+  const Eigen::LLT<Eigen::MatrixXd> llt(a);
+  if (llt.info() != Eigen::Success) return fallback;
+  const Eigen::MatrixX3d x = llt.solve(b);
+  return x.allFinite() ? x : fallback;
+}
+
 double RelRms(const std::vector<ChannelProblem>& problems,
               const std::vector<Eigen::VectorXd>& theta, double weight_sum) {
   double sum = 0;
@@ -357,6 +454,7 @@ RefineResult RefineFactorization(const FactorSystem& sys, const Table& table,
   const int n = sys.num_p() + sys.num_q();
   const int rank = std::clamp(options.rank, 1, kMaxTerms);
   const RowSet rows = PickRows(sys, table, options.max_rows);
+  const DataTerms data = MakeDataTerms(options.loss, rows);
   RefineResult out;
   out.rows = rows.row.size();
   out.terms.push_back(x0);
@@ -369,13 +467,16 @@ RefineResult RefineFactorization(const FactorSystem& sys, const Table& table,
     std::vector<ChannelProblem> p;
     std::vector<Eigen::VectorXd> th;
     for (int c = 0; c < 3; ++c) {
-      p.emplace_back(sys, rows, c, 1, false, options.loss, sts);
+      p.emplace_back(sys, rows, data, c, 1, false, options.loss, sts);
       th.push_back(x0.col(c));
     }
     out.rel_rms_start = RelRms(p, th, rows.weight_sum);
     for (int c = 0; c < 3; ++c) out.objective_start += p[c].Cost(th[c]);
   }
 
+  // Each further term's start: on the refinement's rows when a term's unknowns are few (a dense
+  // solve), on every row through the cached system otherwise.
+  const bool dense_starts = n <= kDenseStartLimit;
   std::array<double, 3> d{0, 0, 0};
   if (options.diffuse) {
     // d starts at half the 5 % quantile of the measured values, the term on what is left.
@@ -386,22 +487,36 @@ RefineResult RefineFactorization(const FactorSystem& sys, const Table& table,
       std::nth_element(v.begin(), q, v.end());
       d[c] = std::max(0.0, 0.5 * *q);
     }
-    RowValues f(static_cast<Eigen::Index>(sys.num_rows()), 3);
-    for (int c = 0; c < 3; ++c) f.col(c).setConstant(d[c]);
-    out.terms[0] = SolveRemainder(sys, table, f, 0.25, removed, x0);
+    if (dense_starts) {
+      out.terms[0] = SolveRemainderOnRows(rows, sts, n, ModelRows(rows, {}, d), 0.25, x0);
+    } else {
+      RowValues f(static_cast<Eigen::Index>(sys.num_rows()), 3);
+      for (int c = 0; c < 3; ++c) f.col(c).setConstant(d[c]);
+      out.terms[0] = SolveRemainder(sys, table, f, 0.25, removed, x0);
+    }
   }
 
   for (int k = 1; k <= rank; ++k) {
     if (k > 1) {
-      const RowValues f = ModelRows(sys, out.terms, d);
       const Eigen::MatrixX3d start = out.terms.back().array() + std::log(0.1);
-      out.terms.push_back(SolveRemainder(sys, table, f, 0.02, removed, start));
+      out.terms.push_back(
+          dense_starts
+              ? SolveRemainderOnRows(rows, sts, n, ModelRows(rows, out.terms, d), 0.02, start)
+              : SolveRemainder(sys, table, ModelRows(sys, out.terms, d), 0.02, removed, start));
     }
     for (int c = 0; c < 3; ++c) {
-      ChannelProblem p(sys, rows, c, k, options.diffuse, options.loss, sts);
+      ChannelProblem p(sys, rows, data, c, k, options.diffuse, options.loss, sts);
       Eigen::VectorXd th(p.num_unknowns());
       for (int t = 0; t < k; ++t) th.segment(t * n, n) = out.terms[t].col(c);
       if (options.diffuse) th[p.num_unknowns() - 1] = d[c];
+      if (k > 1) {
+        // The deflated start can be worse than the rank k-1 solution it extends; then the new
+        // term starts as 1 % of the previous one instead, so that rank k starts no worse than
+        // rank k-1 ended (LM only descends).
+        Eigen::VectorXd alt = th;
+        alt.segment((k - 1) * n, n) = out.terms[k - 2].col(c).array() + std::log(0.01);
+        if (p.Cost(alt) < p.Cost(th)) th = alt;
+      }
       out.iterations +=
           p.Minimize(&th, options.max_iterations, options.dense_limit, options.tolerance);
       for (int t = 0; t < k; ++t) out.terms[t].col(c) = th.segment(t * n, n);
@@ -414,7 +529,7 @@ RefineResult RefineFactorization(const FactorSystem& sys, const Table& table,
   std::vector<ChannelProblem> p;
   std::vector<Eigen::VectorXd> th;
   for (int c = 0; c < 3; ++c) {
-    p.emplace_back(sys, rows, c, rank, options.diffuse, options.loss, sts);
+    p.emplace_back(sys, rows, data, c, rank, options.diffuse, options.loss, sts);
     Eigen::VectorXd t(p.back().num_unknowns());
     for (int k = 0; k < rank; ++k) t.segment(k * n, n) = out.terms[k].col(c);
     if (options.diffuse) t[t.size() - 1] = d[c];

@@ -48,7 +48,7 @@ struct RefineOptions {
   bool diffuse = false;
   int rank = 1;
   int max_iterations = 30;         // LM iterations per channel and stage
-  std::size_t max_rows = 1 << 14;  // rows used at most (every s-th row, weights times s)
+  std::size_t max_rows = 1 << 13;  // rows used at most (every s-th row, weights times s)
   std::size_t dense_limit = 1024;  // unknowns per channel up to which H is solved densely
   double tolerance = 1e-6;         // stop when a step lowers the objective by less (relative)
 };
