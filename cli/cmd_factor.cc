@@ -31,6 +31,7 @@
 #include "io/table_io.h"
 #include "pipeline/factor_export.h"
 #include "pipeline/factor_settings.h"
+#include "pipeline/factor_with_choice.h"
 #include "pipeline/inputs.h"
 #include "pipeline/material_keys.h"
 #include "pipeline/shard.h"
@@ -92,15 +93,7 @@ std::vector<FactorInput> RunInputs(const FactorCliOptions& o) {
   return out;
 }
 
-// The rendered score of one candidate or rank, for the sidecar (null where the metric failed)
-// and for the printed line.
-nlohmann::json ScoreJson(const RenderedError& e) {
-  const auto number = [&](double v) { return e.ok ? nlohmann::json(v) : nlohmann::json(); };
-  return {{"score_db", number(RenderedScoreDb(e))},
-          {"psnr_db", number(e.psnr_db)},
-          {"median_rel_error", number(e.median_rel_error)}};
-}
-
+// The rendered score of one candidate or rank, for the printed line.
 std::string ScoreText(const RenderedError& e) {
   return fmt::format("S {:>7} dB  psnr {:>6} dB  med_lum {:>6}",
                      e.ok ? fmt::format("{:.2f}", RenderedScoreDb(e)) : "-",
@@ -249,38 +242,17 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
           // What the preview draws from the textures written below (docs/accuracy.md).
           re = ScoreFactorizationRendered(table, r.brdf);
         } else {
-          std::vector<Factorization> tried;
-          std::vector<FactorScore> scores;
-          for (const FactorCandidate& c : kAutoFactorCandidates) {
-            // On the last table, a parameterization's system goes once its candidates are done.
-            if (last && !tried.empty() && tried.back().options.param != c.param) cache.Clear();
-            tried.push_back(Factor(table, CandidateOptions(options, c), &cache));
-            scores.push_back(
-                {ScoreFactorizationRendered(table, tried.back().brdf), CostOf(tried.back().brdf)});
-          }
-          const auto pick = ChooseFactorization(scores);
-          const std::size_t i = pick ? pick->index : 0;
-          choice = {
-              {"rule",
-               "S = psnr_db - 20 median_rel_error; least texture memory within "
-               "0.5 dB of the best (factor/factor_choice.h)"},
-              {"chosen", kAutoFactorCandidates[i].name},
-              {"reason", pick ? pick->reason : "no candidate has a rendered error: the first"}};
-          for (std::size_t k = 0; k < tried.size(); ++k) {
-            const RenderedError& e = scores[k].rendered;
-            nlohmann::json c = ScoreJson(e);
-            c["form"] = kAutoFactorCandidates[k].name;
-            c["texture_bytes"] = scores[k].cost.texture_bytes;
-            c["fetches_per_light"] = scores[k].cost.fetches_per_light;
-            if (!o.no_timings) c["seconds"] = tried[k].stats.seconds;
-            choice["candidates"].push_back(std::move(c));
-            if (!o.quiet) {
-              fmt::print("  candidate {:<16} {}{}\n", kAutoFactorCandidates[k].name, ScoreText(e),
-                         k == i ? "  <- chosen" : "");
+          // On the last table, a parameterization's system goes once its candidates are done.
+          pipeline::FactorWithChoice c = pipeline::FactorChoosingForm(table, options, &cache, last);
+          choice = pipeline::ChoiceJson(c, !o.no_timings);
+          if (!o.quiet) {
+            for (std::size_t k = 0; k < c.scores.size(); ++k) {
+              fmt::print("  candidate {:<16} {}{}\n", kAutoFactorCandidates[k].name,
+                         ScoreText(c.scores[k].rendered), k == c.chosen ? "  <- chosen" : "");
             }
           }
-          r = std::move(tried[i]);
-          re = scores[i].rendered;
+          r = std::move(c.kept);
+          re = c.rendered;
         }
       } catch (const InputError& e) {
         throw InputError(file, e.what());
@@ -298,7 +270,7 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
         for (const FactoredBrdf* b : all) {
           const RenderedError e = b == &r.brdf ? re : ScoreFactorizationRendered(table, *b);
           const FactorCost c = CostOf(*b);
-          nlohmann::json line = ScoreJson(e);
+          nlohmann::json line = pipeline::ScoreJson(e);
           line["rank"] = b->rank();
           line["texture_bytes"] = c.texture_bytes;
           line["fetches_per_light"] = c.fetches_per_light;

@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "io/nbrdf.h"
+#include "pipeline/factor_settings.h"
 #include "report/report_inputs.h"
 
 namespace brdfit::pipeline {
@@ -20,8 +21,12 @@ nlohmann::json ComparisonScene(const std::string& input, bool quick) {
         {"fit", {{"type", "analytic"}, {"model", "lambert+ggx"}, {"fit_table", table}}}}},
       {"objects", {{{"name", "ball"}, {"material", name}}}},
       {"comparison", {{"measured", name}, {"fitted", "fit"}}}};
-  s["materials"]["factored"] = {
-      {"type", "factored"}, {"table", table}, {"resolution", quick ? 16 : 32}};
+  // The factorization `brdfit factor TABLE` writes: the form chosen by rendered score, at its
+  // default resolution (quick: 16^2).
+  s["materials"]["factored"] = {{"type", "factored"},
+                                {"table", table},
+                                {"form", "auto"},
+                                {"resolution", quick ? 16 : FactorSettings{}.resolution}};
   s["comparison"]["factored"] = "factored";
   return s;
 }

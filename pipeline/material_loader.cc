@@ -26,6 +26,7 @@
 #include "pipeline/cache_key.h"
 #include "pipeline/factor_export.h"
 #include "pipeline/factor_textures.h"
+#include "pipeline/factor_with_choice.h"
 #include "pipeline/fit_settings.h"
 #include "pipeline/inputs.h"
 
@@ -173,6 +174,9 @@ std::shared_ptr<const FactorTextures> FactorCached(const MaterialSpec& m,
                     m.factor_param, opt.resolution, opt.lambda, static_cast<int>(opt.weighting),
                     opt.max_theta, opt.rank, opt.diffuse, opt.refine, opt.refine_iterations,
                     opt.refine_rows));
+  if (m.factor_auto) {
+    for (const FactorCandidate& c : kAutoFactorCandidates) h.Add(std::string("|") + c.name);
+  }
   const std::string stem = "factor-" + h.Hex();
   const FactorPaths paths = FactorFilePaths(cache_dir, stem);
   if (std::filesystem::exists(paths.json)) {
@@ -190,13 +194,25 @@ std::shared_ptr<const FactorTextures> FactorCached(const MaterialSpec& m,
   }
   const auto table = tables->Get(m.table);
   const auto t0 = Clock::now();
-  Factorization r = Factor(*table, opt);
+  nlohmann::json extra = {{"source", m.table.string()}};
+  Factorization r;
+  std::string how;
+  if (m.factor_auto) {
+    // The form `brdfit factor` keeps (pipeline/factor_with_choice.h), its choice in the sidecar.
+    FactorSystemCache systems;
+    FactorWithChoice c = FactorChoosingForm(*table, opt, &systems, true);
+    extra["choice"] = ChoiceJson(c, false);
+    how = ", chosen of " + std::to_string(c.scores.size()) + " forms: " + c.reason;
+    r = std::move(c.kept);
+  } else {
+    r = Factor(*table, opt);
+  }
   MakeOutputFolder(cache_dir);
-  SaveFactorization(r, cache_dir, stem, {{"source", m.table.string()}});
+  SaveFactorization(r, cache_dir, stem, extra);
   if (log) {
     log->Add("compute", "factorization " + FactorFormLabel(FormOf(r.brdf)) + " " +
                             std::to_string(m.factor_resolution) + " of " + m.table.string() + " (" +
-                            Fmt(MsSince(t0)) + " ms) -> " + paths.json.string());
+                            Fmt(MsSince(t0)) + " ms" + how + ") -> " + paths.json.string());
   }
   return ToFactorTextures(std::move(r.brdf));
 }

@@ -266,6 +266,13 @@ MaterialSpec ParseMaterial(Reader r, const std::string& name) {
     m.factor_param = r.String("parameterization", m.factor_param);
     m.factor_rank = r.Int("rank", m.factor_rank);
     m.factor_diffuse = r.Bool("diffuse", m.factor_diffuse);
+    const std::string form = r.String("form", "");
+    if (!form.empty() && form != "auto") r.Fail("'form' must be \"auto\" (or left out)");
+    m.factor_auto = form == "auto";
+    if (m.factor_auto && (r.Has("parameterization") || r.Has("rank") || r.Has("diffuse"))) {
+      r.Fail("'form': \"auto\" chooses the parameterization, rank and diffuse value: leave "
+             "them out");
+    }
     if (m.table.empty() == m.factors.empty()) {
       r.Fail("a factored material needs either 'factors' (a .factor.json) or 'table' (to factor)");
     }

@@ -76,6 +76,9 @@ struct MaterialSpec {
   std::string factor_param = "mccool";
   int factor_rank = 1;          // when computed from `table`: products in the sum, 1..4
   bool factor_diffuse = false;  // ... and with a diffuse value
+  // "form": "auto": the form `brdfit factor` chooses by rendered score from its candidates
+  // (docs/factorization.md §14) instead of factor_param, factor_rank, factor_diffuse.
+  bool factor_auto = false;
 };
 
 enum class ObjectShape { kSphere, kMesh };

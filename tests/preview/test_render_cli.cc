@@ -197,6 +197,36 @@ TEST_F(RenderCli, FourPanelComparison512) {
   }
 }
 
+// `render TABLE --compare` draws the factorization `brdfit factor TABLE` writes: the same form
+// chosen from the same candidates with the same rendered scores (pipeline/factor_with_choice.h).
+TEST_F(RenderCli, TableComparisonDrawsTheFactorizationFactorChooses) {
+  const std::string table = (dir_ / "t1.h5").string();
+  const CliRun f = RunCli("factor " + table + " -q -o " + (dir_ / "fac").string());
+  ASSERT_EQ(f.code, 0) << f.out;
+  const CliRun r = RunCli("render " + table + " -o " + (dir_ / "cmp.png").string() +
+                          " --compare --size 128x128 --explain --cache " +
+                          (dir_ / "cache").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto read = [](const fs::path& p) { return nlohmann::json::parse(std::ifstream(p)); };
+  const nlohmann::json factor = read(dir_ / "fac" / "t1.factor.json");
+  std::vector<fs::path> cached;
+  for (const auto& e : fs::directory_iterator(dir_ / "cache")) {
+    if (e.path().string().find(".factor.json") != std::string::npos) cached.push_back(e.path());
+  }
+  ASSERT_EQ(cached.size(), 1u) << r.out;
+  const nlohmann::json preview = read(cached[0]);
+  ASSERT_TRUE(factor.contains("choice"));
+  ASSERT_TRUE(preview.contains("choice")) << preview.dump(1);
+  EXPECT_EQ(preview["choice"]["chosen"], factor["choice"]["chosen"]);
+  ASSERT_EQ(preview["choice"]["candidates"].size(), factor["choice"]["candidates"].size());
+  for (std::size_t k = 0; k < factor["choice"]["candidates"].size(); ++k) {
+    EXPECT_EQ(preview["choice"]["candidates"][k]["score_db"],
+              factor["choice"]["candidates"][k]["score_db"]);
+  }
+  EXPECT_EQ(preview["solver"], factor["solver"]);  // the same options, resolution included
+  EXPECT_NE(r.out.find("chosen of 4 forms"), std::string::npos) << r.out;
+}
+
 TEST_F(RenderCli, BadInputExitsTwoNamingTheFile) {
   WriteScene(R"({"materials": {"m": {"type": "measured", "table": "missing.binary"}},
                  "objects": [{"material": "m"}]})");

@@ -82,6 +82,18 @@ TEST(Scene, FactoredMaterialTakesRankAndDiffuse) {
                              "mem.json");
   EXPECT_EQ(d.materials[0].factor_rank, 1);
   EXPECT_FALSE(d.materials[0].factor_diffuse);
+  const Scene a = ParseScene(R"({"materials": {"f": {"type": "factored", "table": "t.binary",
+                                 "form": "auto"}},
+                                 "objects": [{"material": "f"}]})",
+                             "mem.json");
+  EXPECT_TRUE(a.materials[0].factor_auto);
+  EXPECT_FALSE(d.materials[0].factor_auto);
+  ExpectError(R"({"materials": {"f": {"type": "factored", "table": "t.binary", "form": "best"}},
+                  "objects": [{"material": "f"}]})",
+              "'form' must be \"auto\"");
+  ExpectError(R"({"materials": {"f": {"type": "factored", "table": "t.binary", "form": "auto",
+                  "rank": 2}}, "objects": [{"material": "f"}]})",
+              "leave them out");
   ExpectError(R"({"materials": {"f": {"type": "factored", "table": "t.binary", "rank": 5}},
                   "objects": [{"material": "f"}]})",
               "'rank' must be in [1, 4]");
