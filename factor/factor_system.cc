@@ -307,8 +307,11 @@ std::shared_ptr<const FactorSystem> FactorSystem::Build(const Grid& grid,
         }
         e.Sort();
         for (int c = 0; c < e.n; ++c) {
+          // Rounded to the stored float32 before M is assembled: M = A^T W A + S^T S holds
+          // exactly for the A that Solve and the refinement read.
+          e.val[c] = static_cast<float>(e.val[c]);
           s->col_.push_back(e.col[c]);
-          s->val_.push_back(e.val[c]);
+          s->val_.push_back(static_cast<float>(e.val[c]));
         }
         acc.Add(e.col.data(), e.val.data(), e.n, w);
         s->row_start_.push_back(static_cast<int>(s->col_.size()));

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# Peak resident memory of `brdfit fit` (docs/reliability.md, "Memory"), with /usr/bin/time:
-#   1. one full MERL-grid table (90 x 90 x 180 = 1,458,000 cells) fitted with one model;
+# Peak resident memory of `brdfit fit` and `brdfit factor` (docs/reliability.md, "Memory"),
+# with /usr/bin/time:
+#   1. one full MERL-grid table (90 x 90 x 180 = 1,458,000 cells) fitted with one model, and
+#      factored (the default: four candidate forms; and one form, --param mccool);
 #   2. batches of 10, 50 and 100 materials (NBRDF networks tabulated on the MERL grid), one
 #      model each, one job: the peak must not grow with the number of materials.
 # Usage: scripts/measure_memory.sh [BUILD_DIR]   (default: build; needs BUILD_DIR/brdfit)
-# Environment: MODEL (default ggx; --diffuse lambert makes it lambert+ggx), WORK (scratch folder,
+# Environment: MODEL (default ggx, e.g. MODEL=lambert+ggx), WORK (scratch folder,
 # default a temporary one, removed at the end), BATCHES (default "10 50 100").
 # Step 2 needs ../shared/data/merl_nbrdf.zip (or $BRDFIT_NBRDF_ZIP); without it, step 1 uses a
 # synthetic lambert+ggx table and step 2 is skipped with a message.
@@ -50,8 +52,12 @@ if ((have_nbrdf)); then
 else
   "$BRDFIT" synth --model lambert+ggx --param ggx.alpha=0.1 -o one.binary >/dev/null
 fi
-peak_rss "1 MERL-grid table, $MODEL (lambert+$MODEL)" \
+peak_rss "1 MERL-grid table, brdfit fit --model $MODEL" \
   "$BRDFIT" fit one.binary --model "$MODEL" --no-progress -o one.h5
+peak_rss "1 MERL-grid table, brdfit factor (four candidate forms)" \
+  "$BRDFIT" factor one.binary -q -o factor-auto
+peak_rss "1 MERL-grid table, brdfit factor --param mccool (one form)" \
+  "$BRDFIT" factor one.binary --param mccool -q -o factor-one
 
 if ((!have_nbrdf)); then
   echo "measure_memory: no NBRDF archive (../shared/data/merl_nbrdf.zip): batches skipped" >&2
