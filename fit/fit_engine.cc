@@ -178,7 +178,7 @@ FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& lo
   double c0 = ThreadCpuMs();
   const Samples init_set = Subsample(fit, opt.init_samples, opt.seed);
   const LossData init_loss = PrepareLoss(init_set, opt);
-  GridInitializer grid(init_set, init_loss, layout, ops.eval, robust.get());
+  GridInitializer grid(init_set, init_loss, layout, ops.components, robust.get());
   const std::vector<InitCandidate> starts = grid.Run(std::max(opt.multistart, 1));
   r.times.init = MsSince(t0);
   r.times.init_cpu = ThreadCpuMs() - c0;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "fit/box_lsq.h"
 #include "fit/residual.h"
@@ -67,8 +68,34 @@ ShapeStarts MakeShapeStarts(const ParamLayout& layout, const std::vector<int>& d
 }
 
 GridInitializer::GridInitializer(const Samples& s, const LossData& l, const ParamLayout& layout,
-                                 EvalFn eval, const ceres::LossFunction* robust)
-    : s_(s), l_(l), layout_(layout), eval_(eval), robust_(robust) {
+                                 const std::vector<ComponentOps>& components,
+                                 const ceres::LossFunction* robust)
+    : s_(s), l_(l), layout_(layout), components_(components), robust_(robust) {
+  // A sum's lobes are independent (models/sum.h): a lobe's column depends on the shape
+  // parameters of its own component only, the offset on those of the weightless components.
+  const auto component_of = [&](int i) {
+    for (std::size_t c = 0; c < components.size(); ++c) {
+      const std::size_t u = static_cast<std::size_t>(i);
+      if (u >= components[c].offset && u < components[c].offset + components[c].count) return c;
+    }
+    throw std::logic_error("grid initializer: parameter outside every component");
+  };
+  std::vector<bool> has_lobe(components.size(), false);
+  for (const auto& lobe : layout.lobes) {
+    lobe_component_.push_back(component_of(lobe[0]));
+    has_lobe[lobe_component_.back()] = true;
+  }
+  for (std::size_t c = 0; c < components.size(); ++c) {
+    if (!has_lobe[c]) offset_components_.push_back(c);
+  }
+  lobe_shape_.resize(layout.lobes.size());
+  for (int i : layout.shape) {
+    const std::size_t c = component_of(i);
+    if (!has_lobe[c]) offset_shape_.push_back(i);
+    for (std::size_t k = 0; k < layout.lobes.size(); ++k) {
+      if (lobe_component_[k] == c) lobe_shape_[k].push_back(i);
+    }
+  }
   const std::size_t n = s.NumObservations();
   // Linearization at the data.
   w_data_.resize(3 * n);
@@ -183,27 +210,52 @@ void GridInitializer::PatternSearch(InitCandidate* c, const std::vector<int>& di
   }
 }
 
-// basis_[(s * K + k) * 3 + ch]: lobe k's value in channel ch with unit weights.
+// basis_[(s * K + k) * 3 + ch]: lobe k's value in channel ch with unit weights. Only the
+// columns whose shape parameters changed since the last call are evaluated again (a compass
+// step moves one parameter: one lobe's column, not every lobe's).
 void GridInitializer::ComputeBasis(const std::vector<double>& p_in) {
   const std::size_t K = layout_.lobes.size(), ns = s_.NumSamples();
-  basis_.assign(ns * K * 3, 0.0);
-  offset_.assign(ns * 3, 0.0);
+  const bool first = basis_at_.empty();
+  const auto changed = [&](const std::vector<int>& dims) {
+    if (first) return true;
+    for (int i : dims) {
+      if (!(p_in[i] == basis_at_[i])) return true;  // (NaN: changed)
+    }
+    return false;
+  };
+  if (first) {
+    basis_.assign(ns * K * 3, 0.0);
+    offset_.assign(ns * 3, 0.0);
+  }
   std::vector<double> p = p_in;
   for (const auto& lobe : layout_.lobes) {
     for (int idx : lobe) p[idx] = 0.0;
   }
-  // The part that no colour weight scales (zero for Lambert and the lobes; all of ue4, whose
-  // base colour is a shape parameter).
-  for (std::size_t s = 0; s < ns; ++s) eval_(p.data(), s_.geometry[s], &offset_[3 * s]);
+  // The part that no colour weight scales: the weightless components (all of ue4, whose base
+  // colour is a shape parameter); a weighted lobe is zero at zero weights.
+  if (changed(offset_shape_)) {
+    std::fill(offset_.begin(), offset_.end(), 0.0);
+    for (std::size_t c : offset_components_) {
+      const ComponentOps& op = components_[c];
+      for (std::size_t s = 0; s < ns; ++s) {
+        double rgb[3];
+        op.eval(p.data() + op.offset, s_.geometry[s], rgb);
+        for (int ch = 0; ch < 3; ++ch) offset_[3 * s + ch] += rgb[ch];
+      }
+    }
+  }
   for (std::size_t k = 0; k < K; ++k) {
+    if (!changed(lobe_shape_[k])) continue;
+    const ComponentOps& op = components_[lobe_component_[k]];
     for (int idx : layout_.lobes[k]) p[idx] = 1.0;
     for (std::size_t s = 0; s < ns; ++s) {
       double rgb[3];
-      eval_(p.data(), s_.geometry[s], rgb);
+      op.eval(p.data() + op.offset, s_.geometry[s], rgb);
       for (int ch = 0; ch < 3; ++ch) basis_[(s * K + k) * 3 + ch] = rgb[ch];
     }
     for (int idx : layout_.lobes[k]) p[idx] = 0.0;
   }
+  basis_at_ = p_in;
 }
 
 double GridInitializer::Predict(const std::vector<double>& p, std::size_t s, int ch) const {
@@ -221,16 +273,21 @@ void GridInitializer::SolveWeights(const std::vector<double>& w, const std::vect
   for (int ch = 0; ch < 3; ++ch) {
     Eigen::MatrixXd N = Eigen::MatrixXd::Zero(K, K);
     Eigen::VectorXd b = Eigen::VectorXd::Zero(K), lo(K), hi(K);
-    Eigen::VectorXd basis(K);
+    // Accumulated in plain loops (the same products as N += (ws B) B^T, b += wy B): Eigen's
+    // dynamic-size outer product allocated a temporary per sample.
+    double* n = N.data();
     for (std::size_t s = 0; s < s_.NumSamples(); ++s) {
-      for (int k = 0; k < K; ++k) basis[k] = basis_[(s * K + k) * 3 + ch];
+      const double* basis = &basis_[s * K * 3 + ch];  // lobe k at basis[3 k]
       double ws = 0, wy = 0;
       for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
         ws += w[3 * o + ch];
         wy += w[3 * o + ch] * (y[3 * o + ch] - offset_[3 * s + ch]);
       }
-      N.noalias() += ws * basis * basis.transpose();
-      b.noalias() += wy * basis;
+      for (int j = 0; j < K; ++j) {
+        const double bj = basis[3 * j];
+        for (int i = 0; i < K; ++i) n[j * K + i] += (ws * basis[3 * i]) * bj;
+        b[j] += wy * bj;
+      }
     }
     for (int k = 0; k < K; ++k) {
       const ParamSpec& spec = layout_.specs[layout_.lobes[k][ch]];

@@ -17,6 +17,7 @@
 
 #include <ceres/loss_function.h>
 
+#include <cstddef>
 #include <vector>
 
 #include "fit/loss.h"
@@ -33,6 +34,13 @@ struct InitCandidate {
 // f_r of a model at a geometry, double precision (models/param.h: M::Eval<double>).
 using EvalFn = void (*)(const double* params, const Geometry& g, double rgb[3]);
 
+// One lobe of a sum (models/sum.h: its own Eval at its slice [offset, offset + count) of the
+// parameter vector), or the whole model for a model that is not a sum.
+struct ComponentOps {
+  EvalFn eval;
+  std::size_t offset, count;
+};
+
 // Starting points over some shape parameters (indices dims; values in parameter space),
 // uniform in the optimization space (log for log_scale parameters) over the bounds: a product
 // grid in 1-D (48 points: alpha ratio 1.22 over [1e-4, 1]) and 2-D (14 x 14), Halton points
@@ -46,8 +54,11 @@ ShapeStarts MakeShapeStarts(const ParamLayout& layout, const std::vector<int>& d
 
 class GridInitializer {
  public:
-  GridInitializer(const Samples& s, const LossData& l, const ParamLayout& layout, EvalFn eval,
-                  const ceres::LossFunction* robust);
+  // components: the model's lobes (ModelOps::components), which partition its parameters: a
+  // basis column is its own lobe's Eval alone, and a change of one lobe's shape recomputes only
+  // that lobe's column.
+  GridInitializer(const Samples& s, const LossData& l, const ParamLayout& layout,
+                  const std::vector<ComponentOps>& components, const ceres::LossFunction* robust);
 
   // The best `keep` candidates, best first (costs may be NaN only if every point failed).
   std::vector<InitCandidate> Run(int keep);
@@ -69,9 +80,17 @@ class GridInitializer {
   const Samples& s_;
   const LossData& l_;
   const ParamLayout& layout_;
-  EvalFn eval_;
+  const std::vector<ComponentOps>& components_;
   const ceres::LossFunction* robust_;
   std::vector<double> w_data_, y_data_, basis_, offset_;
+  // Per lobe: its component and the shape parameters its column depends on (its component's);
+  // the weightless components (offset_) and their shape parameters; the parameters the basis
+  // was last computed at.
+  std::vector<std::size_t> lobe_component_;
+  std::vector<std::vector<int>> lobe_shape_;
+  std::vector<std::size_t> offset_components_;
+  std::vector<int> offset_shape_;
+  std::vector<double> basis_at_;
 };
 
 }  // namespace brdfit::internal

@@ -32,6 +32,7 @@ struct ModelOps {
   std::vector<std::string> param_names;
   ParamLayout layout;
   EvalFn eval = nullptr;
+  std::vector<ComponentOps> components;  // its lobes (a sum) or itself (fit/grid_init.h)
   MakeBlockFn make_block = nullptr;
   MakePixelBlockFn make_pixel_block = nullptr;  // the rendered polish's (fit/pixel_cost.h)
 };

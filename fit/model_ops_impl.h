@@ -9,6 +9,7 @@
 #include "fit/pixel_cost.h"
 #include "models/catalog.h"
 #include "models/registry.h"
+#include "models/sum.h"
 
 namespace brdfit::internal {
 
@@ -30,6 +31,23 @@ void EvalDouble(const double* p, const Geometry& g, double rgb[3]) {
   M::Eval(p, g, rgb);
 }
 
+// The lobes of a sum, each with its own evaluator and parameter slice; a model that is not a
+// sum is one component.
+template <class M>
+struct ComponentsOf {
+  static std::vector<ComponentOps> Get() { return {{&EvalDouble<M>, 0, kNumParams<M>}}; }
+};
+template <class... Lobes>
+struct ComponentsOf<Sum<Lobes...>> {
+  static std::vector<ComponentOps> Get() {
+    std::vector<ComponentOps> out;
+    std::size_t i = 0;
+    ((out.push_back({&EvalDouble<Lobes>, Sum<Lobes...>::kOffsets[i], kNumParams<Lobes>}), ++i),
+     ...);
+    return out;
+  }
+};
+
 // Registers the catalog models whose index is Shard modulo kShards.
 template <std::size_t Shard>
 void RegisterShard(std::vector<ModelOps>& out) {
@@ -40,7 +58,8 @@ void RegisterShard(std::vector<ModelOps>& out) {
             using M = std::tuple_element_t<I, ModelCatalog>;
             const ModelInfo info = MakeModelInfo<M>();
             out.push_back({I, info.name, info.param_names, ParamLayout::Of(M::kParams),
-                           &EvalDouble<M>, &MakeBlock<M>, &MakePixelBlock<M>});
+                           &EvalDouble<M>, ComponentsOf<M>::Get(), &MakeBlock<M>,
+                           &MakePixelBlock<M>});
           }
         }(),
         ...);
