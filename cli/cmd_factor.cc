@@ -216,6 +216,18 @@ void PrintSummary(const std::string& stem, const Factorization& r, double ln_rms
 int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullptr) {
   const std::vector<FactorInput> inputs = RunInputs(o);
   const FactorOptions options = CheckOptions(o, inputs);
+  if (!o.auto_form && options.param == FactorParam::kHalfDiff && options.NeedsRefinement() &&
+      options.resolution >= 32) {
+    // The sparse LM path (factor/factor_refine.h): docs/nbrdf-results.md measured ~6 s (d),
+    // ~80 s (d + rank 2) and > 10 min (d + rank 4) per MERL table at 64^2.
+    fmt::print(stderr,
+               "brdfit: note: a refined halfdiff factorization ({}^2, rank {}) solves {} unknowns "
+               "per channel with a sparse factorization per step: seconds (rank 1) to many "
+               "minutes (rank >= 2) per MERL-size table; mccool refines in well under a second\n",
+               options.resolution, options.rank,
+               options.rank * (options.resolution + options.resolution * options.resolution) +
+                   (options.diffuse ? 1 : 0));
+  }
   MakeOutputFolder(o.out_dir);
   SampleOptions metric_samples;
   metric_samples.cutoff_deg = o.metric_cutoff_deg;

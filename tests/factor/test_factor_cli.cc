@@ -143,6 +143,21 @@ TEST_F(FactorCli, DefaultKeepsTheCandidateWithTheBestRenderedScore) {
   EXPECT_FALSE(one.has_diffuse());
 }
 
+// A refined halfdiff factorization is the slow sparse path: the command says so up front (on
+// stderr), a mccool one does not.
+TEST_F(FactorCli, RefinedHalfDiffSaysItIsSlow) {
+  const CliRun h = Brdfit({"factor", table_, "--param", "halfdiff", "--res", "32", "--refine",
+                           "-q", "-o", (dir_ / "h").string()},
+                          dir_);
+  ASSERT_EQ(h.code, 0) << h.err;
+  EXPECT_NE(h.err.find("sparse factorization per step"), std::string::npos) << h.err;
+  EXPECT_NE(h.err.find("1056 unknowns"), std::string::npos) << h.err;  // 32 + 32^2
+  const CliRun m = Brdfit(
+      {"factor", table_, "--res", "32", "--refine", "-q", "-o", (dir_ / "m").string()}, dir_);
+  ASSERT_EQ(m.code, 0) << m.err;
+  EXPECT_EQ(m.err.find("sparse factorization"), std::string::npos) << m.err;
+}
+
 // --rank K shows what each product buys: every rank 1..K scored like the result, its texture
 // memory and fetches growing by one product each.
 TEST_F(FactorCli, RankKReportsEveryLowerRank) {
