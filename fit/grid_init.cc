@@ -124,9 +124,23 @@ std::vector<InitCandidate> GridInitializer::Run(int keep) {
   std::vector<InitCandidate> all;
   for (const auto& point : starts.points) {
     for (std::size_t d = 0; d < outer.size(); ++d) p[outer[d]] = point[d];
-    InitCandidate c = EvaluatePoint(p);
-    if (!inner.empty()) PatternSearch(&c, inner, inner_step, 1.0 / 16, 40);
-    all.push_back(std::move(c));
+    all.push_back(EvaluatePoint(p));
+  }
+  if (!inner.empty()) {
+    // The inner search at every point, except on the Halton sets (three or more outer
+    // dimensions: several lobes), where it runs on the kScreened best points by their cost at
+    // the inner defaults — the rest rank as screened (docs/fitting.md, "Multi-lobe fits").
+    std::vector<std::size_t> order(all.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    constexpr std::size_t kScreened = 16;
+    if (outer.size() >= 3 && all.size() > kScreened) {
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return Less(all[a].cost, all[b].cost);
+      });
+      order.resize(kScreened);
+      std::sort(order.begin(), order.end());  // grid order again
+    }
+    for (std::size_t i : order) PatternSearch(&all[i], inner, inner_step, 1.0 / 16, 40);
   }
   // Stable order: ties keep grid order, so results do not depend on the sort algorithm.
   std::stable_sort(all.begin(), all.end(), [](const InitCandidate& a, const InitCandidate& b) {
