@@ -126,11 +126,12 @@ void CheckOptions(const ReportCliOptions& o) {
 int RunReport(const ReportCliOptions& o) {
   CheckOptions(o);
   const fs::path chart_js = o.chart_js.empty() ? report::ChartJsPath() : fs::path(o.chart_js);
-  std::vector<fs::path> read = pipeline::InputFiles(o.inputs);
+  const std::vector<std::string> given = pipeline::ExpandInputs(o.inputs);  // nbrdf:all
+  std::vector<fs::path> read = pipeline::InputFiles(given);
   read.push_back(chart_js);
   CheckOutputs(read, {{o.out, "-o"}});
   const std::string js = report::ReadChartJs(chart_js);  // fail before any work
-  std::vector<fs::path> inputs(o.inputs.begin(), o.inputs.end());
+  std::vector<fs::path> inputs(given.begin(), given.end());
   Problems problems(o.keep_going);
   report::ReportSources src = report::ReadReportInputs(inputs, problems.Sink());
   report::Report& r = src.report;
@@ -203,8 +204,8 @@ Registrar reg{
     [](CLI::App& sub) {
       auto o = std::make_shared<ReportCliOptions>();
       sub.add_option("results", o->inputs,
-                     "fit reports, .factor.json sidecars, bench .csv, .png renders, tables, or "
-                     "folders holding them")
+                     "fit reports, .factor.json sidecars, bench .csv, .png renders, tables "
+                     "(files or nbrdf:NAME), or folders holding them")
           ->required();
       sub.add_option("-o,--out", o->out, "output HTML file")->capture_default_str();
       sub.add_option("--title", o->title, "page title");
@@ -238,7 +239,8 @@ Registrar reg{
           "Examples:\n"
           "  brdfit report fits.h5 -o report.html\n"
           "  brdfit report fits.h5 factor/*.factor.json bench.csv compare.png -o report.html\n"
-          "  brdfit report demo-out/ demo-out/factor -o report.html --theta-d 0,20,45,70");
+          "  brdfit report demo-out/ demo-out/factor -o report.html --theta-d 0,20,45,70\n"
+          "  brdfit report gold.h5 nbrdf:gold-metallic-paint -o report.html");
       return [o] { return RunReport(*o); };
     }};
 

@@ -349,6 +349,13 @@ bool AddFitParamsJson(const fs::path& p, Builder* b) {
 
 void AddInputOf(const fs::path& p, bool explicit_input, Builder* b);
 
+// A table: the source of its material's θh slices and renders (loaded by the caller).
+void AddTable(const fs::path& p, Builder* b) {
+  b->out.tables[MaterialName(p)] = p;
+  Material& m = b->index.GetOrAddMaterial(MaterialName(p));
+  if (m.source.empty()) m.source = p.string();
+}
+
 // Any JSON library error (a member of the wrong type deep inside) names the file too.
 void AddInput(const fs::path& p, bool explicit_input, Builder* b) {
   try {
@@ -424,9 +431,7 @@ void AddInputOf(const fs::path& p, bool explicit_input, Builder* b) {
           break;
         }
       }
-      out->tables[MaterialName(p)] = p;
-      Material& m = b->index.GetOrAddMaterial(MaterialName(p));
-      if (m.source.empty()) m.source = p.string();
+      AddTable(p, b);
       break;
     }
     case Kind::kUnknown:
@@ -512,6 +517,12 @@ ReportSources ReadReportInputs(const std::vector<fs::path>& inputs,
       for (const auto& f : files) Guarded(skipped, [&] { AddInput(f, false, &b); });
     } else if (fs::is_regular_file(p, ec)) {
       Guarded(skipped, [&] { AddInput(p, true, &b); });
+    } else if (IsNbrdfInput(p.string())) {
+      // A table like any other, tabulated by the caller when it is drawn (pipeline/inputs.h).
+      Guarded(skipped, [&] {
+        if (MaterialName(p).empty()) throw InputError(p, "names no NBRDF material");
+        AddTable(p, &b);
+      });
     } else {
       Guarded(skipped, [&] { throw InputError(p, NotReadable(p)); });
     }

@@ -7,6 +7,7 @@
 //   fit parameters .json     the same fits without times (brdfit fit --json); read only when
 //                            named, not from a folder (the fit report beside it has them)
 //   *.binary, table *.h5     a table: the source of θh slices for the material of its stem
+//   nbrdf:NAME               a table too (NAME's network, tabulated by the caller: pipeline/)
 //   a folder                 every file in it (not recursive) of the kinds above; others skipped
 // A material is named after its table's file stem ("red-plastic" for red-plastic.binary).
 #pragma once

@@ -4,13 +4,15 @@
 The layers and their allowed lower layers are read from the `brdfit_layer(<name> LAYERS ...)`
 call in each top-level folder's CMakeLists.txt, the same list CMake links with, so the rule and
 the build cannot drift apart. A file in layer L may include "X/..." for a layer X only when X is
-L or lies below L (transitively). Also checked: the layer graph has no cycle, a layer's
+L or lies below L (transitively); a quoted path is resolved as the compiler resolves it, so
+"../X/..." counts as X, and no layer includes tests/, bench/, fuzz/ or tools/. Also checked: the layer graph has no cycle, a layer's
 CMakeLists.txt links no brdfit library outside its allowed set, and the layers that promise no
 file I/O (core, fit, factor) include no file-format or file-stream header.
 
 Usage: check_layers.py ROOT        exit 0 if the tree is clean, 1 listing every violation
-       check_layers.py --self-test  plants an upward include in a copy of this repository's
-                                    layer folders and exits 0 only if the check catches it
+       check_layers.py --self-test  plants upward includes (one spelt "../"), a file-stream
+                                    include and an include of tests/ in a copy of this
+                                    repository's layer folders; exits 0 only if all are caught
 """
 import os
 import re
@@ -30,6 +32,24 @@ FILE_IO_HEADERS = re.compile(
     r"tiny_obj_loader\.h|fstream|ifstream|ofstream)$")
 # Names of CMake targets that are not layers (helpers every layer may link).
 NOT_LAYERS = {"warnings"}
+# Folders outside the stack (docs/architecture.md): they may use any layer, no layer uses them.
+OUTSIDE_STACK = {"tests", "bench", "fuzz", "tools"}
+
+
+def included_folder(root, dirpath, inc):
+    """The top-level folder an #include names, as the compiler finds it: a quoted path that
+    exists relative to the including file's folder first (so "../report/x.h" is report/),
+    else relative to the root, the one include directory; ".." for a path leaving the root,
+    None for a header of no folder of the root (the standard library, Eigen, ...)."""
+    for base in (dirpath, root):
+        full = os.path.normpath(os.path.join(base, inc))
+        if base == dirpath and not (os.path.exists(full) or inc.startswith(".")):
+            continue
+        rel = os.path.relpath(full, root)
+        if rel == ".." or rel.startswith(".." + os.sep):
+            return ".."
+        return rel.split(os.sep, 1)[0] if os.sep in rel else None
+    return None
 
 
 def read_layers(root):
@@ -103,11 +123,17 @@ def check(root):
                     inc = m.group(1)
                     line = text.count("\n", 0, m.start()) + 1
                     rel = os.path.relpath(path, root)
-                    top = inc.split("/", 1)[0] if "/" in inc else None
-                    if top in layers and top not in ok:
+                    top = included_folder(root, dirpath, inc)
+                    if top == "..":
+                        problems.append(f"{rel}:{line}: includes \"{inc}\": a file outside "
+                                        "the repository")
+                    elif top in layers and top not in ok:
                         problems.append(f"{rel}:{line}: includes \"{inc}\": layer '{top}' is "
                                         f"not below '{name}' (allowed: "
                                         f"{', '.join(sorted(ok))})")
+                    elif top in OUTSIDE_STACK:
+                        problems.append(f"{rel}:{line}: includes \"{inc}\": '{top}/' is "
+                                        "outside the layers (it may use them, not they it)")
                     if name in NO_FILE_IO and FILE_IO_HEADERS.match(inc):
                         problems.append(f"{rel}:{line}: includes <{inc}>: layer '{name}' does "
                                         "no file I/O (docs/architecture.md)")
@@ -132,10 +158,18 @@ def self_test():
         fio = os.path.join(tmp, "fit", "loss.cc")
         with open(fio, "a", encoding="utf-8") as f:
             f.write("\n#include <fstream>\n")
+        # The same upward include spelt relative to the including file, and a layer using a
+        # folder outside the stack.
+        with open(os.path.join(tmp, "fit", "fitter.h"), "a", encoding="utf-8") as f:
+            f.write('\n#include "../report/html_report.h"\n')
+        with open(os.path.join(tmp, "factor", "factor.h"), "a", encoding="utf-8") as f:
+            f.write('\n#include "tests/factor/factor_test_util.h"\n')
         r = subprocess.run([sys.executable, os.path.abspath(__file__), tmp],
                            capture_output=True, text=True)
         out = r.stdout + r.stderr
-        caught = r.returncode == 1 and "core/table.h" in out and "fit/loss.cc" in out
+        expected = ["core/table.h", "fit/loss.cc", "fit/fitter.h", "factor/factor.h"]
+        caught = r.returncode == 1 and all(
+            any(line.strip().startswith(e + ":") for line in out.splitlines()) for e in expected)
         print(out.strip())
         print("self-test: " + ("planted includes caught" if caught else "NOT caught"))
         return 0 if caught else 1

@@ -12,6 +12,7 @@
 #include "io/merl.h"
 #include "pipeline/inputs.h"
 #include "tests/io/io_test_util.h"
+#include "tests/pipeline/lab_tables.h"
 
 namespace brdfit {
 namespace {
@@ -92,6 +93,19 @@ TEST_F(NbrdfInputs, EveryCommandTakesAnNbrdfInput) {
   const CliResult report =
       RunCli({"report", (d / "fits.h5").string(), "-o", (d / "report.html").string()}, d);
   EXPECT_EQ(report.exit_code, 0) << report.err;
+  // The table given as nbrdf:NAME itself, as a file table would be: its slices are drawn.
+  const CliResult table_report = RunCli({"report", in, "--theta-d", "30", "--no-renders", "-o",
+                                         (d / "table.html").string()},
+                                        d);
+  EXPECT_EQ(table_report.exit_code, 0) << table_report.err;
+  const std::string html = brdfit::testing::ReadAll(d / "table.html");
+  EXPECT_NE(html.find("pink-felt: θd = 29.5°"), std::string::npos);  // the bin centre nearest 30°
+  EXPECT_EQ(html.find("No θh slices"), std::string::npos);
+  const CliResult bad_report =
+      RunCli({"report", "nbrdf:no-such-material", "-o", (d / "bad.html").string()}, d);
+  EXPECT_EQ(bad_report.exit_code, 2);
+  EXPECT_NE(bad_report.err.find("no-such-material"), std::string::npos) << bad_report.err;
+  EXPECT_FALSE(fs::exists(d / "bad.html"));
 
   const CliResult bad = RunCli({"info", "nbrdf:no-such-material"}, d);
   EXPECT_EQ(bad.exit_code, 2);

@@ -1,6 +1,6 @@
 // Measured tables on the GPU (3D texture, the table's theta_h mapping, validity-weighted
 // trilinear filtering) against the CPU reference (Table::LookupTrilinear), with and without
-// invalid cells; and a factorization's textures against its CPU evaluator when available.
+// invalid cells; and a factorization's textures against its CPU evaluator.
 #include <gtest/gtest.h>
 
 #include <fmt/core.h>
@@ -10,11 +10,9 @@
 #include <cmath>
 
 #include "core/synth.h"
-#if __has_include("factor/factor.h")
 #include "factor/factor.h"
 #include "pipeline/factor_textures.h"
 #include "tests/factor/factor_test_util.h"
-#endif
 #include "models/registry.h"
 #include "preview/reference_render.h"
 #include "preview/renderer.h"
@@ -90,7 +88,6 @@ TEST(Measured, GpuTextureMatchesTableLookupTrilinear) {
   }
 }
 
-#if __has_include("factor/factor.h")
 // The factored path: two textures per material, GL_LINEAR at texel centres, against the CPU
 // evaluator of the same textures (factor/factor_eval.h). Spot lights are not used by this path.
 TEST(Factored, GpuTexturesMatchCpuEvaluator) {
@@ -165,7 +162,6 @@ TEST(Factored, RankKWithDiffuseGpuMatchesCpuEvaluator) {
     EXPECT_GT(MaxRel(cpu1, cpu, ex), 0.2);
   }
 }
-#endif
 
 }  // namespace
 }  // namespace brdfit::preview

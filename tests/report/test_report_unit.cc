@@ -382,6 +382,19 @@ TEST(Inputs, FoldersKeepKnownKindsAndExplicitUnknownFilesAreErrors) {
   EXPECT_THROW(ReadReportInputs({dir}), InputError);
 }
 
+// An NBRDF input is a table like a file (no file to read here: the caller tabulates it), its
+// material named after the network; "nbrdf:" alone names none and is refused.
+TEST(Inputs, NbrdfInputIsATableOfItsMaterial) {
+  const ReportSources s = ReadReportInputs({"nbrdf:pink-felt"});
+  ASSERT_EQ(s.tables.size(), 1u);
+  EXPECT_EQ(s.tables.at("pink-felt"), fs::path("nbrdf:pink-felt"));
+  ASSERT_EQ(s.report.materials.size(), 1u);
+  EXPECT_EQ(s.report.materials[0].name, "pink-felt");
+  EXPECT_EQ(s.report.materials[0].source, "nbrdf:pink-felt");
+  EXPECT_THROW(ReadReportInputs({"nbrdf:"}), InputError);
+  EXPECT_THROW(ReadReportInputs({"nbrdf-pink-felt"}), InputError);  // not a prefix: a missing file
+}
+
 // ---- HTML ----------------------------------------------------------------------------------
 
 int Count(const std::string& s, const std::string& what) {
