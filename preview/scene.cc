@@ -269,6 +269,9 @@ MaterialSpec ParseMaterial(Reader r, const std::string& name) {
     const std::string form = r.String("form", "");
     if (!form.empty() && form != "auto") r.Fail("'form' must be \"auto\" (or left out)");
     m.factor_auto = form == "auto";
+    if (m.factor_auto && !m.factors.empty()) {
+      r.Fail("'form' chooses how a factorization of 'table' is computed; 'factors' is already one");
+    }
     if (m.factor_auto && (r.Has("parameterization") || r.Has("rank") || r.Has("diffuse"))) {
       r.Fail("'form': \"auto\" chooses the parameterization, rank and diffuse value: leave "
              "them out");

@@ -94,6 +94,9 @@ TEST(Scene, FactoredMaterialTakesRankAndDiffuse) {
   ExpectError(R"({"materials": {"f": {"type": "factored", "table": "t.binary", "form": "auto",
                   "rank": 2}}, "objects": [{"material": "f"}]})",
               "leave them out");
+  ExpectError(R"({"materials": {"f": {"type": "factored", "factors": "f.factor.json",
+                  "form": "auto"}}, "objects": [{"material": "f"}]})",
+              "'factors' is already one");
   ExpectError(R"({"materials": {"f": {"type": "factored", "table": "t.binary", "rank": 5}},
                   "objects": [{"material": "f"}]})",
               "'rank' must be in [1, 4]");
