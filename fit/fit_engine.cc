@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "fit/grid_init.h"
 #include "fit/metrics.h"
@@ -241,11 +242,13 @@ FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& lo
   // of the model itself): there the table's cells are the truth, and all the polish could fit is
   // the rendered images' interpolation of them (fit/rendered_error.h, RenderedLookup).
   constexpr double kExpressedCost = 1e-8;  // mean squared loss residual (final_cost)
+  std::optional<RenderedError> polished_rendered;  // the polish scored what it returned
   if (have_best && polish_on != nullptr && 2.0 * best_cost > kExpressedCost) {
     RenderedPolishOptions po;
     po.threads = opt.threads;
     const RenderedPolishOutcome polish = PolishOnRendered(ops, *polish_on, po, best_x);
     r.iterations += polish.iterations;
+    if (polish.ran) polished_rendered = polish.rendered;
     if (polish.improved) {
       // final_cost is the table loss at the result: re-evaluated at the polished parameters.
       ceres::Problem problem;
@@ -303,6 +306,9 @@ FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& lo
   };
   RunOnThreads(n_threads, predict);
   r.metrics = ComputeMetricsPerSample(metric, pred, opt.threads);
+  // The rendered metric of the result, when the polish already computed it at these parameters
+  // (else the caller scores it: fit/fitter.cc).
+  if (polished_rendered) r.metrics.rendered = *polished_rendered;
   r.times.metrics = MsSince(t0);
   r.times.metrics_cpu = ThreadCpuMs() - c0;
   if (!r.metrics.ok) {

@@ -97,8 +97,9 @@ FitResult FitPrepared(std::string_view model, const PreparedTable& table,
   FitResult r = internal::FitWithOps(Find(model), table.fit, own_loss ? *own_loss : table.loss,
                                      table.metric(), options, polish ? &table.rendered : nullptr);
   const ModelInfo* info = FindModel(model);
-  if (!r.Failed() && info && !table.rendered.Empty()) {
-    // The rendered-image metric of the fitted parameters (docs/accuracy.md).
+  if (!r.Failed() && info && !table.rendered.Empty() && !r.metrics.rendered.ok) {
+    // The rendered-image metric of the fitted parameters (docs/accuracy.md), unless the polish
+    // scored them already.
     const auto t0 = std::chrono::steady_clock::now();
     const double c0 = internal::ThreadCpuMs();
     r.metrics.rendered = ScoreRendered(table.rendered, ModelBrdf(*info, r.params));

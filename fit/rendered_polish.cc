@@ -21,14 +21,19 @@ std::vector<double> FromOpt(const ParamLayout& layout, const std::vector<double>
   return p;
 }
 
-// S at x, or NaN when the metric fails.
-double ScoreAt(const ModelOps& ops, const RenderedReference& ref, const std::vector<double>& x) {
+// The rendered metric at x (the parameters clamped into their bounds, as the fit reports them).
+RenderedError RenderedAt(const ModelOps& ops, const RenderedReference& ref,
+                         const std::vector<double>& x) {
   const std::vector<double> p = FromOpt(ops.layout, x);
-  const RenderedError e = ScoreRendered(ref, [&](const Vec3& wi, const Vec3& wo) {
+  return ScoreRendered(ref, [&](const Vec3& wi, const Vec3& wo) {
     std::array<double, 3> rgb{};
     ops.eval(p.data(), MakeGeometry(wi, wo), rgb.data());
     return rgb;
   });
+}
+
+// S of a rendered metric, or NaN when the metric failed.
+double ScoreOf(const RenderedError& e) {
   return e.ok ? RenderedScoreDb(e) : std::nan("");
 }
 
@@ -81,7 +86,8 @@ RenderedPolishOutcome PolishOnRendered(const ModelOps& ops, const RenderedRefere
   const ParamLayout& layout = ops.layout;
   const int P = static_cast<int>(layout.size());
   if (ref.pixels.empty() || ops.make_pixel_block == nullptr) return out;
-  out.score_before = out.score_after = ScoreAt(ops, ref, x);
+  out.rendered = RenderedAt(ops, ref, x);
+  out.score_before = out.score_after = ScoreOf(out.rendered);
   if (!std::isfinite(out.score_before)) return out;
   out.ran = true;
 
@@ -125,9 +131,11 @@ RenderedPolishOutcome PolishOnRendered(const ModelOps& ops, const RenderedRefere
     bool finite = std::isfinite(summary.final_cost);
     for (double v : cur) finite = finite && std::isfinite(v);
     if (!finite) break;
-    const double s = ScoreAt(ops, ref, cur);
+    const RenderedError e = RenderedAt(ops, ref, cur);
+    const double s = ScoreOf(e);
     if (std::isfinite(s) && s > out.score_after) {
       out.score_after = s;
+      out.rendered = e;
       out.improved = true;
       x = cur;
     }

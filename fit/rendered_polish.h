@@ -39,6 +39,7 @@ struct RenderedPolishOutcome {
   bool improved = false;  // x changed (S rose)
   int iterations = 0;
   double score_before = 0, score_after = 0;  // S, dB
+  RenderedError rendered;  // the rendered metric of the x returned (ok when ran)
 };
 
 // x: the fit's parameters in optimization space (fit/param_layout.h), updated in place when
