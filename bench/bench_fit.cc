@@ -57,9 +57,10 @@ std::vector<BenchTable> LoadTables(const std::vector<std::string>& nbrdf) {
   return tables;
 }
 
-// Google Benchmark: init + LM of lambert+ggx, metrics excluded (a one-sample metric set, no
-// rendered-image metric).
-void BM_LambertGgx(benchmark::State& state, const BenchTable* table, std::string budget) {
+// Google Benchmark: init + LM of a model, metrics excluded (a one-sample metric set, no
+// rendered-image metric, so no polish either).
+void BM_Fit(benchmark::State& state, const BenchTable* table, std::string model,
+            std::string budget) {
   SampleOptions so;
   so.budget = Budget::Parse(budget);
   FitOptions fo;
@@ -69,7 +70,7 @@ void BM_LambertGgx(benchmark::State& state, const BenchTable* table, std::string
   prepared.rendered = RenderedReference{};  // metrics excluded (bench_metrics times them)
   FitResult r;
   for (auto _ : state) {
-    r = FitPrepared("lambert+ggx", prepared, fo);
+    r = FitPrepared(model, prepared, fo);
     benchmark::DoNotOptimize(r.params.data());
   }
   state.counters["samples"] = static_cast<double>(r.fit_samples);
@@ -168,12 +169,25 @@ int main(int argc, char** argv) {
   static const std::vector<BenchTable> tables = LoadTables(bench::kBenchNbrdf);
   for (const BenchTable& t : tables) {
     for (const std::string& b : kBudgets) {
-      benchmark::RegisterBenchmark(("lambert+ggx/" + t.material + "/" + b).c_str(), BM_LambertGgx,
-                                   &t, b)
+      benchmark::RegisterBenchmark(("lambert+ggx/" + t.material + "/" + b).c_str(), BM_Fit, &t,
+                                   std::string("lambert+ggx"), b)
           ->Unit(benchmark::kMillisecond)
           ->Repetitions(5)
           ->ReportAggregatesOnly(true)
           ->Iterations(b == "full" ? 1 : 3);
+    }
+  }
+  // Multi-lobe fits against their single lobe at the default budget (docs/fitting.md, "Speed
+  // against error": issue 18 asks for two- and three-lobe fits within 3x one lobe).
+  for (const BenchTable& t : tables) {
+    for (const char* m : {"lambert+lafortune", "lambert+lafortune+lafortune+lafortune",
+                          "lambert+ggx+ggx"}) {
+      benchmark::RegisterBenchmark((std::string(m) + "/" + t.material + "/stride:32").c_str(),
+                                   BM_Fit, &t, std::string(m), std::string("stride:32"))
+          ->Unit(benchmark::kMillisecond)
+          ->Repetitions(5)
+          ->ReportAggregatesOnly(true)
+          ->Iterations(1);
     }
   }
   int n = static_cast<int>(rest.size());
