@@ -225,7 +225,8 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
                "per channel with a sparse factorization per step: seconds (rank 1) to many "
                "minutes (rank >= 2) per MERL-size table; mccool refines in well under a second\n",
                options.resolution, options.rank,
-               options.rank * (options.resolution + options.resolution * options.resolution) +
+               options.rank * (FactorSystem::NumP(options.resolution) +
+                               FactorSystem::NumQ(options.param, options.resolution)) +
                    (options.diffuse ? 1 : 0));
   }
   MakeOutputFolder(o.out_dir);

@@ -25,13 +25,13 @@ constexpr int kDenseStartLimit = 1024;
 // sparse entries copied into one compact CSR (the strided rows of the system are far apart in
 // memory: reading them in place cost a cache miss per array per row).
 struct RowSet {
-  std::vector<std::uint32_t> row;  // the system's row index (for the pattern)
-  std::vector<int> start{0};       // compact CSR: entries of row i in [start[i], start[i + 1])
+  std::vector<int> start{0};  // compact CSR: entries of row i in [start[i], start[i + 1])
   std::vector<int> col;
   std::vector<double> val;
   std::vector<double> w;
   RowValues m;
   double weight_sum = 0;
+  std::size_t size() const { return w.size(); }
 };
 
 RowSet PickRows(const FactorSystem& sys, const Table& table, std::size_t max_rows) {
@@ -43,7 +43,6 @@ RowSet PickRows(const FactorSystem& sys, const Table& table, std::size_t max_row
   for (std::size_t r = 0; r < n; r += stride) {
     const double* v = table.Value(sys.row_cells()[r]);
     if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) continue;
-    s.row.push_back(static_cast<std::uint32_t>(r));
     for (int j = sys.row_start()[r]; j < sys.row_start()[r + 1]; ++j) {
       s.col.push_back(sys.cols()[j]);
       s.val.push_back(sys.vals()[j]);
@@ -95,8 +94,7 @@ DataTerms MakeDataTerms(RefineLoss loss, const RowSet& rows) {
   return t;
 }
 
-inline double Residual(RefineLoss loss, double f, double target, double scale,
-                       double* dres_df) {
+inline double Residual(RefineLoss loss, double f, double target, double scale, double* dres_df) {
   if (loss == RefineLoss::kRel) {
     *dres_df = scale;
     return scale * (f - target);
@@ -126,7 +124,7 @@ class ChannelProblem {
   // Data part of the objective only (sum of squared residuals), for reporting.
   double DataCost(const Eigen::VectorXd& th) const {
     double cost = 0;
-    for (std::size_t i = 0; i < rows_.row.size(); ++i) {
+    for (std::size_t i = 0; i < rows_.size(); ++i) {
       double f = diffuse_ ? th[nt_ - 1] : 0.0;
       for (int k = 0; k < rank_; ++k) {
         const double lg = RowLog(rows_, i, th.data() + k * n_);
@@ -134,9 +132,8 @@ class ChannelProblem {
         f += std::exp(lg);
       }
       double unused;
-      const double res =
-          Residual(loss_, f, data_.target(static_cast<Eigen::Index>(i), ch_),
-                   data_.scale(static_cast<Eigen::Index>(i), ch_), &unused);
+      const double res = Residual(loss_, f, data_.target(static_cast<Eigen::Index>(i), ch_),
+                                  data_.scale(static_cast<Eigen::Index>(i), ch_), &unused);
       cost += res * res;
     }
     return cost;
@@ -204,7 +201,7 @@ class ChannelProblem {
       if (!have_pattern_) BuildPattern();
       std::fill(hs_.valuePtr(), hs_.valuePtr() + hs_.nonZeros(), 0.0);
     }
-    const std::size_t rows = rows_.row.size();
+    const std::size_t rows = rows_.size();
     double ce[kMaxTerms + 1];
     std::vector<int> idx;
     std::vector<double> val;
@@ -218,9 +215,8 @@ class ChannelProblem {
         f += ce[k];
       }
       double s;
-      const double res =
-          Residual(loss_, f, data_.target(static_cast<Eigen::Index>(i), ch_),
-                   data_.scale(static_cast<Eigen::Index>(i), ch_), &s);
+      const double res = Residual(loss_, f, data_.target(static_cast<Eigen::Index>(i), ch_),
+                                  data_.scale(static_cast<Eigen::Index>(i), ch_), &s);
       for (int k = 0; k < rank_; ++k) ce[k] *= s;
       ce[rank_] = s;
       cost += res * res;
@@ -297,10 +293,11 @@ class ChannelProblem {
     using Triplet = Eigen::Triplet<double>;
     std::vector<Triplet> t;
     std::vector<int> idx;
-    for (std::size_t i = 0; i < rows_.row.size(); ++i) {
+    for (std::size_t i = 0; i < rows_.size(); ++i) {
       idx.clear();
       for (int k = 0; k < rank_; ++k) {
-        for (int j = rows_.start[i]; j < rows_.start[i + 1]; ++j) idx.push_back(k * n_ + rows_.col[j]);
+        for (int j = rows_.start[i]; j < rows_.start[i + 1]; ++j)
+          idx.push_back(k * n_ + rows_.col[j]);
       }
       if (diffuse_) idx.push_back(nt_ - 1);
       for (std::size_t x = 0; x < idx.size(); ++x) {
@@ -347,17 +344,18 @@ class ChannelProblem {
   bool have_pattern_ = false;
 };
 
-// The model value of every system row (channels as columns) for the current terms and d.
-RowValues ModelRows(const FactorSystem& sys, const std::vector<Eigen::MatrixX3d>& terms,
-                    const std::array<double, 3>& d) {
-  RowValues f(static_cast<Eigen::Index>(sys.num_rows()), 3);
+// The model value d + sum_k exp(a_r^T x_k) of `n` rows (channels as columns), row_log(r, x)
+// giving a_r^T x: every row of the system, or the refinement's rows.
+template <class RowLogFn>
+RowValues ModelValues(std::size_t n, RowLogFn row_log, const std::vector<Eigen::MatrixX3d>& terms,
+                      const std::array<double, 3>& d) {
+  RowValues f(static_cast<Eigen::Index>(n), 3);
   for (int c = 0; c < 3; ++c) f.col(c).setConstant(d[c]);
   for (const auto& x : terms) {
     for (int c = 0; c < 3; ++c) {
       const double* xc = x.col(c).data();  // column-major: a channel's unknowns are contiguous
-      for (std::size_t r = 0; r < sys.num_rows(); ++r) {
-        f(static_cast<Eigen::Index>(r), c) +=
-            std::exp(std::min(kMaxLog, RowLog(sys, static_cast<std::uint32_t>(r), xc)));
+      for (std::size_t r = 0; r < n; ++r) {
+        f(static_cast<Eigen::Index>(r), c) += std::exp(std::min(kMaxLog, row_log(r, xc)));
       }
     }
   }
@@ -388,22 +386,6 @@ Eigen::MatrixX3d SolveRemainder(const FactorSystem& sys, const Table& table, con
   return x;
 }
 
-// The model value of every row of `rows` (channels as columns).
-RowValues ModelRows(const RowSet& rows, const std::vector<Eigen::MatrixX3d>& terms,
-                    const std::array<double, 3>& d) {
-  RowValues f(static_cast<Eigen::Index>(rows.row.size()), 3);
-  for (int c = 0; c < 3; ++c) f.col(c).setConstant(d[c]);
-  for (const auto& x : terms) {
-    for (int c = 0; c < 3; ++c) {
-      const double* xc = x.col(c).data();
-      for (std::size_t i = 0; i < rows.row.size(); ++i) {
-        f(static_cast<Eigen::Index>(i), c) += std::exp(std::min(kMaxLog, RowLog(rows, i, xc)));
-      }
-    }
-  }
-  return f;
-}
-
 // The log-linear solve of max(m - f, floor * m) on the refinement's rows only:
 //   (A_s^T W_s A_s + S^T S) x = A_s^T W_s y_s,
 // the cached system's normal equations (factor_system.h) restricted to the rows the refinement
@@ -416,7 +398,7 @@ Eigen::MatrixX3d SolveRemainderOnRows(const RowSet& rows, const Eigen::SparseMat
                                       const Eigen::MatrixX3d& fallback) {
   Eigen::MatrixXd a = Eigen::MatrixXd(sts);
   Eigen::MatrixX3d b = Eigen::MatrixX3d::Zero(n, 3);
-  for (std::size_t i = 0; i < rows.row.size(); ++i) {
+  for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto ii = static_cast<Eigen::Index>(i);
     if (!(rows.m(ii, 0) > 0 && rows.m(ii, 1) > 0 && rows.m(ii, 2) > 0)) continue;
     double y[3];
@@ -456,9 +438,9 @@ RefineResult RefineFactorization(const FactorSystem& sys, const Table& table,
   const RowSet rows = PickRows(sys, table, options.max_rows);
   const DataTerms data = MakeDataTerms(options.loss, rows);
   RefineResult out;
-  out.rows = rows.row.size();
+  out.rows = rows.size();
   out.terms.push_back(x0);
-  if (rows.row.empty() || !(rows.weight_sum > 0)) return out;
+  if (rows.size() == 0 || !(rows.weight_sum > 0)) return out;
   const Eigen::SparseMatrix<double> sts =
       Eigen::SparseMatrix<double>(sys.smoothing().transpose() * sys.smoothing());
 
@@ -474,9 +456,26 @@ RefineResult RefineFactorization(const FactorSystem& sys, const Table& table,
     for (int c = 0; c < 3; ++c) out.objective_start += p[c].Cost(th[c]);
   }
 
-  // Each further term's start: on the refinement's rows when a term's unknowns are few (a dense
-  // solve), on every row through the cached system otherwise.
-  const bool dense_starts = n <= kDenseStartLimit;
+  // A term's start, the log-linear solve of what d and `terms` leave: on the refinement's rows
+  // when a term's unknowns are few (a dense solve), on every row through the cached system
+  // otherwise.
+  const auto solve_remainder = [&](const std::vector<Eigen::MatrixX3d>& terms,
+                                   const std::array<double, 3>& d, double floor,
+                                   const Eigen::MatrixX3d& fallback) {
+    if (n <= kDenseStartLimit) {
+      const RowValues f = ModelValues(
+          rows.size(), [&](std::size_t i, const double* x) { return RowLog(rows, i, x); }, terms,
+          d);
+      return SolveRemainderOnRows(rows, sts, n, f, floor, fallback);
+    }
+    const RowValues f = ModelValues(
+        sys.num_rows(),
+        [&](std::size_t r, const double* x) {
+          return RowLog(sys, static_cast<std::uint32_t>(r), x);
+        },
+        terms, d);
+    return SolveRemainder(sys, table, f, floor, removed, fallback);
+  };
   std::array<double, 3> d{0, 0, 0};
   if (options.diffuse) {
     // d starts at half the 5 % quantile of the measured values, the term on what is left.
@@ -487,22 +486,13 @@ RefineResult RefineFactorization(const FactorSystem& sys, const Table& table,
       std::nth_element(v.begin(), q, v.end());
       d[c] = std::max(0.0, 0.5 * *q);
     }
-    if (dense_starts) {
-      out.terms[0] = SolveRemainderOnRows(rows, sts, n, ModelRows(rows, {}, d), 0.25, x0);
-    } else {
-      RowValues f(static_cast<Eigen::Index>(sys.num_rows()), 3);
-      for (int c = 0; c < 3; ++c) f.col(c).setConstant(d[c]);
-      out.terms[0] = SolveRemainder(sys, table, f, 0.25, removed, x0);
-    }
+    out.terms[0] = solve_remainder({}, d, 0.25, x0);
   }
 
   for (int k = 1; k <= rank; ++k) {
     if (k > 1) {
       const Eigen::MatrixX3d start = out.terms.back().array() + std::log(0.1);
-      out.terms.push_back(
-          dense_starts
-              ? SolveRemainderOnRows(rows, sts, n, ModelRows(rows, out.terms, d), 0.02, start)
-              : SolveRemainder(sys, table, ModelRows(sys, out.terms, d), 0.02, removed, start));
+      out.terms.push_back(solve_remainder(out.terms, d, 0.02, start));
     }
     for (int c = 0; c < 3; ++c) {
       ChannelProblem p(sys, rows, data, c, k, options.diffuse, options.loss, sts);

@@ -225,8 +225,8 @@ std::shared_ptr<const FactorSystem> FactorSystem::Build(const Grid& grid,
   const int n = options.resolution;
   const int k = n;  // radial knots
   const bool mccool = options.param == FactorParam::kMcCool;
-  s->n_p_ = k;
-  s->n_q_ = mccool ? k : n * n;
+  s->n_p_ = NumP(n);
+  s->n_q_ = NumQ(options.param, n);
   const int n_p = s->n_p_;
 
   // ---- data rows, accumulated into M as they are made ----

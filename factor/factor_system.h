@@ -84,6 +84,12 @@ class FactorSystem {
   const FactorSystemOptions& options() const { return options_; }
   int num_p() const { return n_p_; }  // p unknowns come first
   int num_q() const { return n_q_; }
+  // num_p() + num_q() of a system built at `resolution`, before building it: radial profiles of
+  // `resolution` knots for p (and mccool's q), a resolution^2 texture for halfdiff's q.
+  static int NumP(int resolution) { return resolution; }
+  static int NumQ(FactorParam param, int resolution) {
+    return param == FactorParam::kMcCool ? resolution : resolution * resolution;
+  }
   std::size_t num_rows() const { return row_cells_.size(); }
   // Table cell index of each row.
   const std::vector<std::uint32_t>& row_cells() const { return row_cells_; }

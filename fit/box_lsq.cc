@@ -27,14 +27,21 @@ Eigen::VectorXd Enumerate(const Eigen::MatrixXd& N, const Eigen::VectorXd& b,
   // q is convex (N positive semi-definite): an unconstrained minimizer inside the box is the
   // constrained one, and the 3^k enumeration is not needed (the common case, the initializer's
   // weights away from their bounds; ~10x faster for k = 4).
+  // That is the enumeration's first assignment (code 0, every variable free), so the loop
+  // starts after it.
   {
     const Eigen::VectorXd x = N.completeOrthogonalDecomposition().solve(b);
     bool inside = true;
-    for (int i = 0; i < k; ++i) inside = inside && std::isfinite(x[i]) && x[i] >= lo[i] && x[i] <= hi[i];
-    if (inside && Objective(N, b, x) < best_q) return x;
+    for (int i = 0; i < k; ++i) {
+      inside = inside && std::isfinite(x[i]) && x[i] >= lo[i] && x[i] <= hi[i];
+    }
+    if (inside) {
+      const double q = Objective(N, b, x);
+      if (q < best_q) return x;
+    }
   }
   std::vector<int> state(k);
-  for (int code = 0; code < combos; ++code) {
+  for (int code = 1; code < combos; ++code) {
     int c = code;
     bool skip = false;
     std::vector<int> free_idx;

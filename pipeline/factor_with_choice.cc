@@ -1,8 +1,5 @@
 #include "pipeline/factor_with_choice.h"
 
-#include <chrono>
-
-#include "core/factor_form.h"
 #include "core/model_choice.h"
 #include "factor/factor_form.h"
 #include "factor/factor_metrics.h"
