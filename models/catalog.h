@@ -24,6 +24,7 @@
 #include "models/oren_nayar.h"
 #include "models/phong.h"
 #include "models/sgd.h"
+#include "models/sheen.h"
 #include "models/sum.h"
 #include "models/ue4.h"
 #include "models/ward.h"
@@ -56,7 +57,9 @@ using ModelCatalog = std::tuple<
     Sum<Lambert, Sgd>,
     // rough diffuse bodies under a GGX lobe: for fabrics and matte paints, whose grazing
     // brightening Lambert cannot hold (docs/accuracy.md)
-    Sum<OrenNayar, Ggx>, Sum<Burley, Ggx>>;
+    Sum<OrenNayar, Ggx>, Sum<Burley, Ggx>,
+    // a sheen lobe for cloth: the grazing highlight of fibres (docs/accuracy.md)
+    Sheen, Sum<Lambert, Sheen>, Sum<Lambert, Ggx, Sheen>, Sum<Burley, Ggx, Sheen>>;
 
 // Calls f(std::type_identity<M>{}) for every model type M in the catalog.
 template <class F>

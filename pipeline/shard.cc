@@ -58,6 +58,12 @@ const std::map<std::string, int>& MeasuredRunCost() {
       {"lambert+abc", 58},
       {"lambert+lafortune+lafortune", 109},
       {"lambert+lafortune+lafortune+lafortune", 289},
+      // The sheen models, measured later (2026-12-02, load 3) beside lambert+ggx (33 ms) and
+      // burley+ggx (75 ms), scaled to the table above by lambert+ggx's ratio (1.4).
+      {"sheen", 12},
+      {"lambert+sheen", 12},
+      {"lambert+ggx+sheen", 20},
+      {"burley+ggx+sheen", 40},
   };
   return costs;
 }

@@ -122,6 +122,11 @@ struct OracleCase<Sgd> : OracleOf<oracle::Sgd> {
 };
 
 template <>
+struct OracleCase<Sheen> : OracleOf<oracle::Sheen> {
+  static ParamSets Params() { return WithWeights({{0.01}, {0.07}, {0.3}, {1.0}}); }
+};
+
+template <>
 struct OracleCase<Beckmann> : OracleOf<oracle::Beckmann> {
   static ParamSets Params() { return WithWeights({{1e-4}, {0.01}, {0.1}, {0.5}, {1.0}}); }
 };

@@ -233,6 +233,16 @@ inline void Sgd(const double* p, const Angles& a, double rgb[3]) {
   for (int c = 0; c < 3; ++c) rgb[c] = p[c] * v;
 }
 
+// Estevez & Kulla 2017 Charlie D = (2 + 1/alpha) sin(th_h)^(1/alpha) / (2 pi), in the paper's
+// form with std::pow, and Neubelt & Pettineo 2013's V = 1 / (4 (cos_i + cos_o - cos_i cos_o)).
+inline void Sheen(const double* p, const Angles& a, double rgb[3]) {
+  const double alpha = p[3];
+  const double d = (2 + 1 / alpha) * std::pow(std::sin(Half(a).th), 1 / alpha) / (2 * kPi);
+  const double ci = std::cos(a.ti), co = std::cos(a.to);
+  const double v = d / (4 * (ci + co - ci * co));
+  for (int c = 0; c < 3; ++c) rgb[c] = p[c] * v;
+}
+
 // Walter 2007 eq. 20 with D eq. 25 and exact separable Smith G.
 inline void Beckmann(const double* p, const Angles& a, double rgb[3]) {
   const double alpha = p[3];
