@@ -108,8 +108,8 @@ def render_three(tools, chromium, model, png):
 
 
 def shader_cases(o, tools, chromium, cases):
-    """The ShaderMaterial modules (--format threejs): the analytic fits (gold lambert+ggx-hc and
-    red ue4: brdfit's own GLSL, so both exact) and two factorizations of a synthetic table
+    """The ShaderMaterial modules (--format threejs): the analytic fits (gold lambert+ggx-hc, red
+    ue4 and a cloth lambert+ggx+sheen: brdfit's own GLSL, so all exact) and two factorizations of a synthetic table
     (mccool rank 2 with diffuse, halfdiff rank 1; half-float textures), against brdfit render of
     the same material: mean <= SHADER_MEAN_TOL, p99 <= SHADER_P99_TOL levels. Planted: alpha
     exported as sqrt(alpha) must be caught. Returns the number of failures."""
@@ -122,6 +122,17 @@ def shader_cases(o, tools, chromium, cases):
                     "--param", "lambert.kd_g=0.1", "--param", "lambert.kd_b=0.05"],
                    check=True, capture_output=True)
     items = [(name, fit) for name, fit, _, _ in cases if name in ("gold", "red-ue4")]
+    # Cloth, the sheen lobe of `--model auto` (models/sheen.h): no glTF counterpart is written
+    # yet, the ShaderMaterial carries it exactly.
+    items.append(("cloth-sheen", {
+        "source": "synthetic", "material": "cloth", "model": "lambert+ggx+sheen",
+        "status": "converged", "message": "",
+        "params": {"lambert.kd_r": 0.21, "lambert.kd_g": 0.13, "lambert.kd_b": 0.07,
+                   "ggx.ks_r": 0.05, "ggx.ks_g": 0.04, "ggx.ks_b": 0.03, "ggx.alpha": 0.4,
+                   "sheen.sheen_r": 0.6, "sheen.sheen_g": 0.4, "sheen.sheen_b": 0.5,
+                   "sheen.alpha": 0.15},
+        "metrics": {"log_rmse": 0, "cbrt_rmse": 0, "rel_l2": 0, "weighting": "none",
+                    "cutoff_deg": 90}}))
     for param, extra in (("mccool", ["--diffuse", "--rank", "2"]), ("halfdiff", [])):
         out = os.path.join(work, "factor-" + param)
         subprocess.run([brdfit, "factor", table, "--param", param, "--res", "32", "-q", "-o", out,
