@@ -99,7 +99,8 @@ Registrar reg{
       sub.add_flag("-q,--quiet", o->quiet, "no summary line");
       sub.footer(
           "Exit codes: 0 ok, 2 bad input or output. Exportable models: lambert+ggx-hc, "
-          "lambert+ggx, lambert+ggx-f0, ue4 (threejs: any analytic model); docs/exports.md has the "
+          "lambert+ggx, lambert+ggx-f0, ue4, lambert+ggx+sheen (threejs: any analytic model); "
+          "docs/exports.md has the "
           "mappings.\n"
           "Examples:\n  brdfit fit gold.binary --model ggx-hc --json fits.json\n"
           "  brdfit export fits.json --format glb -o gold.glb");

@@ -95,6 +95,7 @@ GltfFiles BuildGltf(const GltfPbr& g, const Provenance& p, const std::string& bi
   Json used = Json::array();
   if (g.specular_ext) used.push_back("KHR_materials_specular");
   if (g.ior_ext) used.push_back("KHR_materials_ior");
+  if (g.sheen_ext) used.push_back("KHR_materials_sheen");
   if (!used.empty()) j["extensionsUsed"] = used;
   j["scene"] = 0;
   j["scenes"] = Json::array({{{"name", p.material}, {"nodes", Json::array({0})}}});
@@ -118,6 +119,10 @@ GltfFiles BuildGltf(const GltfPbr& g, const Provenance& p, const std::string& bi
                                        {"specularColorFactor", Array3(g.specular_color)}};
     }
     if (g.ior_ext) ext["KHR_materials_ior"] = {{"ior", g.ior}};
+    if (g.sheen_ext) {
+      ext["KHR_materials_sheen"] = {{"sheenColorFactor", Array3(g.sheen_color)},
+                                    {"sheenRoughnessFactor", g.sheen_roughness}};
+    }
     mat["extensions"] = ext;
   }
   mat["extras"] = ProvenanceJson(p);

@@ -22,12 +22,12 @@ Rgb Triple(const FitResult& fit, const std::string& prefix) {
 }  // namespace
 
 const char* ExportableModels() {
-  return "lambert+ggx-hc, lambert+ggx, lambert+ggx-f0, ue4";
+  return "lambert+ggx-hc, lambert+ggx, lambert+ggx-f0, ue4, lambert+ggx+sheen";
 }
 
 bool IsExportable(const std::string& model) {
   return model == "lambert+ggx-hc" || model == "lambert+ggx" || model == "lambert+ggx-f0" ||
-         model == "ue4";
+         model == "ue4" || model == "lambert+ggx+sheen";
 }
 
 LobeMaterial FromFit(const FitResult& fit) {
@@ -58,10 +58,15 @@ LobeMaterial FromFit(const FitResult& fit) {
     m.masking = Masking::kHeightCorrelated;
     m.fresnel = LobeFresnel::kSchlick;
   } else {
-    const std::string lobe = fit.model == "lambert+ggx" ? "ggx" : "ggx-hc";
+    const std::string lobe = fit.model == "lambert+ggx-hc" ? "ggx-hc" : "ggx";
     m.spec = Triple(fit, lobe + ".ks");
     m.alpha = Param(fit, lobe + ".alpha");
     m.masking = lobe == "ggx" ? Masking::kSeparable : Masking::kHeightCorrelated;
+  }
+  if (fit.model == "lambert+ggx+sheen") {
+    m.sheen = true;
+    m.sheen_color = Triple(fit, "sheen.sheen");
+    m.sheen_alpha = Param(fit, "sheen.alpha");
   }
   return m;
 }

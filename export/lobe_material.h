@@ -21,6 +21,7 @@ enum class LobeFresnel { kFoldedIntoKs, kSchlick };
 
 //   f_r = kd / pi + spec D_GGX(alpha) G / (4 cos_i cos_o)                 (kFoldedIntoKs)
 //   f_r = kd / pi + F_Schlick(spec, cos_d) D_GGX(alpha) G / (4 cos_i cos_o) (kSchlick)
+// plus, for lambert+ggx+sheen, the Charlie sheen lobe of models/sheen.h (sheen = true),
 // and, for ue4, its own metallic-roughness parameters (diffuse (1 - m) base / pi, F0 =
 // mix(0.04, base, m)), which kd and spec restate without the Schlick-Smith G.
 struct LobeMaterial {
@@ -33,6 +34,10 @@ struct LobeMaterial {
   bool ue4 = false;  // then base and metallic hold its own parameters
   Rgb base{};
   double metallic = 0;
+  // lambert+ggx+sheen: + sheen D_Charlie(sheen_alpha) V_Neubelt, added (models/sheen.h).
+  bool sheen = false;
+  Rgb sheen_color{};
+  double sheen_alpha = 0;  // glTF sheenRoughness = sqrt(sheen_alpha)
 };
 
 // The models export reads, comma-separated, for messages.

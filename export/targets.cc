@@ -76,12 +76,38 @@ Rgb ConstantWeight(const LobeMaterial& m, const char* target_name, Fidelity* f) 
   return m.spec;
 }
 
+// A target without the Charlie sheen: the lobe is left out, and said.
+void NoteSheenDropped(const LobeMaterial& m, const char* target_name, Fidelity* f) {
+  if (!m.sheen) return;
+  f->approximations.push_back(fmt::format(
+      "{} has no Charlie sheen: the fit's sheen lobe (colour {}, alpha {:.4g}) is left out, so "
+      "the material is darker towards grazing (three.js and glTF carry it)",
+      target_name, Fmt3(m.sheen_color), m.sheen_alpha));
+}
+
+// KHR_materials_sheen: the sheen lobe over the base layer, which the extension dims by its
+// albedo scaling min(1 - max(sheenColor) E(cos_o), 1 - max(sheenColor) E(cos_i)) (E the sheen's
+// directional albedo); the fit adds the lobe to an undimmed body.
+void SheenToGltf(const LobeMaterial& m, GltfPbr* g) {
+  if (!m.sheen) return;
+  g->sheen_ext = true;
+  g->sheen_color = m.sheen_color;
+  g->sheen_roughness = std::sqrt(std::max(m.sheen_alpha, 0.0));
+  g->fidelity.approximations.push_back(fmt::format(
+      "KHR_materials_sheen dims the layer below the sheen by its albedo scaling, the fit adds "
+      "the sheen to an undimmed body: the body is darker by max(sheenColor) E = {:.4g} E "
+      "(E <= 1, the sheen's directional albedo, largest at grazing); viewers evaluate the sheen "
+      "with Neubelt's visibility (three.js, the fit's) or Charlie's (Khronos Sample Viewer)",
+      Max(m.sheen_color)));
+}
+
 }  // namespace
 
 GltfPbr ToGltf(const LobeMaterial& m) {
   GltfPbr g;
   g.roughness = std::sqrt(std::max(m.alpha, 0.0));
   Fidelity& f = g.fidelity;
+  SheenToGltf(m, &g);
   if (m.ue4) {
     // Karis 2013 is glTF's own parameterization: base colour, metallic, roughness = sqrt(alpha).
     g.base_color = m.base;
@@ -137,6 +163,7 @@ GltfPbr ToGltf(const LobeMaterial& m) {
 MitsubaBlend ToMitsuba(const LobeMaterial& m) {
   MitsubaBlend b;
   Fidelity& f = b.fidelity;
+  NoteSheenDropped(m, "Mitsuba 3", &f);
   b.alpha = m.alpha;
   NoteMasking(m, Masking::kSeparable, "Mitsuba 3 roughconductor", &f);
   const Rgb ks = ConstantWeight(m, "Mitsuba 3", &f);
@@ -157,6 +184,7 @@ MitsubaBlend ToMitsuba(const LobeMaterial& m) {
 PbrtMix ToPbrt(const LobeMaterial& m) {
   PbrtMix p;
   Fidelity& f = p.fidelity;
+  NoteSheenDropped(m, "pbrt-v4", &f);
   p.roughness = m.alpha;
   NoteMasking(m, Masking::kHeightCorrelated, "pbrt-v4 conductor", &f);
   const Rgb ks = ConstantWeight(m, "pbrt-v4", &f);
@@ -220,6 +248,7 @@ BlenderMaterial ToBlender(const LobeMaterial& m) {
   b.roughness = std::sqrt(std::max(m.alpha, 0.0));
   // The exact node tree: Diffuse BSDF + Glossy BSDF (GGX, no Fresnel, separable masking).
   Fidelity& f = b.fidelity;
+  NoteSheenDropped(m, "Blender's Diffuse + Glossy node tree", &f);
   NoteMasking(m, Masking::kSeparable, "Cycles 3.4 Glossy BSDF (GGX)", &f);
   const Rgb ks = ConstantWeight(m, "Blender", &f);
   b.diffuse_color = m.kd;
@@ -227,6 +256,7 @@ BlenderMaterial ToBlender(const LobeMaterial& m) {
 
   // The Principled BSDF, metallic 0: base colour kd, cspec0 = A + B kd nearest to ks.
   Fidelity& p = b.principled_fidelity;
+  NoteSheenDropped(m, "Cycles 3.4's Principled BSDF (its Sheen is Burley's, not Charlie's)", &p);
   b.base_color = m.kd;
   const auto [a, slope] = GreyPlusTint(ks, m.kd);
   const double lum = CyclesTintLuminance(m.kd);

@@ -19,7 +19,8 @@ struct Fidelity {
 // glTF 2.0 metallic-roughness (Appendix B) with KHR_materials_specular and KHR_materials_ior:
 // dielectric = (1 - w max(Fr)) baseColor / pi + w Fr D V, Fr = f0 + (1 - f0)(1 - v.h)^5,
 // f0 = min(((ior - 1)/(ior + 1))^2 specularColor, 1), w = specularFactor; V height-correlated.
-// The default ior 1.5 is kept (0.04 specularColor = F0), so ior_ext stays false.
+// The default ior 1.5 is kept (0.04 specularColor = F0), so ior_ext stays false. A sheen lobe
+// goes to KHR_materials_sheen (sheenColorFactor, sheenRoughnessFactor = sqrt(alpha)).
 struct GltfPbr {
   Rgb base_color{};
   double metallic = 0;
@@ -29,6 +30,10 @@ struct GltfPbr {
   Rgb specular_color{1, 1, 1};
   bool ior_ext = false;
   double ior = 1.5;
+  // KHR_materials_sheen: f = sheenColor D_Charlie V + base layer x sheen albedo scaling.
+  bool sheen_ext = false;
+  Rgb sheen_color{};
+  double sheen_roughness = 0;  // sqrt(sheen alpha)
   Fidelity fidelity;
 };
 GltfPbr ToGltf(const LobeMaterial& m);

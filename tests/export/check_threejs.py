@@ -122,17 +122,9 @@ def shader_cases(o, tools, chromium, cases):
                     "--param", "lambert.kd_g=0.1", "--param", "lambert.kd_b=0.05"],
                    check=True, capture_output=True)
     items = [(name, fit) for name, fit, _, _ in cases if name in ("gold", "red-ue4")]
-    # Cloth, the sheen lobe of `--model auto` (models/sheen.h): no glTF counterpart is written
-    # yet, the ShaderMaterial carries it exactly.
-    items.append(("cloth-sheen", {
-        "source": "synthetic", "material": "cloth", "model": "lambert+ggx+sheen",
-        "status": "converged", "message": "",
-        "params": {"lambert.kd_r": 0.21, "lambert.kd_g": 0.13, "lambert.kd_b": 0.07,
-                   "ggx.ks_r": 0.05, "ggx.ks_g": 0.04, "ggx.ks_b": 0.03, "ggx.alpha": 0.4,
-                   "sheen.sheen_r": 0.6, "sheen.sheen_g": 0.4, "sheen.sheen_b": 0.5,
-                   "sheen.alpha": 0.15},
-        "metrics": {"log_rmse": 0, "cbrt_rmse": 0, "rel_l2": 0, "weighting": "none",
-                    "cutoff_deg": 90}}))
+    # Cloth, the sheen lobe of `--model auto` (models/sheen.h): the ShaderMaterial carries it
+    # exactly.
+    items.append(("cloth-sheen", CLOTH))
     for param, extra in (("mccool", ["--diffuse", "--rank", "2"]), ("halfdiff", [])):
         out = os.path.join(work, "factor-" + param)
         subprocess.run([brdfit, "factor", table, "--param", param, "--res", "32", "-q", "-o", out,
@@ -176,6 +168,17 @@ def shader_cases(o, tools, chromium, cases):
             print(f"shader planted alpha = sqrt(alpha): mean {mean:.2f}, p99 {p99}, max {worst} "
                   f"levels: {'caught' if caught else 'NOT CAUGHT'}")
     return bad
+
+
+# A cloth fit with the Charlie sheen (lambert+ggx+sheen, models/sheen.h), synthetic.
+CLOTH = {"source": "synthetic", "material": "cloth", "model": "lambert+ggx+sheen",
+         "status": "converged", "message": "",
+         "params": {"lambert.kd_r": 0.21, "lambert.kd_g": 0.13, "lambert.kd_b": 0.07,
+                    "ggx.ks_r": 0.05, "ggx.ks_g": 0.04, "ggx.ks_b": 0.03, "ggx.alpha": 0.4,
+                    "sheen.sheen_r": 0.6, "sheen.sheen_g": 0.4, "sheen.sheen_b": 0.5,
+                    "sheen.alpha": 0.15},
+         "metrics": {"log_rmse": 0, "cbrt_rmse": 0, "rel_l2": 0, "weighting": "none",
+                     "cutoff_deg": 90}}
 
 
 def preview_scene(material):
@@ -241,7 +244,12 @@ def main():
     pick = lambda m, model: [f for f in fits if f["material"] == m and f["model"] == model][0]
     cases = [("exact", exact, 1.0, 4), ("gold", pick("gold-metallic-paint", "lambert+ggx-hc"), 2.0, 10),
              ("red", pick("red-phenolic", "lambert+ggx-hc"), 2.0, 10),
-             ("red-ue4", pick("red-phenolic", "ue4"), None, None)]
+             ("red-ue4", pick("red-phenolic", "ue4"), None, None),
+             # KHR_materials_sheen in MeshPhysicalMaterial: the fit's D and V, but three.js dims
+             # the body by its sheen albedo scaling and masks the fit's separable GGX lobe
+             # height-correlated (the export says both): measured mean 1.46, p99 4, max 11
+             # levels (2026-12-02, three.js of package-lock.json).
+             ("cloth", CLOTH, 2.5, 10)]
     bad = 0
     for name, fit, mean_tol, p99_tol in cases:
         fits_json = os.path.join(o.work, name + ".json")

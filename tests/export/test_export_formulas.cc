@@ -489,6 +489,64 @@ TEST(ExportFormulas, ApproximateExportsSaySoAndDiffer) {
   }
 }
 
+// KHR_materials_sheen's sheen BRDF (the extension's README, "Sheen BRDF"): sheenColor D V,
+// D the Charlie distribution (2 + 1/a) sin(th_h)^(1/a) / (2 pi) with a = sheenRoughness^2, V
+// Ashikhmin's / Neubelt's 1 / (4 (cos_i + cos_o - cos_i cos_o)) (the cheaper visibility the
+// README allows, the one three.js evaluates). The layer below is dimmed by the albedo scaling;
+// with no base layer (base 0, no specular) it is the sheen alone.
+Rgb GltfSheenEval(const nlohmann::json& mat, const Dirs& d) {
+  const auto& sh = mat.at("extensions").at("KHR_materials_sheen");
+  const Rgb colour = Array(sh.at("sheenColorFactor"));
+  const double r = sh.at("sheenRoughnessFactor").get<double>(), a = r * r;
+  const double sin_h = std::sqrt(std::max(0.0, 1 - d.ch * d.ch));
+  const double dist = (2 + 1 / a) * std::pow(sin_h, 1 / a) / (2 * kPi);
+  const double v = 1 / (4 * (d.ci + d.co - d.ci * d.co));
+  return {colour[0] * dist * v, colour[1] * dist * v, colour[2] * dist * v};
+}
+
+// lambert+ggx+sheen: the sheen goes to KHR_materials_sheen, exact as a lobe (alone, it is the
+// extension's BRDF); the body under it is not dimmed by the fit, so the export says so. Mitsuba
+// 3 and pbrt-v4 have no Charlie sheen: they export the lambert+ggx part, exactly, and say that
+// the sheen is left out.
+TEST(ExportFormulas, SheenGoesToKhrMaterialsSheenAndIsLeftOutElsewhere) {
+  ScratchDir dir;
+  bool exact = true;
+  const std::vector<double> body = {0.21, 0.13, 0.07, 0.05, 0.04, 0.03, 0.4};
+  const std::vector<double> sheen = {0.6, 0.4, 0.5, 0.15};
+  std::vector<double> all = body;
+  all.insert(all.end(), sheen.begin(), sheen.end());
+  const auto e = Entry("lambert+ggx+sheen", all);
+  const fs::path gltf = Export(dir, e, Format::kGltf, "cloth.gltf", &exact);
+  EXPECT_FALSE(exact);
+  EXPECT_NE(ReadText(gltf).find("albedo scaling"), std::string::npos);
+  const auto mat = GltfMaterial(gltf);
+  const auto& ext = mat["extensions"]["KHR_materials_sheen"];
+  EXPECT_NEAR(ext["sheenRoughnessFactor"].get<double>(), std::sqrt(0.15), 1e-15);
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(ext["sheenColorFactor"][c].get<double>(), sheen[c]);
+  std::ifstream in(gltf);
+  const auto doc = nlohmann::json::parse(in);
+  EXPECT_NE(std::find(doc["extensionsUsed"].begin(), doc["extensionsUsed"].end(),
+                      "KHR_materials_sheen"),
+            doc["extensionsUsed"].end());
+
+  // The sheen alone: no body, no highlight.
+  std::vector<double> only = {0, 0, 0, 0, 0, 0, 0.4};
+  only.insert(only.end(), sheen.begin(), sheen.end());
+  const auto lone = Entry("lambert+ggx+sheen", only);
+  const auto lone_mat = GltfMaterial(Export(dir, lone, Format::kGltf, "lone.gltf", &exact));
+  EXPECT_LT(MaxRelError(lone, [&](const Dirs& d) { return GltfSheenEval(lone_mat, d); }), 1e-12);
+
+  // Mitsuba 3 and pbrt-v4: the lambert+ggx part, the sheen said to be left out.
+  const auto part = Entry("lambert+ggx", body);
+  const std::string xml = ReadText(Export(dir, e, Format::kMitsuba, "cloth.xml", &exact));
+  EXPECT_FALSE(exact);
+  EXPECT_NE(xml.find("sheen lobe"), std::string::npos);
+  EXPECT_LT(MaxRelError(part, [&](const Dirs& d) { return MitsubaEval(xml, d); }), 1e-7);
+  const std::string pbrt = ReadText(Export(dir, e, Format::kPbrt, "cloth.pbrt", &exact));
+  EXPECT_FALSE(exact);
+  EXPECT_NE(pbrt.find("sheen lobe"), std::string::npos);
+}
+
 // Golden files: `brdfit export tests/export/data/fits.json` as of this commit (the fits of
 // nbrdf:gold-metallic-paint and nbrdf:red-phenolic written by `brdfit fit ... --model
 // ggx-hc,ggx,ggx-f0,ue4 --json`), checked by hand against docs/exports.md's tables and by the
