@@ -1,0 +1,115 @@
+#include "fit/sample_plan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+#include "fit/bin_measure.h"
+
+namespace brdfit {
+
+namespace {
+
+// Cells whose directions are this close to the horizon are dropped whatever the cut-off
+// (the masking terms divide by cos theta).
+constexpr double kMinCos = 1e-3;
+
+// wi and wo at the centre of cell (ih, id, ip) with phi_h = 0: FromHalfDiff's operations
+// (models/geometry.h) on the axis tables. wi = R_y(theta_h) d with d = (sd cp, sd sp, cd); wo
+// mirrors wi about h.
+void CentreDirections(const AxisTrig& t, int ih, int id, int ip, Vec3* wi, Vec3* wo) {
+  const Vec3 d{t.sin_d[id] * t.cos_p[ip], t.sin_d[id] * t.sin_p[ip], t.cos_d[id]};
+  *wi = {t.cos_h[ih] * d.x + t.sin_h[ih] * d.z, d.y, -t.sin_h[ih] * d.x + t.cos_h[ih] * d.z};
+  const Vec3 h{t.sin_h[ih], 0.0, t.cos_h[ih]};
+  *wo = 2.0 * Dot(*wi, h) * h - *wi;
+}
+
+}  // namespace
+
+AxisTrig MakeAxisTrig(const Grid& g) {
+  AxisTrig t;
+  auto fill = [](int n, auto angle_at, std::vector<double>* s, std::vector<double>* c) {
+    s->resize(n);
+    c->resize(n);
+    for (int i = 0; i < n; ++i) {
+      const double a = angle_at(i + 0.5);
+      (*s)[i] = std::sin(a);
+      (*c)[i] = std::cos(a);
+    }
+  };
+  fill(g.n_theta_h, [&](double x) { return g.ThetaHAt(x); }, &t.sin_h, &t.cos_h);
+  fill(g.n_theta_d, [&](double x) { return g.ThetaDAt(x); }, &t.sin_d, &t.cos_d);
+  fill(g.n_phi_d, [&](double x) { return g.PhiDAt(x); }, &t.sin_p, &t.cos_p);
+  return t;
+}
+
+Geometry CentreGeometry(const AxisTrig& t, int ih, int id, int ip) {
+  Vec3 wi, wo;
+  CentreDirections(t, ih, id, ip, &wi, &wo);
+  return MakeGeometry(wi, wo);
+}
+
+std::size_t SamplePlan::Bytes() const {
+  return sizeof(std::uint32_t) * (row_begin.size() + unit_begin.size() + cell.size()) +
+         sizeof(double) * (row_weight.size() + cos_i.size());
+}
+
+bool SamplePlan::Matches(const Grid& g, const SampleOptions& o) const {
+  return grid == g && cutoff_deg == o.cutoff_deg && weighting == o.weighting &&
+         pair_mirrors == o.pair_mirrors;
+}
+
+SamplePlan MakeSamplePlan(const Grid& g, const SampleOptions& options) {
+  if (!(options.cutoff_deg > 0.0 && options.cutoff_deg <= 90.0)) {
+    throw InputError("angle cut-off must be in (0, 90] degrees, got " +
+                     std::to_string(options.cutoff_deg));
+  }
+  SamplePlan p;
+  p.grid = g;
+  p.cutoff_deg = options.cutoff_deg;
+  p.weighting = options.weighting;
+  p.pair_mirrors = options.pair_mirrors;
+  p.trig = MakeAxisTrig(g);
+  const AxisTrig& t = p.trig;
+  const double cos_cut = std::max(std::cos(options.cutoff_deg * kPi / 180.0), kMinCos);
+  const bool pair = options.pair_mirrors;
+  const int half = pair ? (g.n_phi_d + 1) / 2 : g.n_phi_d;
+  const std::size_t rows = static_cast<std::size_t>(g.n_theta_h) * g.n_theta_d;
+  p.row_begin.reserve(rows + 1);
+  p.row_weight.reserve(rows);
+  // Upper bounds (every cell inside): reserved pages that are never written take no memory,
+  // and no array is copied by growth.
+  p.unit_begin.reserve(rows * static_cast<std::size_t>(half) + 1);
+  p.cell.reserve(g.NumCells());
+  p.cos_i.reserve(g.NumCells());
+  p.unit_begin.push_back(0);
+  for (int ih = 0; ih < g.n_theta_h; ++ih) {
+    for (int id = 0; id < g.n_theta_d; ++id) {
+      p.row_begin.push_back(static_cast<std::uint32_t>(p.NumUnits()));
+      p.row_weight.push_back(
+          options.weighting == Weighting::kBinMeasure ? CellMeasure(g, ih, id, 0) : 1.0);
+      for (int ip = 0; ip < half; ++ip) {
+        // cos theta_i and cos theta_o at the centre, as CentreDirections computes wi.z and wo.z
+        // up to rounding: the inside test of the cut-off.
+        const double ci = t.cos_h[ih] * t.cos_d[id] - t.sin_h[ih] * t.sin_d[id] * t.cos_p[ip];
+        const double co = 2.0 * t.cos_d[id] * t.cos_h[ih] - ci;
+        if (!(ci >= cos_cut && co >= cos_cut)) continue;
+        Vec3 wi, wo;
+        CentreDirections(t, ih, id, ip, &wi, &wo);
+        p.cell.push_back(static_cast<std::uint32_t>(g.Index(ih, id, ip)));
+        p.cos_i.push_back(wi.z);
+        const int mirror = g.n_phi_d - 1 - ip;
+        if (pair && mirror != ip) {
+          p.cell.push_back(static_cast<std::uint32_t>(g.Index(ih, id, mirror)));
+          p.cos_i.push_back(wo.z);  // the mirror's theta_i is the unit's theta_o
+        }
+        p.unit_begin.push_back(static_cast<std::uint32_t>(p.cell.size()));
+      }
+    }
+  }
+  p.row_begin.push_back(static_cast<std::uint32_t>(p.NumUnits()));
+  return p;
+}
+
+}  // namespace brdfit
