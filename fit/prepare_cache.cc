@@ -63,18 +63,24 @@ struct PrepareCache::State {
       } else {
         future = promise.get_future().share();
         shelf.entries.push_back({key, future});
-        while (shelf.entries.size() > capacity) shelf.entries.pop_front();
         mine = true;
         ++made;
       }
     }
     if (mine) {
+      std::shared_ptr<const Plan> plan;
       try {
-        promise.set_value(std::make_shared<const Plan>(make()));
+        plan = std::make_shared<const Plan>(make());
       } catch (...) {
         promise.set_exception(std::current_exception());
         std::lock_guard<std::mutex> lock(mu);
         shelf.entries.remove_if([&](const auto& e) { return e.key == key; });
+      }
+      if (plan) {
+        promise.set_value(plan);
+        // Made: the least recently used plans beyond the capacity go (a failed one evicts none).
+        std::lock_guard<std::mutex> lock(mu);
+        while (shelf.entries.size() > capacity) shelf.entries.pop_front();
       }
     }
     return future.get();
