@@ -60,35 +60,22 @@ bool SamplePlan::Matches(const Grid& g, const SampleOptions& o) const {
          pair_mirrors == o.pair_mirrors;
 }
 
-SamplePlan MakeSamplePlan(const Grid& g, const SampleOptions& options) {
+void ForEachPlanRow(const Grid& g, const SampleOptions& options, const AxisTrig& t,
+                    const PlanRowFn& fn) {
   if (!(options.cutoff_deg > 0.0 && options.cutoff_deg <= 90.0)) {
     throw InputError("angle cut-off must be in (0, 90] degrees, got " +
                      std::to_string(options.cutoff_deg));
   }
-  SamplePlan p;
-  p.grid = g;
-  p.cutoff_deg = options.cutoff_deg;
-  p.weighting = options.weighting;
-  p.pair_mirrors = options.pair_mirrors;
-  p.trig = MakeAxisTrig(g);
-  const AxisTrig& t = p.trig;
   const double cos_cut = std::max(std::cos(options.cutoff_deg * kPi / 180.0), kMinCos);
   const bool pair = options.pair_mirrors;
   const int half = pair ? (g.n_phi_d + 1) / 2 : g.n_phi_d;
-  const std::size_t rows = static_cast<std::size_t>(g.n_theta_h) * g.n_theta_d;
-  p.row_begin.reserve(rows + 1);
-  p.row_weight.reserve(rows);
-  // Upper bounds (every cell inside): reserved pages that are never written take no memory,
-  // and no array is copied by growth.
-  p.unit_begin.reserve(rows * static_cast<std::size_t>(half) + 1);
-  p.cell.reserve(g.NumCells());
-  p.cos_i.reserve(g.NumCells());
-  p.unit_begin.push_back(0);
+  std::vector<std::uint32_t> unit_begin, cell;
+  std::vector<double> cos_i;
   for (int ih = 0; ih < g.n_theta_h; ++ih) {
     for (int id = 0; id < g.n_theta_d; ++id) {
-      p.row_begin.push_back(static_cast<std::uint32_t>(p.NumUnits()));
-      p.row_weight.push_back(
-          options.weighting == Weighting::kBinMeasure ? CellMeasure(g, ih, id, 0) : 1.0);
+      unit_begin.assign(1, 0);
+      cell.clear();
+      cos_i.clear();
       for (int ip = 0; ip < half; ++ip) {
         // cos theta_i and cos theta_o at the centre, as CentreDirections computes wi.z and wo.z
         // up to rounding: the inside test of the cut-off.
@@ -97,17 +84,71 @@ SamplePlan MakeSamplePlan(const Grid& g, const SampleOptions& options) {
         if (!(ci >= cos_cut && co >= cos_cut)) continue;
         Vec3 wi, wo;
         CentreDirections(t, ih, id, ip, &wi, &wo);
-        p.cell.push_back(static_cast<std::uint32_t>(g.Index(ih, id, ip)));
-        p.cos_i.push_back(wi.z);
+        cell.push_back(static_cast<std::uint32_t>(g.Index(ih, id, ip)));
+        cos_i.push_back(wi.z);
         const int mirror = g.n_phi_d - 1 - ip;
         if (pair && mirror != ip) {
-          p.cell.push_back(static_cast<std::uint32_t>(g.Index(ih, id, mirror)));
-          p.cos_i.push_back(wo.z);  // the mirror's theta_i is the unit's theta_o
+          cell.push_back(static_cast<std::uint32_t>(g.Index(ih, id, mirror)));
+          cos_i.push_back(wo.z);  // the mirror's theta_i is the unit's theta_o
         }
-        p.unit_begin.push_back(static_cast<std::uint32_t>(p.cell.size()));
+        unit_begin.push_back(static_cast<std::uint32_t>(cell.size()));
       }
+      PlanRow row;
+      row.ih = ih;
+      row.id = id;
+      row.weight = options.weighting == Weighting::kBinMeasure ? CellMeasure(g, ih, id, 0) : 1.0;
+      row.units = unit_begin.size() - 1;
+      row.unit_begin = unit_begin.data();
+      row.cell = cell.data();
+      row.cos_i = cos_i.data();
+      fn(row);
     }
   }
+}
+
+void ForEachPlanRow(const SamplePlan& p, const PlanRowFn& fn) {
+  const int n_d = p.grid.n_theta_d;
+  for (std::size_t r = 0; r + 1 < p.row_begin.size(); ++r) {
+    PlanRow row;
+    row.ih = static_cast<int>(r / n_d);
+    row.id = static_cast<int>(r % n_d);
+    row.weight = p.row_weight[r];
+    row.units = p.row_begin[r + 1] - p.row_begin[r];
+    row.unit_begin = &p.unit_begin[p.row_begin[r]];
+    row.cell = p.cell.data();
+    row.cos_i = p.cos_i.data();
+    fn(row);
+  }
+}
+
+SamplePlan MakeSamplePlan(const Grid& g, const SampleOptions& options) {
+  SamplePlan p;
+  p.grid = g;
+  p.cutoff_deg = options.cutoff_deg;
+  p.weighting = options.weighting;
+  p.pair_mirrors = options.pair_mirrors;
+  p.trig = MakeAxisTrig(g);
+  const std::size_t rows = static_cast<std::size_t>(g.n_theta_h) * g.n_theta_d;
+  p.row_begin.reserve(rows + 1);
+  p.row_weight.reserve(rows);
+  // Upper bounds (every cell inside): reserved pages that are never written take no memory,
+  // and no array is copied by growth.
+  const int half = options.pair_mirrors ? (g.n_phi_d + 1) / 2 : g.n_phi_d;
+  p.unit_begin.reserve(rows * static_cast<std::size_t>(half) + 1);
+  p.cell.reserve(g.NumCells());
+  p.cos_i.reserve(g.NumCells());
+  p.unit_begin.push_back(0);
+  ForEachPlanRow(g, options, p.trig, [&](const PlanRow& row) {
+    p.row_begin.push_back(static_cast<std::uint32_t>(p.NumUnits()));
+    p.row_weight.push_back(row.weight);
+    for (std::size_t k = 0; k < row.units; ++k) {
+      for (std::uint32_t m = row.unit_begin[k]; m < row.unit_begin[k + 1]; ++m) {
+        p.cell.push_back(row.cell[m]);
+        p.cos_i.push_back(row.cos_i[m]);
+      }
+      p.unit_begin.push_back(static_cast<std::uint32_t>(p.cell.size()));
+    }
+  });
   p.row_begin.push_back(static_cast<std::uint32_t>(p.NumUnits()));
   return p;
 }

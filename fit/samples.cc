@@ -100,45 +100,52 @@ std::vector<std::uint8_t> UsableCells(const Table& table, SampleCounts* c,
   return flags;
 }
 
-// Every usable cell of the table inside the plan's cut-off (options.budget is not applied
-// here): the plan's units in order, each with the members the table's mask keeps; a unit with
-// none is no sample. Every valid, finite cell is either kept here or beyond the cut-off.
-Samples ApplyPlan(const SamplePlan& plan, const Table& table, GeometryStorage storage,
-                  bool copy_values) {
+// Every usable cell of the table inside the cut-off (options.budget is not applied here):
+// the plan's units in order (`visit_rows(fn)` calls fn on every PlanRow), each with the members
+// the table's mask keeps; a unit with none is no sample. Every valid, finite cell is either kept
+// here or beyond the cut-off.
+template <class VisitRows>
+Samples ApplyPlan(const Table& table, const SampleOptions& options, const AxisTrig& trig,
+                  const VisitRows& visit_rows, GeometryStorage storage, bool copy_values) {
   const Grid& g = table.grid;
   if (table.rgb.size() != 3 * g.NumCells() || table.valid.size() != g.NumCells()) {
     throw InputError(table.provenance.source, "table arrays do not match its grid");
   }
-  if (!(plan.grid == g)) throw std::invalid_argument("sample plan of another grid");
   Samples out;
   out.grid = g;
-  out.options.cutoff_deg = plan.cutoff_deg;
-  out.options.weighting = plan.weighting;
-  out.options.pair_mirrors = plan.pair_mirrors;
+  out.options = options;
   out.counts.cells = g.NumCells();
-  out.trig = plan.trig;
+  out.trig = trig;
   std::size_t n_usable = 0;
   const std::vector<std::uint8_t> flags = UsableCells(table, &out.counts, &n_usable);
   const bool stored = storage == GeometryStorage::kStored;
-  // Reserved for every plan cell kept (a table without holes): pages never written take no
-  // memory, and no array is copied by growth.
-  const std::size_t max_obs = plan.cell.size();
-  out.cell.reserve(max_obs);
-  if (copy_values) out.value.reserve(3 * max_obs);
-  out.weight.reserve(max_obs);
-  out.cos_i.reserve(max_obs);
-  if (stored) out.geometry.reserve(plan.NumUnits());
-  out.obs_begin.reserve(plan.NumUnits() + 1);
+  // Counted first so that the arrays are exactly sized (a full MERL table has 1.1 M
+  // observations: growth by doubling, or room for every usable cell, would hold more).
+  std::size_t n_samples = 0, n_obs = 0;
+  visit_rows([&](const PlanRow& row) {
+    for (std::size_t k = 0; k < row.units; ++k) {
+      std::size_t kept = 0;
+      for (std::uint32_t m = row.unit_begin[k]; m < row.unit_begin[k + 1]; ++m) {
+        kept += flags[row.cell[m]] & kUsable;
+      }
+      n_obs += kept;
+      n_samples += kept > 0;
+    }
+  });
+  out.cell.reserve(n_obs);
+  if (copy_values) out.value.reserve(3 * n_obs);
+  out.weight.reserve(n_obs);
+  out.cos_i.reserve(n_obs);
+  if (stored) out.geometry.reserve(n_samples);
+  out.obs_begin.reserve(n_samples + 1);
   out.obs_begin.push_back(0);
   std::size_t negative = 0;
-  const std::size_t rows = plan.row_weight.size();
-  for (std::size_t r = 0; r < rows; ++r) {
-    const double w_cell = plan.row_weight[r];
-    const int ih = static_cast<int>(r / g.n_theta_d), id = static_cast<int>(r % g.n_theta_d);
-    for (std::uint32_t u = plan.row_begin[r]; u < plan.row_begin[r + 1]; ++u) {
+  visit_rows([&](const PlanRow& row) {
+    const double w_cell = row.weight;
+    for (std::size_t k = 0; k < row.units; ++k) {
       const std::size_t before = out.cell.size();
-      for (std::uint32_t m = plan.unit_begin[u]; m < plan.unit_begin[u + 1]; ++m) {
-        const std::uint32_t idx = plan.cell[m];
+      for (std::uint32_t m = row.unit_begin[k]; m < row.unit_begin[k + 1]; ++m) {
+        const std::uint32_t idx = row.cell[m];
         const std::uint8_t f = flags[idx];
         if (!(f & kUsable)) continue;
         out.cell.push_back(idx);
@@ -149,22 +156,38 @@ Samples ApplyPlan(const SamplePlan& plan, const Table& table, GeometryStorage st
         negative += (f & kNegative) != 0;
         out.weight.push_back(w_cell);
         out.total_weight += w_cell;
-        out.cos_i.push_back(plan.cos_i[m]);
+        out.cos_i.push_back(row.cos_i[m]);
       }
       if (out.cell.size() == before) continue;
       if (stored) {
         // The unit's first member is its first-half cell (plan order).
-        const int ip = static_cast<int>(plan.cell[plan.unit_begin[u]] - g.Index(ih, id, 0));
-        out.geometry.push_back(CentreGeometry(plan.trig, ih, id, ip));
+        const int ip =
+            static_cast<int>(row.cell[row.unit_begin[k]] - g.Index(row.ih, row.id, 0));
+        out.geometry.push_back(CentreGeometry(out.trig, row.ih, row.id, ip));
       }
       out.obs_begin.push_back(static_cast<std::uint32_t>(out.cell.size()));
     }
-  }
+  });
   out.counts.negative = negative;
   out.counts.eligible = out.cell.size();
   out.counts.beyond_cutoff = n_usable - out.counts.eligible;
   out.counts.selected = out.cell.size();
   return out;
+}
+
+// From a stored plan, or (plan null) from the rows computed on the fly.
+Samples ApplyPlan(const SamplePlan* plan, const Table& table, const SampleOptions& options,
+                  GeometryStorage storage, bool copy_values) {
+  if (plan) {
+    return ApplyPlan(
+        table, options, plan->trig, [&](const PlanRowFn& fn) { ForEachPlanRow(*plan, fn); },
+        storage, copy_values);
+  }
+  const AxisTrig trig = MakeAxisTrig(table.grid);
+  return ApplyPlan(
+      table, options, trig,
+      [&](const PlanRowFn& fn) { ForEachPlanRow(table.grid, options, trig, fn); }, storage,
+      copy_values);
 }
 
 void CheckPlan(const SamplePlan& plan, const Table& table, const SampleOptions& options) {
@@ -175,40 +198,52 @@ void CheckPlan(const SamplePlan& plan, const Table& table, const SampleOptions& 
 
 }  // namespace
 
-Samples PrepareSamples(const Table& table, const SampleOptions& options, GeometryStorage storage) {
-  return PrepareSamples(table, MakeSamplePlan(table.grid, options), options, storage);
+namespace {
+
+// PrepareSamples of a stored plan or (plan null) of rows computed on the fly.
+Samples PrepareFrom(const SamplePlan* plan, const Table& table, const SampleOptions& options,
+                    GeometryStorage storage) {
+  if (options.budget.kind == Budget::Kind::kFull) {
+    return ApplyPlan(plan, table, options, storage, true);
+  }
+  // A sub-sampled budget: the samples SelectBudget keeps of the full set (one selection rule
+  // for the fitter, which selects from its metric set, and for direct preparation).
+  SampleOptions full = options;
+  full.budget = Budget{};
+  Samples out = SelectBudget(ApplyPlan(plan, table, full, GeometryStorage::kOnDemand, true),
+                             options.budget, options.seed);
+  if (storage == GeometryStorage::kOnDemand) out.geometry = {};
+  return out;
 }
 
-Samples PrepareMetricSamples(Table&& table, const SampleOptions& options) {
-  return PrepareMetricSamples(std::move(table), MakeSamplePlan(table.grid, options), options);
+Samples MetricFrom(const SamplePlan* plan, Table&& table, const SampleOptions& options) {
+  SampleOptions full = options;
+  full.budget = Budget{};
+  Samples out = ApplyPlan(plan, table, full, GeometryStorage::kOnDemand, false);
+  out.table_rgb = std::move(table.rgb);
+  table = Table{};
+  return out;
+}
+
+}  // namespace
+
+Samples PrepareSamples(const Table& table, const SampleOptions& options, GeometryStorage storage) {
+  return PrepareFrom(nullptr, table, options, storage);
 }
 
 Samples PrepareSamples(const Table& table, const SamplePlan& plan, const SampleOptions& options,
                        GeometryStorage storage) {
   CheckPlan(plan, table, options);
-  if (options.budget.kind == Budget::Kind::kFull) {
-    Samples out = ApplyPlan(plan, table, storage, true);
-    out.options = options;
-    return out;
-  }
-  // A sub-sampled budget: the samples SelectBudget keeps of the full set (one selection rule
-  // for the fitter, which selects from its metric set, and for direct preparation).
-  Samples full = ApplyPlan(plan, table, GeometryStorage::kOnDemand, true);
-  full.options = options;
-  full.options.budget = Budget{};
-  Samples out = SelectBudget(full, options.budget, options.seed);
-  if (storage == GeometryStorage::kOnDemand) out.geometry = {};
-  return out;
+  return PrepareFrom(&plan, table, options, storage);
+}
+
+Samples PrepareMetricSamples(Table&& table, const SampleOptions& options) {
+  return MetricFrom(nullptr, std::move(table), options);
 }
 
 Samples PrepareMetricSamples(Table&& table, const SamplePlan& plan, const SampleOptions& options) {
   CheckPlan(plan, table, options);
-  Samples out = ApplyPlan(plan, table, GeometryStorage::kOnDemand, false);
-  out.options = options;
-  out.options.budget = Budget{};
-  out.table_rgb = std::move(table.rgb);
-  table = Table{};
-  return out;
+  return MetricFrom(&plan, std::move(table), options);
 }
 
 namespace {

@@ -272,8 +272,13 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
   };
 
   // The per-grid work of preparing a table (sample and rendered-metric plans), made once for
-  // the batch's tables of one grid and shared by the workers (fit/prepare_cache.h).
+  // the batch's tables of one grid and shared by the workers (fit/prepare_cache.h). A table
+  // fitted alone is prepared without it: nothing to share, and its plan would add 15 MB to the
+  // peak (docs/fitting.md, "Memory").
   PrepareCache prepare_cache;
+  const auto inputs_fitted = std::count_if(states.begin(), states.end(),
+                                           [](const auto& st) { return st->remaining > 0; });
+  PrepareCache* const cache = inputs_fitted > 1 ? &prepare_cache : nullptr;
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
     while (true) {
@@ -296,7 +301,7 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
             st.load_ms = MsSince(t0);
             t0 = Clock::now();
             st.prepared.emplace(
-                PrepareTable(std::move(table), req.samples, req.fit, &prepare_cache));
+                PrepareTable(std::move(table), req.samples, req.fit, cache));
             st.prepare_ms = MsSince(t0);
           } catch (const InputError& e) {
             st.error = e.what();
