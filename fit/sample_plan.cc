@@ -15,16 +15,6 @@ namespace {
 // (the masking terms divide by cos theta).
 constexpr double kMinCos = 1e-3;
 
-// wi and wo at the centre of cell (ih, id, ip) with phi_h = 0: FromHalfDiff's operations
-// (models/geometry.h) on the axis tables. wi = R_y(theta_h) d with d = (sd cp, sd sp, cd); wo
-// mirrors wi about h.
-void CentreDirections(const AxisTrig& t, int ih, int id, int ip, Vec3* wi, Vec3* wo) {
-  const Vec3 d{t.sin_d[id] * t.cos_p[ip], t.sin_d[id] * t.sin_p[ip], t.cos_d[id]};
-  *wi = {t.cos_h[ih] * d.x + t.sin_h[ih] * d.z, d.y, -t.sin_h[ih] * d.x + t.cos_h[ih] * d.z};
-  const Vec3 h{t.sin_h[ih], 0.0, t.cos_h[ih]};
-  *wo = 2.0 * Dot(*wi, h) * h - *wi;
-}
-
 }  // namespace
 
 AxisTrig MakeAxisTrig(const Grid& g) {
@@ -42,12 +32,6 @@ AxisTrig MakeAxisTrig(const Grid& g) {
   fill(g.n_theta_d, [&](double x) { return g.ThetaDAt(x); }, &t.sin_d, &t.cos_d);
   fill(g.n_phi_d, [&](double x) { return g.PhiDAt(x); }, &t.sin_p, &t.cos_p);
   return t;
-}
-
-Geometry CentreGeometry(const AxisTrig& t, int ih, int id, int ip) {
-  Vec3 wi, wo;
-  CentreDirections(t, ih, id, ip, &wi, &wo);
-  return MakeGeometry(wi, wo);
 }
 
 std::size_t SamplePlan::Bytes() const {

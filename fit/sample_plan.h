@@ -70,8 +70,22 @@ void ForEachPlanRow(const Grid& grid, const SampleOptions& options, const AxisTr
 // The sines and cosines of a grid's bin centres (docs/conventions.md: centre = index + 0.5).
 AxisTrig MakeAxisTrig(const Grid& grid);
 
+// wi and wo at the centre of cell (ih, id, ip) with phi_h = 0: FromHalfDiff's operations
+// (models/geometry.h) on the axis tables. wi = R_y(theta_h) d with d = (sd cp, sd sp, cd); wo
+// mirrors wi about h.
+inline void CentreDirections(const AxisTrig& t, int ih, int id, int ip, Vec3* wi, Vec3* wo) {
+  const Vec3 d{t.sin_d[id] * t.cos_p[ip], t.sin_d[id] * t.sin_p[ip], t.cos_d[id]};
+  *wi = {t.cos_h[ih] * d.x + t.sin_h[ih] * d.z, d.y, -t.sin_h[ih] * d.x + t.cos_h[ih] * d.z};
+  const Vec3 h{t.sin_h[ih], 0.0, t.cos_h[ih]};
+  *wo = 2.0 * Dot(*wi, h) * h - *wi;
+}
+
 // The geometry at the centre of cell (ih, id, ip) from the axis tables: the same operations as
 // MakeGeometry(grid.CellCentre(ih, id, ip)) with phi_h = 0, bit for bit (tested).
-Geometry CentreGeometry(const AxisTrig& t, int ih, int id, int ip);
+inline Geometry CentreGeometry(const AxisTrig& t, int ih, int id, int ip) {
+  Vec3 wi, wo;
+  CentreDirections(t, ih, id, ip, &wi, &wo);
+  return MakeGeometry(wi, wo);
+}
 
 }  // namespace brdfit

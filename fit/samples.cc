@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "fit/bin_measure.h"
 #include "fit/loss.h"
+#include "fit/sample_geometry.h"
 #include "fit/sample_plan.h"
 #include "fit/stratified.h"
 
@@ -248,29 +249,6 @@ UnitAxes PrimaryAxes(const Samples& s, std::size_t sample) {
   return a;
 }
 
-// fn(s, PrimaryAxes(samples, s)) for every sample in order, dividing only where the row changes
-// (the samples of a set are in (theta_h, theta_d, phi_d) order: 8,100 rows for MERL's 550 k
-// samples).
-template <class Fn>
-void ForEachSampleAxes(const Samples& samples, Fn fn) {
-  const Grid& g = samples.grid;
-  const std::size_t n_p = static_cast<std::size_t>(g.n_phi_d);
-  std::size_t row_base = 0;
-  UnitAxes a{0, 0, 0};
-  bool in_row = false;
-  for (std::size_t s = 0; s < samples.NumSamples(); ++s) {
-    const std::size_t c = samples.cell[samples.obs_begin[s]];
-    if (!in_row || c < row_base || c >= row_base + n_p) {
-      g.Unindex(c, &a.ih, &a.id, &a.ip);
-      row_base = c - static_cast<std::size_t>(a.ip);
-      in_row = true;
-    }
-    a.ip = static_cast<int>(c - row_base);
-    if (samples.options.pair_mirrors) a.ip = std::min(a.ip, g.n_phi_d - 1 - a.ip);
-    fn(s, a);
-  }
-}
-
 // A sample's weight is its unit's: the sum of its members' cell weights, in member order.
 std::vector<double> SampleWeights(const Samples& samples) {
   std::vector<double> weight(samples.NumSamples(), 0.0);
@@ -285,7 +263,8 @@ std::vector<double> SampleWeights(const Samples& samples) {
 // The theta_h bin of every sample: the strata of stratified selections.
 std::vector<int> ThetaHStrata(const Samples& samples) {
   std::vector<int> stratum(samples.NumSamples());
-  ForEachSampleAxes(samples, [&](std::size_t s, const UnitAxes& a) { stratum[s] = a.ih; });
+  ForEachSampleAxes(samples, 0, samples.NumSamples(),
+                    [&](std::size_t s, int ih, int, int) { stratum[s] = ih; });
   return stratum;
 }
 
@@ -362,14 +341,14 @@ Samples SelectBudget(const Samples& full, const Budget& budget, std::uint64_t se
       row_kept.clear();
       all = sel = 0;
     };
-    ForEachSampleAxes(full, [&](std::size_t s, const UnitAxes& a) {
-      if (a.ih != row_ih || a.id != row_id) {
+    ForEachSampleAxes(full, 0, ns, [&](std::size_t s, int ih, int id, int ip) {
+      if (ih != row_ih || id != row_id) {
         end_row();
-        row_ih = a.ih;
-        row_id = a.id;
+        row_ih = ih;
+        row_id = id;
       }
       all += weight[s];
-      if (a.ip % stride == offset) {
+      if (ip % stride == offset) {
         sel += weight[s];
         row_kept.push_back(s);
       }
