@@ -12,11 +12,13 @@
 // the medians of wall time and child peak RSS (wait4 ru_maxrss, as /usr/bin/time -v) are
 // printed with the medians of the stage times the report records, the fit's log_rmse and
 // rendered PSNR / median luminance error. --batch 1 also times the 100-material batch of the
-// issue: `brdfit fit nbrdf:all --model <batch-models> -j <jobs>`, once.
+// issue: `brdfit fit nbrdf:all --model <batch-models> -j <jobs>`, once, with its CPU time and the
+// medians of its report's stage times.
 // --brdfit PATH times another build (before / after comparisons on the same tables).
 #include <fmt/core.h>
 
 #include <filesystem>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -146,10 +148,30 @@ int main(int argc, char** argv) {
                         {"fit", "nbrdf:all", "--model", batch_models, "-j", std::to_string(jobs),
                          "-o", (dir / "batch.h5").string(), "-q"},
                         3600, dir / "batch.log");
-    fmt::print("\nbatch: brdfit fit nbrdf:all --model {} -j {}: {:.1f} s, peak RSS {:.0f} MB, "
-               "exit {}\n",
-               batch_models, jobs, run.seconds, run.peak_rss_mb, run.exit_code);
+    fmt::print("\nbatch: brdfit fit nbrdf:all --model {} -j {}: {:.1f} s ({:.1f} s CPU), peak RSS "
+               "{:.0f} MB, exit {}\n",
+               batch_models, jobs, run.seconds, run.cpu_seconds, run.peak_rss_mb, run.exit_code);
     if (run.exit_code != 0) ++failures;
+    if (run.exit_code == 0) {
+      // The report's stage times: per table (load, prepare: shared by its fits) and per fit.
+      std::vector<double> load, prep, init, solve, metrics;
+      std::set<std::string> tables;
+      for (const FitReportEntry& e : ReadFitReport(dir / "batch.h5")) {
+        const FitTimes& t = e.result.times;
+        if (tables.insert(e.material).second) {
+          load.push_back(t.load);
+          prep.push_back(t.prepare);
+        }
+        init.push_back(t.init);
+        solve.push_back(t.solve);
+        metrics.push_back(t.metrics_cpu);
+      }
+      using bench::Median;
+      fmt::print("batch stage medians: per table load {:.0f} ms, prepare {:.0f} ms; per fit init "
+                 "{:.0f} ms, solve {:.0f} ms, metrics {:.0f} ms CPU ({} tables, {} fits)\n",
+                 Median(load), Median(prep), Median(init), Median(solve), Median(metrics),
+                 tables.size(), init.size());
+    }
   }
   fmt::print("load average: {:.2f} before, {:.2f} after (2 cores)\n", load_before,
              bench::LoadAverage());

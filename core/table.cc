@@ -76,38 +76,54 @@ std::optional<std::array<double, 3>> Table::LookupNearest(const HalfDiffAngles& 
   return std::array<double, 3>{rgb[3 * idx], rgb[3 * idx + 1], rgb[3 * idx + 2]};
 }
 
-std::optional<std::array<double, 3>> Table::LookupTrilinear(const HalfDiffAngles& a) const {
+TrilinearTaps Grid::TrilinearTapsAt(const HalfDiffAngles& a) const {
   double phi = std::fmod(a.phi_d, kPi);
   if (phi < 0) phi += kPi;
   // Coordinates relative to cell centres.
-  const double uh = std::clamp(grid.ThetaHCoord(a.theta_h) - 0.5, 0.0, grid.n_theta_h - 1.0);
-  const double ud = std::clamp(grid.ThetaDCoord(a.theta_d) - 0.5, 0.0, grid.n_theta_d - 1.0);
-  const double up = grid.PhiDCoord(phi) - 0.5;  // periodic
-  const int h0 = std::min(static_cast<int>(uh), grid.n_theta_h - 1);
-  const int d0 = std::min(static_cast<int>(ud), grid.n_theta_d - 1);
+  const double uh = std::clamp(ThetaHCoord(a.theta_h) - 0.5, 0.0, n_theta_h - 1.0);
+  const double ud = std::clamp(ThetaDCoord(a.theta_d) - 0.5, 0.0, n_theta_d - 1.0);
+  const double up = PhiDCoord(phi) - 0.5;  // periodic
+  const int h0 = std::min(static_cast<int>(uh), n_theta_h - 1);
+  const int d0 = std::min(static_cast<int>(ud), n_theta_d - 1);
   const int p0 = static_cast<int>(std::floor(up));
   const double fh = uh - h0, fd = ud - d0, fp = up - p0;
-  std::array<double, 3> acc{0, 0, 0};
-  double wsum = 0;
+  TrilinearTaps taps;
   for (int a_h = 0; a_h < 2; ++a_h) {
-    const int ih = std::min(h0 + a_h, grid.n_theta_h - 1);
+    const int ih = std::min(h0 + a_h, n_theta_h - 1);
     const double wh = a_h ? fh : 1 - fh;
     for (int a_d = 0; a_d < 2; ++a_d) {
-      const int id = std::min(d0 + a_d, grid.n_theta_d - 1);
+      const int id = std::min(d0 + a_d, n_theta_d - 1);
       const double wd = a_d ? fd : 1 - fd;
       for (int a_p = 0; a_p < 2; ++a_p) {
-        const int ip = ((p0 + a_p) % grid.n_phi_d + grid.n_phi_d) % grid.n_phi_d;
+        const int ip = ((p0 + a_p) % n_phi_d + n_phi_d) % n_phi_d;
         const double w = wh * wd * (a_p ? fp : 1 - fp);
-        const std::size_t idx = grid.Index(ih, id, ip);
-        if (w <= 0 || !valid[idx]) continue;
-        for (int c = 0; c < 3; ++c) acc[c] += w * rgb[3 * idx + c];
-        wsum += w;
+        if (w <= 0) continue;
+        taps.cell[taps.count] = static_cast<std::uint32_t>(Index(ih, id, ip));
+        taps.weight[taps.count] = w;
+        ++taps.count;
       }
     }
+  }
+  return taps;
+}
+
+std::optional<std::array<double, 3>> Table::LookupTaps(const TrilinearTaps& taps) const {
+  std::array<double, 3> acc{0, 0, 0};
+  double wsum = 0;
+  for (int k = 0; k < taps.count; ++k) {
+    const std::size_t idx = taps.cell[k];
+    if (!valid[idx]) continue;
+    const double w = taps.weight[k];
+    for (int c = 0; c < 3; ++c) acc[c] += w * rgb[3 * idx + c];
+    wsum += w;
   }
   if (wsum <= 0) return std::nullopt;
   for (double& v : acc) v /= wsum;
   return acc;
+}
+
+std::optional<std::array<double, 3>> Table::LookupTrilinear(const HalfDiffAngles& a) const {
+  return LookupTaps(grid.TrilinearTapsAt(a));
 }
 
 std::optional<std::array<double, 3>> Table::LookupTrilinear(const Vec3& wi, const Vec3& wo) const {

@@ -27,6 +27,15 @@ namespace brdfit {
 
 enum class ThetaHMapping { kSqrt, kLinear };
 
+// The cells and weights of a trilinear lookup (Table::LookupTrilinear) at one angle triple, in
+// the lookup's order, those of zero weight left out: they depend on the grid only, so a lookup
+// repeated on many tables of one grid (the rendered metric's pixels) computes them once.
+struct TrilinearTaps {
+  std::array<std::uint32_t, 8> cell{};
+  std::array<double, 8> weight{};
+  int count = 0;
+};
+
 // "merl" is accepted for "sqrt".
 inline constexpr auto kThetaHMappingNames =
     MakeEnumNames<ThetaHMapping>("theta_h mapping", {{ThetaHMapping::kSqrt, "sqrt"},
@@ -73,6 +82,10 @@ struct Grid {
   // True if both directions at the cell centre are strictly above the horizon.
   bool CellAboveHorizon(std::size_t idx) const;
 
+  // The taps of Table::LookupTrilinear at a (its interpolation weights, before the table's mask
+  // drops invalid cells).
+  TrilinearTaps TrilinearTapsAt(const HalfDiffAngles& a) const;
+
   bool operator==(const Grid&) const = default;
 };
 
@@ -107,6 +120,8 @@ struct Table {
   // dropped and the weights of the valid ones renormalized. nullopt if all eight are invalid.
   // phi_d wraps periodically (period pi), theta axes clamp at the grid edges.
   std::optional<std::array<double, 3>> LookupTrilinear(const HalfDiffAngles& a) const;
+  // The same lookup from its taps (Grid::TrilinearTapsAt of this table's grid), bit for bit.
+  std::optional<std::array<double, 3>> LookupTaps(const TrilinearTaps& taps) const;
   // Lookup by directions (local frame, pointing away from the surface).
   std::optional<std::array<double, 3>> LookupTrilinear(const Vec3& wi, const Vec3& wo) const;
 

@@ -24,6 +24,7 @@
 #include <cstdint>
 
 #include "fit/block_compress.h"
+#include "fit/lafortune_gradient.h"
 #include "fit/loss.h"
 #include "fit/param_layout.h"
 #include "fit/residual.h"
@@ -64,9 +65,16 @@ class BlockCost final : public ceres::CostFunction {
     double p[P];
     for (int i = 0; i < P; ++i) p[i] = layout_.FromOpt(i, x[i]);
     double cost = 0;
+    [[maybe_unused]] typename AnalyticGradient<M>::Prepared prepared{};
+    if constexpr (AnalyticGradient<M>::kAvailable) prepared = AnalyticGradient<M>::Prepare(p, layout_);
     for (std::size_t s = begin_; s < end_; ++s) {
       double rgb[3];
-      M::Eval(p, s_.geometry[s], rgb);
+      // The same values either way (fit/lafortune_gradient.h: bit for bit, tested).
+      if constexpr (AnalyticGradient<M>::kAvailable) {
+        AnalyticGradient<M>::Eval(prepared, s_.geometry[s], rgb, nullptr);
+      } else {
+        M::Eval(p, s_.geometry[s], rgb);
+      }
       for (int ch = 0; ch < 3; ++ch) {
         for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
           const double w = l_.sqrt_w[o];
@@ -85,29 +93,43 @@ class BlockCost final : public ceres::CostFunction {
   // robustified residual): one rank-1 row [sqrt(sum a^2) grad f, sum a b / sqrt(sum a^2)].
   bool WithJacobian(const double* x, double* residuals, double* jacobian) const {
     GramRows<P + 1> gram;
-    Jet p[P];
-    SeedParams<Jet, P>(layout_, x, p);
     double cost = 0;
-    for (std::size_t s = begin_; s < end_; ++s) {
-      Jet rgb[3];
-      M::Eval(p, s_.geometry[s], rgb);
-      for (int ch = 0; ch < 3; ++ch) {
-        double saa = 0, sab = 0;
-        for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
-          const double w = l_.sqrt_w[o];
-          const SlopedResidual e = LossResidualWithSlope(l_, o, ch, rgb[ch].a);
-          const RobustTerm r = Robustify(robust_, e.e);
-          cost += w * w * r.cost;
-          const double a = e.Slope(w * r.jac_scale);
-          saa += a * a;
-          sab += a * (w * r.res_scale * e.e);
-        }
-        if (!(saa > 0)) continue;
-        const double sq = std::sqrt(saa);
-        double* row = gram.Next();
-        for (int i = 0; i < P; ++i) row[i] = sq * rgb[ch].v[i];
-        row[P] = sab / sq;
-        gram.Commit();
+    // One sample's channel: value f and gradient grad (optimization space).
+    auto add = [&](std::size_t s, int ch, double f, const double* grad) {
+      double saa = 0, sab = 0;
+      for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
+        const double w = l_.sqrt_w[o];
+        const SlopedResidual e = LossResidualWithSlope(l_, o, ch, f);
+        const RobustTerm r = Robustify(robust_, e.e);
+        cost += w * w * r.cost;
+        const double a = e.Slope(w * r.jac_scale);
+        saa += a * a;
+        sab += a * (w * r.res_scale * e.e);
+      }
+      if (!(saa > 0)) return;
+      const double sq = std::sqrt(saa);
+      double* row = gram.Next();
+      for (int i = 0; i < P; ++i) row[i] = sq * grad[i];
+      row[P] = sab / sq;
+      gram.Commit();
+    };
+    if constexpr (AnalyticGradient<M>::kAvailable) {
+      // Closed-form derivatives (fit/lafortune_gradient.h): the values are CostOnly's.
+      double p[P];
+      for (int i = 0; i < P; ++i) p[i] = layout_.FromOpt(i, x[i]);
+      const auto prepared = AnalyticGradient<M>::Prepare(p, layout_);
+      for (std::size_t s = begin_; s < end_; ++s) {
+        double rgb[3], grad[3 * P];
+        AnalyticGradient<M>::Eval(prepared, s_.geometry[s], rgb, grad);
+        for (int ch = 0; ch < 3; ++ch) add(s, ch, rgb[ch], grad + ch * P);
+      }
+    } else {
+      Jet p[P];
+      SeedParams<Jet, P>(layout_, x, p);
+      for (std::size_t s = begin_; s < end_; ++s) {
+        Jet rgb[3];
+        M::Eval(p, s_.geometry[s], rgb);
+        for (int ch = 0; ch < 3; ++ch) add(s, ch, rgb[ch].a, rgb[ch].v.data());
       }
     }
     return CompressGram(gram.Finish(), P, cost, residuals, jacobian);

@@ -300,9 +300,8 @@ FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& lo
       std::clamp<std::size_t>(static_cast<std::size_t>(std::max(opt.threads, 1)), 1,
                               std::max<std::size_t>(ns / 4096, 1)));
   auto predict = [&](int t) {
-    for (std::size_t s = ns * t / n_threads; s < ns * (t + 1) / n_threads; ++s) {
-      ops.eval(r.params.data(), SampleGeometry(metric, s), &pred[3 * s]);
-    }
+    const std::size_t begin = ns * t / n_threads, end = ns * (t + 1) / n_threads;
+    ops.eval_samples(r.params.data(), metric, begin, end, &pred[3 * begin]);
   };
   RunOnThreads(n_threads, predict);
   r.metrics = ComputeMetricsPerSample(metric, pred, opt.threads);

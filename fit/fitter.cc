@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <optional>
 
 #include "fit/model_ops.h"
+#include "fit/prepare_cache.h"
+#include "fit/sample_plan.h"
 #include "fit/threads.h"
 #include "core/error.h"
 #include "models/registry.h"
@@ -45,17 +48,40 @@ bool SubSampled(const SampleOptions& o) {
 
 }  // namespace
 
+namespace {
+
+// The grid's plans: the cache's, or for a table prepared alone, the rendered one made for it and
+// no stored sample plan (its rows are computed as they are applied: 15 MB less at the peak).
+struct Plans {
+  std::shared_ptr<const SamplePlan> samples;
+  std::shared_ptr<const RenderedPlan> rendered;
+};
+
+Plans GetPlans(const Grid& grid, const SampleOptions& options, PrepareCache* cache) {
+  if (cache) return {cache->Samples(grid, options), cache->Rendered(grid)};
+  return {nullptr, std::make_shared<const RenderedPlan>(MakeRenderedPlan(grid))};
+}
+
+Samples PrepareWith(const Plans& plans, const Table& table, const SampleOptions& options,
+                    GeometryStorage storage = GeometryStorage::kStored) {
+  return plans.samples ? PrepareSamples(table, *plans.samples, options, storage)
+                       : PrepareSamples(table, options, storage);
+}
+
+}  // namespace
+
 PreparedTable PrepareTable(const Table& table, const SampleOptions& sample_options,
-                           const FitOptions& fit_options) {
+                           const FitOptions& fit_options, PrepareCache* cache) {
+  const Plans plans = GetPlans(table.grid, sample_options, cache);
   PreparedTable t;
-  t.rendered = PrepareRenderedReference(table);
+  t.rendered = PrepareRenderedReference(table, *plans.rendered);
   if (!SubSampled(sample_options)) {
-    t.fit = PrepareSamples(table, sample_options);
+    t.fit = PrepareWith(plans, table, sample_options);
   } else {
     // The metric set is every cell; the fit set is selected from it (no geometry twice).
     SampleOptions full = sample_options;
     full.budget = Budget{};
-    t.metric_own = PrepareSamples(table, full, GeometryStorage::kOnDemand);
+    t.metric_own = PrepareWith(plans, table, full, GeometryStorage::kOnDemand);
     t.fit = SelectBudget(t.metric_own, sample_options.budget, sample_options.seed);
     t.has_own_metric = true;
   }
@@ -64,11 +90,12 @@ PreparedTable PrepareTable(const Table& table, const SampleOptions& sample_optio
 }
 
 PreparedTable PrepareTable(Table&& table, const SampleOptions& sample_options,
-                           const FitOptions& fit_options) {
+                           const FitOptions& fit_options, PrepareCache* cache) {
+  const Plans plans = GetPlans(table.grid, sample_options, cache);
   if (!SubSampled(sample_options)) {
     PreparedTable t;
-    t.rendered = PrepareRenderedReference(table);
-    t.fit = PrepareSamples(table, sample_options);
+    t.rendered = PrepareRenderedReference(table, *plans.rendered);
+    t.fit = PrepareWith(plans, table, sample_options);
     table = Table{};  // released before the loss constants exist (36 MB for MERL)
     t.loss = PrepareLoss(t.fit, fit_options);
     return t;
@@ -77,8 +104,10 @@ PreparedTable PrepareTable(Table&& table, const SampleOptions& sample_options,
   // set takes the table's values over (no copy) and the table is gone before the fit set and
   // the loss constants exist.
   PreparedTable t;
-  t.rendered = PrepareRenderedReference(table);
-  t.metric_own = PrepareMetricSamples(std::move(table), sample_options);
+  t.rendered = PrepareRenderedReference(table, *plans.rendered);
+  t.metric_own = plans.samples
+                     ? PrepareMetricSamples(std::move(table), *plans.samples, sample_options)
+                     : PrepareMetricSamples(std::move(table), sample_options);
   t.fit = SelectBudget(t.metric_own, sample_options.budget, sample_options.seed);
   t.has_own_metric = true;
   t.loss = PrepareLoss(t.fit, fit_options);

@@ -36,13 +36,15 @@ struct PreparedTable {
   const Samples& metric() const { return has_own_metric ? metric_own : fit; }
 };
 
-// Throws InputError on bad options.
+// Throws InputError on bad options. `cache` (optional, fit/prepare_cache.h) holds the per-grid
+// work for the next tables of a batch; the result is the same bits with or without it.
+class PrepareCache;
 PreparedTable PrepareTable(const Table& table, const SampleOptions& sample_options,
-                           const FitOptions& fit_options);
+                           const FitOptions& fit_options, PrepareCache* cache = nullptr);
 // The same, consuming the table: it is released as soon as the samples are built, which lowers
 // the peak memory of a fit (brdfit fit; docs/reliability.md, "Memory").
 PreparedTable PrepareTable(Table&& table, const SampleOptions& sample_options,
-                           const FitOptions& fit_options);
+                           const FitOptions& fit_options, PrepareCache* cache = nullptr);
 
 // Fits one model. Throws InputError if the name is not a catalog model; every other problem
 // (no samples, non-finite values, solver failure) is a result with status kFailed.

@@ -1,6 +1,7 @@
 #include "fit/metrics.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -12,11 +13,6 @@
 namespace brdfit {
 
 namespace {
-
-// GuardedCbrt (fit/loss.h) with FastCbrt above the guard.
-double MetricCbrt(double x) {
-  return x >= kCbrtGuard && x < 1e300 ? FastCbrt(x) : GuardedCbrt(x);
-}
 
 // GuardedLog1p(a) - GuardedLog1p(b). Both above the guard (every non-negative a, b):
 // ln(1 + a) - ln(1 + b) = ln(1 + (a - b) / (1 + b)), one logarithm instead of two and no
@@ -39,18 +35,40 @@ struct Partial {
 // the metrics are the same bits whatever the number of threads.
 constexpr std::size_t kChunkSamples = 8192;
 
+// Observations per block of the pass below.
+constexpr std::size_t kBlockObs = 256;
+
 // predicted(o, s) returns the 3 predictions of observation o of sample s.
+// A block of observations at a time: first their arguments f c and m c, then every cube root of
+// the block (vectorized, below), then the sums in observation order. Each term is computed by
+// the same operations as one observation at a time, and added in the same order: the same
+// bits as a pass one observation at a time.
 template <class Predicted>
 Partial ScoreRange(const Samples& samples, std::size_t s_begin, std::size_t s_end,
                    const Predicted& predicted) {
   Partial p;
-  for (std::size_t s = s_begin; s < s_end; ++s) {
-    for (std::uint32_t o = samples.obs_begin[s]; o < samples.obs_begin[s + 1]; ++o) {
-      const double* f_rgb = predicted(o, s);
-      if (!(std::isfinite(f_rgb[0]) && std::isfinite(f_rgb[1]) && std::isfinite(f_rgb[2]))) {
-        p.nonfinite = true;
-        return p;
-      }
+  struct Obs {
+    std::uint32_t o;
+    const double* f;
+  };
+  std::array<Obs, kBlockObs> obs;
+  std::array<double, 6 * kBlockObs> arg;   // per observation: f c (3), m c (3)
+  // The metric's cube root of arg: GuardedCbrt (fit/loss.h) with FastCbrt above the guard.
+  std::array<double, 6 * kBlockObs> root;
+  std::size_t n = 0;
+  auto flush = [&] {
+    // The cube root of every argument: the guess (integer arithmetic) and the refinement (double
+    // arithmetic, vectorized: two divisions per instruction) in separate loops, then the
+    // guard's few values (f c or m c below 1e-5: dark or zero cells) on their own.
+    const std::size_t m = 6 * n;
+    for (std::size_t k = 0; k < m; ++k) root[k] = FastCbrtGuess(arg[k]);
+    for (std::size_t k = 0; k < m; ++k) root[k] = FastCbrtRefine(arg[k], root[k]);
+    for (std::size_t k = 0; k < m; ++k) {
+      if (!(arg[k] >= kCbrtGuard && arg[k] < 1e300)) root[k] = GuardedCbrt(arg[k]);
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::uint32_t o = obs[k].o;
+      const double* f_rgb = obs[k].f;
       const double w = samples.weight[o];
       const double c = samples.cos_i[o];
       const double* measured = samples.Value(o);
@@ -60,8 +78,8 @@ Partial ScoreRange(const Samples& samples, std::size_t s_begin, std::size_t s_en
         const double v = measured[ch];
         // The measured side is recomputed at each call rather than stored (48 bytes per
         // observation; docs/reliability.md, "Memory").
-        const double dl = LogDifference(f * c, v * c);
-        const double dc = MetricCbrt(f * c) - MetricCbrt(v * c);
+        const double dl = LogDifference(arg[6 * k + ch], arg[6 * k + 3 + ch]);
+        const double dc = root[6 * k + ch] - root[6 * k + 3 + ch];
         p.log_sum += w * dl * dl;
         p.cbrt_sum += w * dc * dc;
         p.num += w * c * c * (f - v) * (f - v);
@@ -74,7 +92,26 @@ Partial ScoreRange(const Samples& samples, std::size_t s_begin, std::size_t s_en
         p.worst_pred = f_rgb;
       }
     }
+    n = 0;
+  };
+  for (std::size_t s = s_begin; s < s_end; ++s) {
+    for (std::uint32_t o = samples.obs_begin[s]; o < samples.obs_begin[s + 1]; ++o) {
+      const double* f_rgb = predicted(o, s);
+      if (!(std::isfinite(f_rgb[0]) && std::isfinite(f_rgb[1]) && std::isfinite(f_rgb[2]))) {
+        p.nonfinite = true;
+        return p;
+      }
+      const double c = samples.cos_i[o];
+      const double* measured = samples.Value(o);
+      for (int ch = 0; ch < 3; ++ch) {
+        arg[6 * n + ch] = f_rgb[ch] * c;
+        arg[6 * n + 3 + ch] = measured[ch] * c;
+      }
+      obs[n++] = {o, f_rgb};
+      if (n == kBlockObs) flush();
+    }
   }
+  flush();
   return p;
 }
 

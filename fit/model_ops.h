@@ -26,6 +26,12 @@ struct PolishPixels;
 using MakePixelBlockFn = ceres::CostFunction* (*)(const PolishPixels&, const ParamLayout&,
                                                   std::size_t begin, std::size_t end);
 
+// The model at samples [begin, end) of a set: 3 values per sample into rgb[3 (s - begin)], the
+// values of eval at SampleGeometry, bit for bit, without a call through a pointer per sample
+// (the metric pass: every cell of the table).
+using EvalSamplesFn = void (*)(const double* p, const Samples& samples, std::size_t begin,
+                               std::size_t end, double* rgb);
+
 struct ModelOps {
   std::size_t catalog_index = 0;
   std::string name;
@@ -35,6 +41,7 @@ struct ModelOps {
   std::vector<ComponentOps> components;  // its lobes (a sum) or itself (fit/grid_init.h)
   MakeBlockFn make_block = nullptr;
   MakePixelBlockFn make_pixel_block = nullptr;  // the rendered polish's (fit/pixel_cost.h)
+  EvalSamplesFn eval_samples = nullptr;
 };
 
 // Each fit/problem_instances_K.cc registers the catalog models with index % kShards == K.

@@ -7,6 +7,7 @@
 #include "fit/block_cost.h"
 #include "fit/model_ops.h"
 #include "fit/pixel_cost.h"
+#include "fit/sample_geometry.h"
 #include "models/catalog.h"
 #include "models/registry.h"
 #include "models/sum.h"
@@ -29,6 +30,14 @@ ceres::CostFunction* MakePixelBlock(const PolishPixels& px, const ParamLayout& l
 template <class M>
 void EvalDouble(const double* p, const Geometry& g, double rgb[3]) {
   M::Eval(p, g, rgb);
+}
+
+template <class M>
+void EvalSamples(const double* p, const Samples& samples, std::size_t begin, std::size_t end,
+                 double* rgb) {
+  ForEachSampleGeometry(samples, begin, end, [&](std::size_t s, const Geometry& g) {
+    M::Eval(p, g, rgb + 3 * (s - begin));
+  });
 }
 
 // The lobes of a sum, each with its own evaluator and parameter slice; a model that is not a
@@ -59,7 +68,7 @@ void RegisterShard(std::vector<ModelOps>& out) {
             const ModelInfo info = MakeModelInfo<M>();
             out.push_back({I, info.name, info.param_names, ParamLayout::Of(M::kParams),
                            &EvalDouble<M>, ComponentsOf<M>::Get(), &MakeBlock<M>,
-                           &MakePixelBlock<M>});
+                           &MakePixelBlock<M>, &EvalSamples<M>});
           }
         }(),
         ...);

@@ -125,35 +125,65 @@ bool Finite3(const std::array<double, 3>& v) {
 
 }  // namespace
 
-RenderedReference PrepareRenderedReference(const Table& measured,
-                                           const RenderedErrorOptions& options) {
+std::size_t RenderedPlan::Bytes() const {
+  return sizeof(Pixel) * lit.size();
+}
+
+RenderedPlan MakeRenderedPlan(const Grid& grid, const RenderedErrorOptions& options) {
   CheckOptions(options);
-  RenderedReference ref;
-  RenderedError& r = ref.counts;
+  RenderedPlan plan;
+  plan.grid = grid;
+  plan.options = options;
+  RenderedError& r = plan.counts;
   r.resolution = options.resolution;
   r.num_lights = static_cast<int>(options.light_angles_deg.size());
-  ref.luminance_floor = options.luminance_floor;
-  ref.exposure_percentile = options.exposure_percentile;
   const std::vector<SpherePixel> pixels =
       SpherePixels(options.resolution, options.min_cos, &r.sphere_pixels);
-  ref.begin = {0};
   for (std::size_t k = 0; k < options.light_angles_deg.size(); ++k) {
     const double a = options.light_angles_deg[k] * kPi / 180;
     const Vec3 l{std::sin(a), 0, std::cos(a)};
-    RenderedLightError& le = r.lights[k];
-    le.light_deg = options.light_angles_deg[k];
+    r.lights[k].light_deg = options.light_angles_deg[k];
     for (const SpherePixel& p : pixels) {
       const double cos_l = Dot(p.n, l);
       if (!(cos_l > options.min_cos)) continue;
       const Vec3 wi{Dot(l, p.t), Dot(l, p.b), cos_l};
-      const auto m = RenderedLookup(measured, wi, p.wo);
+      plan.lit.push_back({wi, p.wo, cos_l, static_cast<int>(k), p.x, p.y,
+                          grid.TrilinearTapsAt(RenderedLookupAngles(wi, p.wo))});
+    }
+  }
+  return plan;
+}
+
+RenderedReference PrepareRenderedReference(const Table& measured,
+                                           const RenderedErrorOptions& options) {
+  return PrepareRenderedReference(measured, MakeRenderedPlan(measured.grid, options));
+}
+
+RenderedReference PrepareRenderedReference(const Table& measured, const RenderedPlan& plan) {
+  if (!(plan.grid == measured.grid)) {
+    throw std::invalid_argument("rendered error: plan of another grid");
+  }
+  RenderedReference ref;
+  RenderedError& r = ref.counts;
+  r = plan.counts;
+  ref.luminance_floor = plan.options.luminance_floor;
+  ref.exposure_percentile = plan.options.exposure_percentile;
+  ref.begin = {0};
+  ref.pixels.reserve(plan.lit.size());
+  std::size_t p = 0;
+  for (int k = 0; k < r.num_lights; ++k) {
+    RenderedLightError& le = r.lights[static_cast<std::size_t>(k)];
+    for (; p < plan.lit.size() && plan.lit[p].light == k; ++p) {
+      const RenderedPlan::Pixel& px = plan.lit[p];
+      const auto m = measured.LookupTaps(px.taps);
       if (!m || !Finite3(*m)) {
         ++le.masked_pixels;
-        ref.masked.push_back({static_cast<int>(k), p.x, p.y});
+        ref.masked.push_back({k, px.x, px.y});
         continue;
       }
-      ref.pixels.push_back({wi, p.wo, cos_l, {(*m)[0] * cos_l, (*m)[1] * cos_l, (*m)[2] * cos_l},
-                            p.x, p.y});
+      const double c = px.cos_l;
+      ref.pixels.push_back({px.wi, px.wo, c, {(*m)[0] * c, (*m)[1] * c, (*m)[2] * c}, px.x,
+                            px.y});
       ++le.lit_pixels;
     }
     ref.begin.push_back(ref.pixels.size());
@@ -345,11 +375,15 @@ BrdfFunction ModelBrdf(const ModelInfo& model, std::vector<double> params) {
 
 namespace brdfit {
 
-std::optional<std::array<double, 3>> RenderedLookup(const Table& table, const Vec3& wi,
-                                                    const Vec3& wo) {
+HalfDiffAngles RenderedLookupAngles(const Vec3& wi, const Vec3& wo) {
   HalfDiffAngles a = ToHalfDiff(wi, wo);
   if (a.theta_d < 1e-6) a.phi_d = 0;
-  return table.LookupTrilinear(a);
+  return a;
+}
+
+std::optional<std::array<double, 3>> RenderedLookup(const Table& table, const Vec3& wi,
+                                                    const Vec3& wo) {
+  return table.LookupTrilinear(RenderedLookupAngles(wi, wo));
 }
 
 BrdfFunction TableBrdf(const Table& table) {

@@ -40,6 +40,7 @@ struct RenderedErrorOptions {
   // The tone-mapped PSNR's exposure maps this percentile of the measured luminance (pooled
   // over the lit pixels of every image) to 1.
   double exposure_percentile = 99.0;
+  bool operator==(const RenderedErrorOptions&) const = default;
 };
 
 // The measured side of the metric, computed once per table: the lit pixels' directions and
@@ -64,9 +65,31 @@ struct RenderedReference {
   bool Empty() const { return pixels.empty() && counts.num_lights == 0; }
 };
 
+// What a reference needs of the measured table's grid, not of its values (issue 18): every
+// lit pixel's directions and its measured lookup's taps (Grid::TrilinearTapsAt), light after
+// light; made once for all tables of a grid (fit/prepare_cache.h). ~2 MB at the defaults.
+struct RenderedPlan {
+  struct Pixel {
+    Vec3 wi, wo;       // local frame of the pixel's normal
+    double cos_l = 0;  // n.l
+    int light = 0, x = 0, y = 0;
+    TrilinearTaps taps;  // of RenderedLookup(table, wi, wo)
+  };
+  Grid grid;
+  RenderedErrorOptions options;
+  RenderedError counts;  // resolution, lights and their angles, sphere pixels; nothing per table
+  std::vector<Pixel> lit;
+  std::size_t Bytes() const;
+};
+// Throws std::invalid_argument on options outside the ranges above.
+RenderedPlan MakeRenderedPlan(const Grid& grid, const RenderedErrorOptions& options = {});
+
 // Throws std::invalid_argument on options outside the ranges above.
 RenderedReference PrepareRenderedReference(const Table& measured,
                                            const RenderedErrorOptions& options = {});
+// The same from the grid's plan, bit for bit. Throws std::invalid_argument if the plan is of
+// another grid.
+RenderedReference PrepareRenderedReference(const Table& measured, const RenderedPlan& plan);
 // The metric of an approximation against a prepared reference; failures as below.
 RenderedError ScoreRendered(const RenderedReference& reference, const BrdfFunction& approx);
 
@@ -120,5 +143,7 @@ BrdfFunction TableBrdf(const Table& table);
 // cells of the theta_d = 0 ring still depends on it.
 std::optional<std::array<double, 3>> RenderedLookup(const Table& table, const Vec3& wi,
                                                     const Vec3& wo);
+// The angles RenderedLookup looks the table up at.
+HalfDiffAngles RenderedLookupAngles(const Vec3& wi, const Vec3& wo);
 
 }  // namespace brdfit

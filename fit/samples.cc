@@ -3,20 +3,19 @@
 #include <algorithm>
 #include <cassert>
 #include <charconv>
+#include <stdexcept>
 #include <cmath>
 
 #include "core/error.h"
 #include "fit/bin_measure.h"
 #include "fit/loss.h"
+#include "fit/sample_geometry.h"
+#include "fit/sample_plan.h"
 #include "fit/stratified.h"
 
 namespace brdfit {
 
 namespace {
-
-// Cells whose directions are this close to the horizon are dropped whatever the cut-off
-// (the masking terms divide by cos theta).
-constexpr double kMinCos = 1e-3;
 
 // Random budgets spread samples as W_s^0.5 over theta_h strata (see SelectStratified): the
 // highlight's bins are tiny in measure but decide alpha. Measured in bench/bench_fit.cc.
@@ -28,13 +27,6 @@ bool ParseCount(const std::string& s, std::size_t* out) {
   return ec == std::errc() && ptr == s.data() + s.size();
 }
 
-// A sample before it is appended: a cell and its optional phi_d mirror.
-struct Unit {
-  std::uint32_t primary;   // table index of (ih, id, ip), ip in the first half (member or not)
-  std::uint32_t cells[2];  // the members: the primary cell and/or its mirror, whichever are usable
-  std::uint8_t members;
-};
-
 struct UnitAxes {
   int ih, id, ip;
 };
@@ -44,34 +36,6 @@ struct UnitAxes {
 // none.
 int EffectiveStride(const Budget& b, const Grid& g) {
   return std::min(b.stride, std::max((g.n_phi_d + 1) / 2, 1));
-}
-
-AxisTrig MakeAxisTrig(const Grid& g) {
-  AxisTrig t;
-  auto fill = [](int n, auto angle_at, std::vector<double>* s, std::vector<double>* c) {
-    s->resize(n);
-    c->resize(n);
-    for (int i = 0; i < n; ++i) {
-      const double a = angle_at(i + 0.5);
-      (*s)[i] = std::sin(a);
-      (*c)[i] = std::cos(a);
-    }
-  };
-  fill(g.n_theta_h, [&](double x) { return g.ThetaHAt(x); }, &t.sin_h, &t.cos_h);
-  fill(g.n_theta_d, [&](double x) { return g.ThetaDAt(x); }, &t.sin_d, &t.cos_d);
-  fill(g.n_phi_d, [&](double x) { return g.PhiDAt(x); }, &t.sin_p, &t.cos_p);
-  return t;
-}
-
-// The geometry at the centre of cell (ih, id, ip): the same operations as
-// FromHalfDiff(CellCentre(ih, id, ip), phi_h = 0), from the axis tables (bit-identical; tested).
-Geometry GeometryAt(const AxisTrig& t, const UnitAxes& a) {
-  const Vec3 d{t.sin_d[a.id] * t.cos_p[a.ip], t.sin_d[a.id] * t.sin_p[a.ip], t.cos_d[a.id]};
-  const Vec3 wi{t.cos_h[a.ih] * d.x + t.sin_h[a.ih] * d.z, d.y,
-                -t.sin_h[a.ih] * d.x + t.cos_h[a.ih] * d.z};
-  const Vec3 h{t.sin_h[a.ih], 0.0, t.cos_h[a.ih]};
-  const Vec3 wo = 2.0 * Dot(wi, h) * h - wi;
-  return MakeGeometry(wi, wo);
 }
 
 }  // namespace
@@ -112,93 +76,38 @@ std::string Budget::ToString() const {
 
 namespace {
 
-// Visits, in (theta_h, theta_d, phi_d) order, every unit with at least one usable member:
-// fn(unit, w_cell) with w_cell the members' common cell weight. Counts what it drops and keeps
-// into *counts when counts is not null.
-template <class Fn>
-void ForEachUnit(const Table& table, const SampleOptions& options, const AxisTrig& t,
-                 SampleCounts* counts, Fn fn) {
-  const Grid& g = table.grid;
-  SampleCounts none;
-  SampleCounts& c = counts ? *counts : none;
-  const double cos_cut = std::max(std::cos(options.cutoff_deg * kPi / 180.0), kMinCos);
-  const bool pair = options.pair_mirrors;
-  const int half = pair ? (g.n_phi_d + 1) / 2 : g.n_phi_d;
-  for (int ih = 0; ih < g.n_theta_h; ++ih) {
-    for (int id = 0; id < g.n_theta_d; ++id) {
-      const double w_cell =
-          options.weighting == Weighting::kBinMeasure ? CellMeasure(g, ih, id, 0) : 1.0;
-      for (int ip = 0; ip < half; ++ip) {
-        // wi = R_y(theta_h) d with d = (sd cp, sd sp, cd); wo mirrors wi about h (geometry.h).
-        const double ci = t.cos_h[ih] * t.cos_d[id] - t.sin_h[ih] * t.sin_d[id] * t.cos_p[ip];
-        const double co = 2.0 * t.cos_d[id] * t.cos_h[ih] - ci;
-        const bool inside = ci >= cos_cut && co >= cos_cut;
-        Unit u{static_cast<std::uint32_t>(g.Index(ih, id, ip)), {0, 0}, 0};
-        const int mirror = g.n_phi_d - 1 - ip;
-        const int n_members = (pair && mirror != ip) ? 2 : 1;
-        for (int m = 0; m < n_members; ++m) {
-          const std::size_t idx = g.Index(ih, id, m == 0 ? ip : mirror);
-          if (!table.valid[idx]) continue;
-          ++c.valid;
-          const double* v = table.Value(idx);
-          if (!(std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]))) {
-            ++c.nonfinite;
-            continue;
-          }
-          if (!inside) {
-            ++c.beyond_cutoff;
-            continue;
-          }
-          ++c.eligible;
-          u.cells[u.members++] = static_cast<std::uint32_t>(idx);
-        }
-        if (u.members > 0) fn(u, UnitAxes{ih, id, ip}, w_cell);
-      }
-    }
+// Per cell of the table: usable (valid with finite values) and negative (some channel < 0).
+constexpr std::uint8_t kUsable = 1, kNegative = 2;
+
+// The table's usable cells, and the counts that depend only on the table: valid, non-finite.
+std::vector<std::uint8_t> UsableCells(const Table& table, SampleCounts* c,
+                                      std::size_t* n_usable) {
+  const std::size_t n = table.grid.NumCells();
+  std::vector<std::uint8_t> flags(n);
+  std::size_t valid = 0, nonfinite = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* v = &table.rgb[3 * i];
+    const bool ok = table.valid[i] != 0;
+    const bool finite = std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+    const bool negative = v[0] < 0 || v[1] < 0 || v[2] < 0;
+    valid += ok;
+    nonfinite += ok && !finite;
+    flags[i] = static_cast<std::uint8_t>((ok && finite ? kUsable : 0) |
+                                         (ok && finite && negative ? kNegative : 0));
   }
+  c->valid = valid;
+  c->nonfinite = nonfinite;
+  *n_usable = valid - nonfinite;
+  return flags;
 }
 
-void ReserveFor(std::size_t n_samples, std::size_t n_obs, bool stored, bool copy_values,
-                Samples* out) {
-  out->cell.reserve(n_obs);
-  if (copy_values) out->value.reserve(3 * n_obs);
-  out->weight.reserve(n_obs);
-  out->cos_i.reserve(n_obs);
-  if (stored) out->geometry.reserve(n_samples);
-  out->obs_begin.reserve(n_samples + 1);
-  out->obs_begin.push_back(0);
-}
-
-// Appends the unit as one sample, each member weighing w_cell.
-void AppendUnit(const Table& table, const Unit& u, const UnitAxes& a, double w_cell, bool stored,
-                bool copy_values, Samples* out) {
-  const Geometry geo = GeometryAt(out->trig, a);
-  if (stored) out->geometry.push_back(geo);
-  for (int m = 0; m < u.members; ++m) {
-    const std::uint32_t idx = u.cells[m];
-    const bool is_mirror = idx != u.primary;
-    out->cell.push_back(idx);
-    const double* v = table.Value(idx);
-    if (copy_values) out->value.insert(out->value.end(), v, v + 3);
-    if (v[0] < 0 || v[1] < 0 || v[2] < 0) ++out->counts.negative;
-    out->weight.push_back(w_cell);
-    out->total_weight += w_cell;
-    out->cos_i.push_back(is_mirror ? geo.cos_o : geo.cos_i);
-  }
-  out->obs_begin.push_back(static_cast<std::uint32_t>(out->cell.size()));
-}
-
-}  // namespace
-
-namespace {
-
-// Every usable cell (options.budget is not applied here).
-Samples PrepareSamplesImpl(const Table& table, const SampleOptions& options,
-                           GeometryStorage storage, bool copy_values) {
-  if (!(options.cutoff_deg > 0.0 && options.cutoff_deg <= 90.0)) {
-    throw InputError("angle cut-off must be in (0, 90] degrees, got " +
-                     std::to_string(options.cutoff_deg));
-  }
+// Every usable cell of the table inside the cut-off (options.budget is not applied here):
+// the plan's units in order (`visit_rows(fn)` calls fn on every PlanRow), each with the members
+// the table's mask keeps; a unit with none is no sample. Every valid, finite cell is either kept
+// here or beyond the cut-off.
+template <class VisitRows>
+Samples ApplyPlan(const Table& table, const SampleOptions& options, const AxisTrig& trig,
+                  const VisitRows& visit_rows, GeometryStorage storage, bool copy_values) {
   const Grid& g = table.grid;
   if (table.rgb.size() != 3 * g.NumCells() || table.valid.size() != g.NumCells()) {
     throw InputError(table.provenance.source, "table arrays do not match its grid");
@@ -207,48 +116,126 @@ Samples PrepareSamplesImpl(const Table& table, const SampleOptions& options,
   out.grid = g;
   out.options = options;
   out.counts.cells = g.NumCells();
-  out.trig = MakeAxisTrig(g);
+  out.trig = trig;
+  std::size_t n_usable = 0;
+  const std::vector<std::uint8_t> flags = UsableCells(table, &out.counts, &n_usable);
   const bool stored = storage == GeometryStorage::kStored;
-  // Every unit: counted first so that the arrays are exactly sized (a full MERL table has
-  // 1.1 M observations: growth by doubling would hold up to twice that), then filled, with no
-  // per-unit list in between (17 MB for MERL).
-  std::size_t n_samples = 0, n_obs = 0;
-  ForEachUnit(table, options, out.trig, &out.counts, [&](const Unit& u, const UnitAxes&, double) {
-    ++n_samples;
-    n_obs += u.members;
+  // Room for every usable cell: the pages of it never written take no memory (a table without
+  // holes fills it), and no array is copied by growth (a full MERL table has 1.1 M
+  // observations).
+  const std::size_t n_obs = n_usable, n_samples = n_usable;
+  out.cell.reserve(n_obs);
+  if (copy_values) out.value.reserve(3 * n_obs);
+  out.weight.reserve(n_obs);
+  out.cos_i.reserve(n_obs);
+  if (stored) out.geometry.reserve(n_samples);
+  out.obs_begin.reserve(n_samples + 1);
+  out.obs_begin.push_back(0);
+  std::size_t negative = 0;
+  visit_rows([&](const PlanRow& row) {
+    const double w_cell = row.weight;
+    for (std::size_t k = 0; k < row.units; ++k) {
+      const std::size_t before = out.cell.size();
+      for (std::uint32_t m = row.unit_begin[k]; m < row.unit_begin[k + 1]; ++m) {
+        const std::uint32_t idx = row.cell[m];
+        const std::uint8_t f = flags[idx];
+        if (!(f & kUsable)) continue;
+        out.cell.push_back(idx);
+        if (copy_values) {
+          const double* v = table.Value(idx);
+          out.value.insert(out.value.end(), v, v + 3);
+        }
+        negative += (f & kNegative) != 0;
+        out.weight.push_back(w_cell);
+        out.total_weight += w_cell;
+        out.cos_i.push_back(row.cos_i[m]);
+      }
+      if (out.cell.size() == before) continue;
+      if (stored) {
+        // The unit's first member is its first-half cell (plan order).
+        const int ip =
+            static_cast<int>(row.cell[row.unit_begin[k]] - g.Index(row.ih, row.id, 0));
+        out.geometry.push_back(CentreGeometry(out.trig, row.ih, row.id, ip));
+      }
+      out.obs_begin.push_back(static_cast<std::uint32_t>(out.cell.size()));
+    }
   });
-  ReserveFor(n_samples, n_obs, stored, copy_values, &out);
-  ForEachUnit(table, options, out.trig, nullptr,
-              [&](const Unit& u, const UnitAxes& a, double w_cell) {
-                AppendUnit(table, u, a, w_cell, stored, copy_values, &out);
-              });
+  out.counts.negative = negative;
+  out.counts.eligible = out.cell.size();
+  out.counts.beyond_cutoff = n_usable - out.counts.eligible;
   out.counts.selected = out.cell.size();
+  return out;
+}
+
+// From a stored plan, or (plan null) from the rows computed on the fly.
+Samples ApplyPlan(const SamplePlan* plan, const Table& table, const SampleOptions& options,
+                  GeometryStorage storage, bool copy_values) {
+  if (plan) {
+    return ApplyPlan(
+        table, options, plan->trig, [&](const PlanRowFn& fn) { ForEachPlanRow(*plan, fn); },
+        storage, copy_values);
+  }
+  const AxisTrig trig = MakeAxisTrig(table.grid);
+  return ApplyPlan(
+      table, options, trig,
+      [&](const PlanRowFn& fn) { ForEachPlanRow(table.grid, options, trig, fn); }, storage,
+      copy_values);
+}
+
+void CheckPlan(const SamplePlan& plan, const Table& table, const SampleOptions& options) {
+  if (!plan.Matches(table.grid, options)) {
+    throw std::invalid_argument("sample plan made for another grid or other sample options");
+  }
+}
+
+}  // namespace
+
+namespace {
+
+// PrepareSamples of a stored plan or (plan null) of rows computed on the fly.
+Samples PrepareFrom(const SamplePlan* plan, const Table& table, const SampleOptions& options,
+                    GeometryStorage storage) {
+  if (options.budget.kind == Budget::Kind::kFull) {
+    return ApplyPlan(plan, table, options, storage, true);
+  }
+  // A sub-sampled budget: the samples SelectBudget keeps of the full set (one selection rule
+  // for the fitter, which selects from its metric set, and for direct preparation).
+  SampleOptions full = options;
+  full.budget = Budget{};
+  Samples out = SelectBudget(ApplyPlan(plan, table, full, GeometryStorage::kOnDemand, true),
+                             options.budget, options.seed);
+  if (storage == GeometryStorage::kOnDemand) out.geometry = {};
+  return out;
+}
+
+Samples MetricFrom(const SamplePlan* plan, Table&& table, const SampleOptions& options) {
+  SampleOptions full = options;
+  full.budget = Budget{};
+  Samples out = ApplyPlan(plan, table, full, GeometryStorage::kOnDemand, false);
+  out.table_rgb = std::move(table.rgb);
+  table = Table{};
   return out;
 }
 
 }  // namespace
 
 Samples PrepareSamples(const Table& table, const SampleOptions& options, GeometryStorage storage) {
-  if (options.budget.kind == Budget::Kind::kFull) {
-    return PrepareSamplesImpl(table, options, storage, true);
-  }
-  // A sub-sampled budget: the samples SelectBudget keeps of the full set (one selection rule
-  // for the fitter, which selects from its metric set, and for direct preparation).
-  SampleOptions full = options;
-  full.budget = Budget{};
-  Samples out = SelectBudget(PrepareSamplesImpl(table, full, GeometryStorage::kOnDemand, true),
-                             options.budget, options.seed);
-  if (storage == GeometryStorage::kOnDemand) out.geometry = {};
-  return out;
+  return PrepareFrom(nullptr, table, options, storage);
+}
+
+Samples PrepareSamples(const Table& table, const SamplePlan& plan, const SampleOptions& options,
+                       GeometryStorage storage) {
+  CheckPlan(plan, table, options);
+  return PrepareFrom(&plan, table, options, storage);
 }
 
 Samples PrepareMetricSamples(Table&& table, const SampleOptions& options) {
-  SampleOptions full = options;
-  full.budget = Budget{};
-  Samples out = PrepareSamplesImpl(table, full, GeometryStorage::kOnDemand, false);
-  out.table_rgb = std::move(table.rgb);
-  table = Table{};
-  return out;
+  return MetricFrom(nullptr, std::move(table), options);
+}
+
+Samples PrepareMetricSamples(Table&& table, const SamplePlan& plan, const SampleOptions& options) {
+  CheckPlan(plan, table, options);
+  return MetricFrom(&plan, std::move(table), options);
 }
 
 namespace {
@@ -276,7 +263,8 @@ std::vector<double> SampleWeights(const Samples& samples) {
 // The theta_h bin of every sample: the strata of stratified selections.
 std::vector<int> ThetaHStrata(const Samples& samples) {
   std::vector<int> stratum(samples.NumSamples());
-  for (std::size_t s = 0; s < stratum.size(); ++s) stratum[s] = PrimaryAxes(samples, s).ih;
+  ForEachSampleAxes(samples, 0, samples.NumSamples(),
+                    [&](std::size_t s, int ih, int, int) { stratum[s] = ih; });
   return stratum;
 }
 
@@ -321,7 +309,8 @@ Samples CopySelected(const Samples& from, const std::vector<std::size_t>& kept,
 
 Geometry SampleGeometry(const Samples& samples, std::size_t s) {
   if (!samples.geometry.empty()) return samples.geometry[s];
-  return GeometryAt(samples.trig, PrimaryAxes(samples, s));
+  const UnitAxes a = PrimaryAxes(samples, s);
+  return CentreGeometry(samples.trig, a.ih, a.id, a.ip);
 }
 
 Samples SelectBudget(const Samples& full, const Budget& budget, std::uint64_t seed) {
@@ -340,26 +329,31 @@ Samples SelectBudget(const Samples& full, const Budget& budget, std::uint64_t se
     // one bin per row, never none.
     const int stride = EffectiveStride(budget, full.grid);
     const int offset = stride / 2;
-    std::size_t row_begin = 0;
-    while (row_begin < ns) {
-      const UnitAxes first = PrimaryAxes(full, row_begin);
-      std::size_t row_end = row_begin;
-      double all = 0, sel = 0;
-      while (row_end < ns) {
-        const UnitAxes a = PrimaryAxes(full, row_end);
-        if (a.ih != first.ih || a.id != first.id) break;
-        all += weight[row_end];
-        if (a.ip % stride == offset) sel += weight[row_end];
-        ++row_end;
+    // Rows are runs of consecutive samples of one (theta_h, theta_d); weights summed in order.
+    std::vector<std::size_t> row_kept;
+    double all = 0, sel = 0;
+    int row_ih = -1, row_id = -1;
+    auto end_row = [&] {
+      for (std::size_t s : row_kept) {
+        kept.push_back(s);
+        factor.push_back(all / sel);
       }
-      for (std::size_t s = row_begin; s < row_end; ++s) {
-        if (PrimaryAxes(full, s).ip % stride == offset) {
-          kept.push_back(s);
-          factor.push_back(all / sel);
-        }
+      row_kept.clear();
+      all = sel = 0;
+    };
+    ForEachSampleAxes(full, 0, ns, [&](std::size_t s, int ih, int id, int ip) {
+      if (ih != row_ih || id != row_id) {
+        end_row();
+        row_ih = ih;
+        row_id = id;
       }
-      row_begin = row_end;
-    }
+      all += weight[s];
+      if (ip % stride == offset) {
+        sel += weight[s];
+        row_kept.push_back(s);
+      }
+    });
+    end_row();
   } else {
     if (budget.count < 1) throw InputError("random budget needs N >= 1");
     Selection sel =

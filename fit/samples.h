@@ -12,6 +12,8 @@
 //    of ONE sample: the model is evaluated once, and each cell keeps its own value, weight
 //    and cos theta_i. Losses and metrics are unchanged; only the model cost halves.
 //  * for sub-sampled budgets, geometry is computed only for the selected samples.
+// What depends only on the grid and the options (the cells inside the cut-off, their cosines
+// and bin measures) is the grid's SamplePlan (fit/sample_plan.h), made once per batch.
 #pragma once
 
 #include <cstddef>
@@ -123,12 +125,19 @@ struct Samples {
 enum class GeometryStorage { kStored, kOnDemand };
 Samples PrepareSamples(const Table& table, const SampleOptions& options,
                        GeometryStorage storage = GeometryStorage::kStored);
+// The same from the table's grid's plan (fit/sample_plan.h), made once for many tables (a
+// batch: fit/prepare_cache.h). Throws std::invalid_argument if the plan is of another grid, cut-off,
+// weighting or pairing.
+struct SamplePlan;
+Samples PrepareSamples(const Table& table, const SamplePlan& plan, const SampleOptions& options,
+                       GeometryStorage storage = GeometryStorage::kStored);
 
 // The metric set of a fit (every usable cell, full budget; options.budget is ignored), built
 // consuming the table: geometry on demand, and the table's value array moved into
 // Samples::table_rgb instead of copied per observation. The table is left empty. Equal in every
 // observation to PrepareSamples(table, full budget) (tested).
 Samples PrepareMetricSamples(Table&& table, const SampleOptions& options);
+Samples PrepareMetricSamples(Table&& table, const SamplePlan& plan, const SampleOptions& options);
 
 // The geometry of sample s: the stored one, or (kOnDemand) the same value computed from its cell
 // with the same operations, bit for bit.

@@ -19,6 +19,7 @@
 #include "core/model_choice.h"
 #include "core/provenance.h"
 #include "fit/fitter.h"
+#include "fit/prepare_cache.h"
 #include "models/registry.h"
 #include "pipeline/inputs.h"
 #include "pipeline/material_keys.h"
@@ -270,6 +271,14 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
     if (!final) last_write = Clock::now();
   };
 
+  // The per-grid work of preparing a table (sample and rendered-metric plans), made once for
+  // the batch's tables of one grid and shared by the workers (fit/prepare_cache.h). A table
+  // fitted alone is prepared without it: nothing to share, and its plan would add 15 MB to the
+  // peak (docs/fitting.md, "Memory").
+  PrepareCache prepare_cache;
+  const auto inputs_fitted = std::count_if(states.begin(), states.end(),
+                                           [](const auto& st) { return st->remaining > 0; });
+  PrepareCache* const cache = inputs_fitted > 1 ? &prepare_cache : nullptr;
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
     while (true) {
@@ -291,7 +300,8 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
             st.content_hash = TableContentHash(table);
             st.load_ms = MsSince(t0);
             t0 = Clock::now();
-            st.prepared.emplace(PrepareTable(std::move(table), req.samples, req.fit));
+            st.prepared.emplace(
+                PrepareTable(std::move(table), req.samples, req.fit, cache));
             st.prepare_ms = MsSince(t0);
           } catch (const InputError& e) {
             st.error = e.what();

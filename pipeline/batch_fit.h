@@ -2,7 +2,8 @@
 // parallel, resumable and checkpointed into one HDF5 fit report (docs/formats.md).
 //
 //  * Parallel over (input, model) with `jobs` workers; each input is loaded and prepared once
-//    (fit/fitter.h PrepareTable), shared by its models' fits, and freed after its last fit.
+//    (fit/fitter.h PrepareTable), shared by its models' fits, and freed after its last fit;
+//    what depends only on the grid (fit/prepare_cache.h) is made once for the whole batch.
 //  * Fits are identified by (material key, model, options): the key is unique in the batch and
 //    the same on every machine (pipeline/material_keys.h); a report holds one source per key.
 //  * Resume: entries already in the report with the same key, model and options are kept
