@@ -61,9 +61,14 @@ class BlockCost final : public ceres::CostFunction {
  private:
   // Cost and Jacobian are summed in the same order (sample, channel, observation) so that both
   // paths give bit-identical costs.
+  // The model's parameters at optimization point x.
+  void Params(const double* x, double* p) const {
+    for (int i = 0; i < P; ++i) p[i] = layout_.FromOpt(i, x[i]);
+  }
+
   double CostOnly(const double* x) const {
     double p[P];
-    for (int i = 0; i < P; ++i) p[i] = layout_.FromOpt(i, x[i]);
+    Params(x, p);
     double cost = 0;
     [[maybe_unused]] typename AnalyticGradient<M>::Prepared prepared{};
     if constexpr (AnalyticGradient<M>::kAvailable) prepared = AnalyticGradient<M>::Prepare(p, layout_);
@@ -116,7 +121,7 @@ class BlockCost final : public ceres::CostFunction {
     if constexpr (AnalyticGradient<M>::kAvailable) {
       // Closed-form derivatives (fit/lafortune_gradient.h): the values are CostOnly's.
       double p[P];
-      for (int i = 0; i < P; ++i) p[i] = layout_.FromOpt(i, x[i]);
+      Params(x, p);
       const auto prepared = AnalyticGradient<M>::Prepare(p, layout_);
       for (std::size_t s = begin_; s < end_; ++s) {
         double rgb[3], grad[3 * P];

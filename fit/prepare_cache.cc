@@ -11,14 +11,6 @@ namespace brdfit {
 
 namespace {
 
-struct SampleKey {
-  Grid grid;
-  double cutoff_deg;
-  Weighting weighting;
-  bool pair_mirrors;
-  bool operator==(const SampleKey&) const = default;
-};
-
 struct RenderedKey {
   Grid grid;
   RenderedErrorOptions options;
@@ -40,7 +32,7 @@ struct Shelf {
 struct PrepareCache::State {
   std::size_t capacity;
   mutable std::mutex mu;
-  Shelf<SampleKey, SamplePlan> samples;
+  Shelf<SamplePlanKey, SamplePlan> samples;
   Shelf<RenderedKey, RenderedPlan> rendered;
   std::size_t made = 0, reused = 0;
 
@@ -95,8 +87,8 @@ PrepareCache::~PrepareCache() = default;
 
 std::shared_ptr<const SamplePlan> PrepareCache::Samples(const Grid& grid,
                                                         const SampleOptions& options) {
-  const SampleKey key{grid, options.cutoff_deg, options.weighting, options.pair_mirrors};
-  return state_->Get(state_->samples, key, [&] { return MakeSamplePlan(grid, options); });
+  return state_->Get(state_->samples, SamplePlanKey::Of(grid, options),
+                     [&] { return MakeSamplePlan(grid, options); });
 }
 
 std::shared_ptr<const RenderedPlan> PrepareCache::Rendered(const Grid& grid,

@@ -39,11 +39,6 @@ std::size_t SamplePlan::Bytes() const {
          sizeof(double) * (row_weight.size() + cos_i.size());
 }
 
-bool SamplePlan::Matches(const Grid& g, const SampleOptions& o) const {
-  return grid == g && cutoff_deg == o.cutoff_deg && weighting == o.weighting &&
-         pair_mirrors == o.pair_mirrors;
-}
-
 void ForEachPlanRow(const Grid& g, const SampleOptions& options, const AxisTrig& t,
                     const PlanRowFn& fn) {
   if (!(options.cutoff_deg > 0.0 && options.cutoff_deg <= 90.0)) {
@@ -91,7 +86,7 @@ void ForEachPlanRow(const Grid& g, const SampleOptions& options, const AxisTrig&
 }
 
 void ForEachPlanRow(const SamplePlan& p, const PlanRowFn& fn) {
-  const int n_d = p.grid.n_theta_d;
+  const int n_d = p.key.grid.n_theta_d;
   for (std::size_t r = 0; r + 1 < p.row_begin.size(); ++r) {
     PlanRow row;
     row.ih = static_cast<int>(r / n_d);
@@ -107,10 +102,7 @@ void ForEachPlanRow(const SamplePlan& p, const PlanRowFn& fn) {
 
 SamplePlan MakeSamplePlan(const Grid& g, const SampleOptions& options) {
   SamplePlan p;
-  p.grid = g;
-  p.cutoff_deg = options.cutoff_deg;
-  p.weighting = options.weighting;
-  p.pair_mirrors = options.pair_mirrors;
+  p.key = SamplePlanKey::Of(g, options);
   p.trig = MakeAxisTrig(g);
   const std::size_t rows = static_cast<std::size_t>(g.n_theta_h) * g.n_theta_d;
   p.row_begin.reserve(rows + 1);

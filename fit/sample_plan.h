@@ -23,11 +23,21 @@
 
 namespace brdfit {
 
-struct SamplePlan {
+// What a plan depends on: its grid and three of the sample options (budget and seed play no
+// part). The plan's identity, and the key of the batch's cache (fit/prepare_cache.h).
+struct SamplePlanKey {
   Grid grid;
   double cutoff_deg = 0;
   Weighting weighting = Weighting::kBinMeasure;
   bool pair_mirrors = true;
+  static SamplePlanKey Of(const Grid& g, const SampleOptions& o) {
+    return {g, o.cutoff_deg, o.weighting, o.pair_mirrors};
+  }
+  bool operator==(const SamplePlanKey&) const = default;
+};
+
+struct SamplePlan {
+  SamplePlanKey key;
   AxisTrig trig;
   // Row r = ih * n_theta_d + id holds units [row_begin[r], row_begin[r + 1]); its cells weigh
   // row_weight[r] (fit/bin_measure.h, or 1 for uniform weighting).
@@ -43,7 +53,9 @@ struct SamplePlan {
   std::size_t NumUnits() const { return unit_begin.empty() ? 0 : unit_begin.size() - 1; }
   std::size_t Bytes() const;
   // True if the plan was made for this grid and these options (budget and seed play no part).
-  bool Matches(const Grid& g, const SampleOptions& o) const;
+  bool Matches(const Grid& g, const SampleOptions& o) const {
+    return key == SamplePlanKey::Of(g, o);
+  }
 };
 
 // Throws InputError for a cut-off outside (0, 90] degrees.

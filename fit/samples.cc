@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cassert>
 #include <charconv>
-#include <stdexcept>
 #include <cmath>
+#include <stdexcept>
 
 #include "core/error.h"
 #include "fit/bin_measure.h"
@@ -187,10 +187,6 @@ void CheckPlan(const SamplePlan& plan, const Table& table, const SampleOptions& 
     throw std::invalid_argument("sample plan made for another grid or other sample options");
   }
 }
-
-}  // namespace
-
-namespace {
 
 // PrepareSamples of a stored plan or (plan null) of rows computed on the fly.
 Samples PrepareFrom(const SamplePlan* plan, const Table& table, const SampleOptions& options,
