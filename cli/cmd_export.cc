@@ -61,6 +61,15 @@ int RunExport(const ExportOptions& o) {
   CheckOutputs({o.fits}, outs);
   const std::vector<FitReportEntry> entries = ReadFitsAnyFormat(o.fits);
   const FitReportEntry& e = exports::SelectEntry(entries, o.material, o.model, format);
+  for (const FitReportEntry& c : entries) {
+    if (c.chosen && c.factorization && c.material == e.material && o.model.empty()) {
+      fmt::print(stderr,
+                 "brdfit: export: note: the approximation chosen for {} is a factorization ({}); "
+                 "this exports the analytic fit {} (the factorization: brdfit export {} "
+                 "--format threejs)\n",
+                 c.material, c.factorization->form, e.result.model, c.factorization->sidecar);
+    }
+  }
   const std::string glsl =
       format == exports::Format::kThreejs ? preview::AnalyticBrdfSource(e.result.model) : "";
   const exports::ExportOutcome r = exports::WriteExport(e, o.fits, format, o.out, glsl);

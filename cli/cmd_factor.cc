@@ -31,6 +31,7 @@
 #include "io/table_io.h"
 #include "pipeline/factor_export.h"
 #include "pipeline/factor_settings.h"
+#include "pipeline/factor_sidecar.h"
 #include "pipeline/factor_with_choice.h"
 #include "pipeline/inputs.h"
 #include "pipeline/material_keys.h"
@@ -101,46 +102,6 @@ std::string ScoreText(const RenderedError& e) {
                      e.ok ? fmt::format("{:.1f}%", 100 * e.median_rel_error) : "-");
 }
 
-nlohmann::json MetricsJson(const FitMetrics& m, const RenderedError& rendered, double ln_rmse) {
-  nlohmann::json j = {{"ln_ratio_rmse", ln_rmse},
-                      {"ln_ratio_rmse_definition",
-                       "sqrt(mean over valid cells above the horizon with all channels > 0 of "
-                       "(ln f_factored - ln f_table)^2), unweighted, cell centres"}};
-  j["fit_metrics"] = {{"ok", m.ok},
-                      {"log_rmse", m.log_rmse},
-                      {"cbrt_rmse", m.cbrt_rmse},
-                      {"rel_l2", m.rel_l2},
-                      {"cells", m.cells},
-                      {"weighting", m.weighting},
-                      {"cutoff_deg", m.cutoff_deg},
-                      {"definition", MetricsDefinition()}};
-  if (!m.ok) j["fit_metrics"]["problem"] = m.problem;
-  // The rendered-image metric, written as brdfit fit writes it (io/metrics_json.h).
-  j["rendered"] = nlohmann::json(RenderedErrorJson(rendered));
-  return j;
-}
-
-nlohmann::json SourceJson(const fs::path& file, const Table& t) {
-  const Provenance& p = t.provenance;
-  const std::string name = file.string();
-  // As given, as fit reports record their sources: relative to the working directory of the
-  // run, never made absolute (an output names no path the user did not give; issue 16).
-  return {{"file", name},
-          {"hash", TableContentHash(t)},
-          {"grid",
-           {{"n_theta_h", t.grid.n_theta_h},
-            {"n_theta_d", t.grid.n_theta_d},
-            {"n_phi_d", t.grid.n_phi_d},
-            {"theta_h_mapping", ToString(t.grid.theta_h_mapping)}}},
-          {"provenance",
-           {{"source", p.source},
-            {"generator", p.generator},
-            {"model", p.model},
-            {"seed", p.seed},
-            {"noise", p.noise},
-            {"missing_fraction", p.missing_fraction}}}};
-}
-
 // The stem of a table's outputs: its material key (pipeline/material_keys.h: "a/x" for
 // a/x.binary beside b/x.binary), which may come from inside an archive, made one safe path
 // component (core/file_stem.h): "a_x".
@@ -150,9 +111,9 @@ std::string OutputStem(const std::string& material, const std::string& suffix) {
 
 // Validates everything that can be checked before any work: options, inputs, output names.
 FactorOptions CheckOptions(const FactorCliOptions& o, const std::vector<FactorInput>& inputs) {
-  const FactorOptions f = pipeline::MakeFactorOptions(
-      {o.param, o.resolution, o.lambda, o.weighting, o.max_theta_deg, o.diffuse, o.rank, o.refine,
-       o.refine_iterations, o.refine_loss});
+  const FactorOptions f = pipeline::MakeFactorOptions({o.param, o.resolution, o.lambda, o.weighting,
+                                                       o.max_theta_deg, o.diffuse, o.rank, o.refine,
+                                                       o.refine_iterations, o.refine_loss});
   std::map<std::string, std::string> stems;
   std::vector<PlannedOutput> outputs;
   std::vector<std::string> files;
@@ -297,16 +258,10 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
       }
       const FitMetrics m = ScoreFactorization(table, r.brdf, metric_samples);
       const std::string stem = OutputStem(input.material, o.suffix);
-      const RunProvenance run = CurrentRunProvenance(!o.no_timings);
-      nlohmann::json provenance = {{"brdfit_version", run.version}};
-      if (!o.no_timings) {
-        provenance["command_line"] = run.command_line;
-        provenance["created"] = run.created;
-      }
       nlohmann::json extra = {{"material", input.material},
-                              {"source", SourceJson(file, table)},
-                              {"metrics", MetricsJson(m, re, ln_rmse)},
-                              {"provenance", provenance}};
+                              {"source", pipeline::SourceJson(file, table)},
+                              {"metrics", pipeline::MetricsJson(m, re, ln_rmse)},
+                              {"provenance", pipeline::ProvenanceJson(!o.no_timings)}};
       if (!choice.is_null()) extra["choice"] = choice;
       if (!ranks.is_null()) extra["ranks"] = ranks;
       const FactorPaths paths = SaveFactorization(r, o.out_dir, stem, extra, !o.no_timings);

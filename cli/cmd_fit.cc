@@ -79,6 +79,10 @@ void PrintTable(std::FILE* out, const std::vector<FitReportEntry>& entries) {
                e.chosen ? "*" : " ", e.material, r.model, LossOf(e), psnr, lum, r.metrics.log_rmse,
                r.iterations, r.times.init + r.times.solve, ToString(r.status));
     if (!r.message.empty()) fmt::print(out, "    {}\n", r.message);
+    if (e.factorization) {
+      fmt::print(out, "    textures: {} ({:.1f} KiB)\n", e.factorization->sidecar,
+                 e.factorization->texture_bytes / 1024.0);
+    }
     if (e.chosen) fmt::print(out, "    chosen: {}\n", e.choice);
   }
   if (any_chosen) {
@@ -169,13 +173,20 @@ void PrintTargetFidelity(std::FILE* out, const exports::FitTarget& t,
                          const std::vector<FitReportEntry>& fits) {
   for (const FitReportEntry& e : fits) {
     if (e.result.Failed()) continue;
+    if (e.factorization) {
+      fmt::print(
+          out, "target {}: {} factorization: {}\n", t.name, e.material,
+          t.format == exports::Format::kThreejs
+              ? "exact export (brdfit export " + e.factorization->sidecar + " --format threejs)"
+              : std::string("not exported to this target (textures: three.js only)"));
+      continue;
+    }
     const exports::Fidelity f = exports::ExportFidelity(e.result, t);
     std::string what;
     for (const std::string& a : f.approximations) what += (what.empty() ? "" : "; ") + a;
     fmt::print(out, "target {}: {} {}: {}\n", t.name, e.material, e.result.model,
                f.Exact() ? "exact export (brdfit export --format " +
-                               std::string(t.format == exports::Format::kGlb ? "glb" : t.name) +
-                               ")"
+                               std::string(t.format == exports::Format::kGlb ? "glb" : t.name) + ")"
                          : "approximate export: " + what);
   }
 }
@@ -250,8 +261,9 @@ int RunFit(const FitCliOptions& o) {
     if (!run.fresh.empty()) PrintTable(table_out, run.fresh);
     if (num_inputs > 1 && !run.fresh.empty()) PrintSummary(table_out, run.fresh);
     if (!req.shard.Whole()) {
-      fmt::print(table_out, "shard {}/{}: {} of {} fits of the batch (merge the shards' "
-                            "reports with brdfit merge)\n",
+      fmt::print(table_out,
+                 "shard {}/{}: {} of {} fits of the batch (merge the shards' "
+                 "reports with brdfit merge)\n",
                  req.shard.index, req.shard.count, run.skipped + run.planned,
                  run.skipped + run.planned + run.other_shards);
     }
@@ -294,12 +306,16 @@ Registrar reg{
                      "tables (MERL .binary or brdfit .h5); nbrdf:NAME or nbrdf:all tabulates the "
                      "NBRDF networks of ../shared/data/merl_nbrdf.zip on the MERL grid")
           ->required();
-      CLI::Option* model_opt = sub.add_option("-m,--model", o->models,
-                     "models, comma-separated (brdfit models lists them); NAME:N for N lobes, "
-                     "e.g. lafortune:2, ggx:2; auto: fit the candidates of docs/accuracy.md and "
-                     "mark the one chosen by rendered error")
-          ->delimiter(',')
-          ->capture_default_str();
+      CLI::Option* model_opt =
+          sub.add_option(
+                 "-m,--model", o->models,
+                 "models, comma-separated (brdfit models lists them); NAME:N for N lobes, "
+                 "e.g. lafortune:2, ggx:2; auto: fit the candidates of docs/accuracy.md and "
+                 "mark the one chosen by rendered error; factorization: also factor each "
+                 "table as brdfit factor does (textures in REPORT.factors/), a candidate of "
+                 "the choice with its texture values as parameters")
+              ->delimiter(',')
+              ->capture_default_str();
       sub.add_option("--diffuse", o->diffuse,
                      "diffuse lobe added to bare specular names (lambert, oren-nayar, burley): "
                      "ggx -> lambert+ggx; a name without that sum in the catalog is refused "
@@ -327,9 +343,11 @@ Registrar reg{
           ->capture_default_str();
       sub.add_option("--seed", o->fit.seed, "seed of random budgets and subsets")
           ->capture_default_str();
-      sub.add_option("--multistart", o->fit.multistart, "LM runs from the best N initializer points")
+      sub.add_option("--multistart", o->fit.multistart,
+                     "LM runs from the best N initializer points")
           ->capture_default_str();
-      sub.add_option("--max-iterations", o->fit.max_iterations, "per LM run")->capture_default_str();
+      sub.add_option("--max-iterations", o->fit.max_iterations, "per LM run")
+          ->capture_default_str();
       sub.add_option("-j,--jobs", o->jobs, "fits in parallel (over files and models)")
           ->capture_default_str();
       sub.add_option("--threads", o->fit.threads,
@@ -359,12 +377,14 @@ Registrar reg{
           "  brdfit fit gold.binary --model ggx:2,lafortune:3 --loss cbrt --multistart 4\n"
           "  brdfit fit nbrdf:all --model ggx,beckmann,ward -j 2 -o nbrdf-fits.h5\n"
           "  brdfit fit nbrdf:all --model auto --shard 3/8 -o shard-3.h5\n"
+          "  brdfit fit gold.binary --model auto,factorization -o gold.h5   # + gold.factors/\n"
           "  brdfit fit gold.binary --target gltf --json gold.json   # then brdfit export");
-      sub.add_option("--target", o->target,
-                     "gltf | threejs | blender | mitsuba | pbrt: without --model, fit the model the "
-                     "target renders exactly (lambert+ggx-hc for gltf and pbrt, lambert+ggx for "
-                     "blender and mitsuba, any for threejs); print per fit whether its export is "
-                     "exact and what it approximates");
+      sub.add_option(
+          "--target", o->target,
+          "gltf | threejs | blender | mitsuba | pbrt: without --model, fit the model the "
+          "target renders exactly (lambert+ggx-hc for gltf and pbrt, lambert+ggx for "
+          "blender and mitsuba, any for threejs); print per fit whether its export is "
+          "exact and what it approximates");
       return [o, model_opt] {
         o->models_given = model_opt->count() > 0;
         return RunFit(*o);

@@ -19,48 +19,55 @@ std::optional<double> RenderedScoreDb(const FitResult& fit) {
   return s;
 }
 
-std::optional<ModelChoice> ChooseFit(const std::vector<const FitResult*>& fits,
-                                     const ModelChoiceOptions& options) {
+std::optional<ModelChoice> ChooseCandidate(const std::vector<ChoiceCandidate>& candidates,
+                                           const ModelChoiceOptions& options) {
   std::optional<std::size_t> best;
-  std::vector<std::optional<double>> score(fits.size());
-  for (std::size_t i = 0; i < fits.size(); ++i) {
-    score[i] = RenderedScoreDb(*fits[i]);
+  std::vector<std::optional<double>> score(candidates.size());
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    score[i] = RenderedScoreDb(*candidates[i].fit);
     if (score[i] && (!best || *score[i] > *score[*best])) best = i;
   }
   if (!best) return std::nullopt;
   std::optional<std::size_t> chosen;
-  for (std::size_t i = 0; i < fits.size(); ++i) {
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
     if (!score[i] || *score[i] < *score[*best] - options.tolerance_db) continue;
     if (!chosen) {
       chosen = i;
       continue;
     }
-    const FitResult &a = *fits[i], &c = *fits[*chosen];
-    const bool fewer = a.params.size() < c.params.size();
-    const bool same = a.params.size() == c.params.size();
+    const ChoiceCandidate &a = candidates[i], &c = candidates[*chosen];
+    const bool fewer = a.parameters < c.parameters;
+    const bool same = a.parameters == c.parameters;
     if (fewer || (same && (*score[i] > *score[*chosen] ||
-                           (*score[i] == *score[*chosen] && a.model < c.model)))) {
+                           (*score[i] == *score[*chosen] && a.name < c.name)))) {
       chosen = i;
     }
   }
   ModelChoice out;
   out.index = *chosen;
   out.score_db = *score[*chosen];
-  const FitResult &c = *fits[*chosen], &b = *fits[*best];
-  const RenderedError& rc = c.metrics.rendered;
+  const ChoiceCandidate &c = candidates[*chosen], &b = candidates[*best];
+  const RenderedError& rc = c.fit->metrics.rendered;
   if (*chosen == *best) {
     out.reason = fmt::format(
         "best rendered score of {} fit(s): {:.2f} dB (PSNR {:.2f} dB, median luminance error "
         "{:.1f} %)",
-        fits.size(), out.score_db, rc.psnr_db, 100 * rc.median_rel_error);
+        candidates.size(), out.score_db, rc.psnr_db, 100 * rc.median_rel_error);
   } else {
     out.reason = fmt::format(
         "{} parameters against {} for the best-scoring {} ({:.2f} dB), within {:.2f} dB of it: "
         "{:.2f} dB (PSNR {:.2f} dB, median luminance error {:.1f} %)",
-        c.params.size(), b.params.size(), b.model, *score[*best], options.tolerance_db,
-        out.score_db, rc.psnr_db, 100 * rc.median_rel_error);
+        c.parameters, b.parameters, b.name, *score[*best], options.tolerance_db, out.score_db,
+        rc.psnr_db, 100 * rc.median_rel_error);
   }
   return out;
+}
+
+std::optional<ModelChoice> ChooseFit(const std::vector<const FitResult*>& fits,
+                                     const ModelChoiceOptions& options) {
+  std::vector<ChoiceCandidate> candidates;
+  for (const FitResult* f : fits) candidates.push_back({f, f->params.size(), f->model});
+  return ChooseCandidate(candidates, options);
 }
 
 }  // namespace brdfit

@@ -49,6 +49,17 @@ double RenderedScoreDb(const RenderedError& rendered);
 // S of one fit, or nullopt when it failed or has no rendered error.
 std::optional<double> RenderedScoreDb(const FitResult& fit);
 
+// One candidate of the choice: a fit, or a factorization scored as one (its FitResult holds the
+// metrics, its parameters are its texture values: pipeline/batch_fit.h).
+struct ChoiceCandidate {
+  const FitResult* fit = nullptr;
+  std::size_t parameters = 0;  // what "fewest parameters" counts
+  std::string name;            // in the reason: the model, or the factorization's form
+};
+
+std::optional<ModelChoice> ChooseCandidate(const std::vector<ChoiceCandidate>& candidates,
+                                           const ModelChoiceOptions& options = {});
+// The same over fits: each counts its own parameters and is named by its model.
 std::optional<ModelChoice> ChooseFit(const std::vector<const FitResult*>& fits,
                                      const ModelChoiceOptions& options = {});
 

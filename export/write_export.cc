@@ -45,7 +45,13 @@ const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
   }
   std::vector<const FitReportEntry*> of;
   for (const auto& e : entries) {
-    if ((material.empty() || e.material == material) && !e.result.Failed()) of.push_back(&e);
+    if (!material.empty() && e.material != material) continue;
+    if (e.factorization && model == e.result.model) {
+      throw InputError("a factorization exports from its sidecar: brdfit export " +
+                       e.factorization->sidecar + " --format threejs");
+    }
+    // A factorization's textures are not a lobe material (io/fit_report.h): the analytic fits.
+    if (!e.result.Failed() && !e.factorization) of.push_back(&e);
   }
   if (of.empty()) {
     throw InputError(material.empty() ? std::string("no successful fit to export")

@@ -21,7 +21,8 @@ Format FormatFromString(const std::string& s);
 // material), of `model` when given, else the exportable one the target expresses exactly
 // (lambert+ggx for Mitsuba and Blender, lambert+ggx-hc for the others), else the chosen fit, else
 // the exportable fit with the lowest log_rmse. kThreejs evaluates every analytic model exactly:
-// `model`, else the chosen fit, else the lowest log_rmse. Throws InputError naming what is
+// `model`, else the chosen fit, else the lowest log_rmse. A factorization entry (io/fit_report.h)
+// is never selected: its sidecar exports (threejs). Throws InputError naming what is
 // available.
 const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
                                   const std::string& material, const std::string& model,

@@ -149,6 +149,15 @@ void WriteEntry(const H5::Group& g, const FitReportEntry& e, bool timings) {
   WriteIntAttr(sg, "eligible", static_cast<std::int64_t>(c.eligible));
   WriteIntAttr(sg, "selected", static_cast<std::int64_t>(c.selected));
 
+  if (e.factorization) {
+    const FactorizationRef& f = *e.factorization;
+    H5::Group fg = MakeGroup(g, "factorization");
+    WriteStringAttr(fg, "form", f.form);
+    WriteStringAttr(fg, "sidecar", f.sidecar);
+    WriteIntAttr(fg, "texture_bytes", static_cast<std::int64_t>(f.texture_bytes));
+    WriteIntAttr(fg, "values", static_cast<std::int64_t>(f.values));
+  }
+
   if (timings) {
     H5::Group tg = MakeGroup(g, "timing");
     DoubleAttr(tg, "load_ms", r.times.load);
@@ -235,14 +244,48 @@ class Reader : public hdf5::Reader {
     return ReadFinite(ds, what);
   }
 
+  // The model's parameters, by name and in its bounds (1e300 crashed the renderer); a failed
+  // fit holds the initial guess or zeros (core/result.h), or none.
+  void CheckParams(const ModelInfo& model, const FitResult& r, const std::string& where) const {
+    if (r.Failed() ? !r.params.empty() && r.params.size() != model.params.size()
+                   : r.params.size() != model.params.size()) {
+      Fail(fmt::format("{}/params: {} values, model {} has {} parameters", where, r.params.size(),
+                       r.model, model.params.size()));
+    }
+    if (!r.params.empty()) {
+      if (const std::string bad = CheckModelParamNames(model, r.param_names); !bad.empty()) {
+        Fail(fmt::format("{}/params@names: {}", where, bad));
+      }
+    }
+    if (!r.Failed()) {
+      if (const std::string bad = CheckModelParams(r.model, r.params); !bad.empty()) {
+        Fail(fmt::format("{}/params: {}", where, bad));
+      }
+    }
+  }
+
+  FactorizationRef Factorization(const H5::Group& g, const std::string& where) const {
+    const std::string fw = where + "/factorization";
+    const H5::Group fg = Group(g, where, "factorization");
+    FactorizationRef f;
+    f.form = String(fg, fw, "form");
+    f.sidecar = String(fg, fw, "sidecar");
+    if (f.form.empty() || f.sidecar.empty()) Fail(fw + ": form and sidecar must not be empty");
+    f.texture_bytes = Count(fg, fw, "texture_bytes");
+    f.values = Count(fg, fw, "values");
+    if (f.values == 0) Fail(fw + "@values must be positive");
+    return f;
+  }
+
   FitReportEntry Entry(const H5::Group& g, const std::string& where) const {
     FitReportEntry e;
     FitResult& r = e.result;
     e.source = String(g, where, "source");
     e.material = String(g, where, "material");
     r.model = String(g, where, "model");
-    const ModelInfo* model = FindModel(r.model);
-    if (!model) Fail(fmt::format("{}@model: unknown model '{}'", where, r.model));
+    const bool factorization = r.model == kFactorizationModel;
+    const ModelInfo* model = factorization ? nullptr : FindModel(r.model);
+    if (!model && !factorization) Fail(fmt::format("{}@model: unknown model '{}'", where, r.model));
     e.options = String(g, where, "options");
     // FitParamsJson parses it (fuzz/regressions/fit_report/crafted-options-not-json.h5 made it
     // throw json::parse_error out of `brdfit fit --json`).
@@ -281,22 +324,15 @@ class Reader : public hdf5::Reader {
       Fail(fmt::format("{}/params: {} names for {} values", where, r.param_names.size(),
                        r.params.size()));
     }
-    // The model's parameters, by name and in its bounds (1e300 crashed the renderer); a failed
-    // fit holds the initial guess or zeros (core/result.h), or none.
-    if (r.Failed() ? !r.params.empty() && r.params.size() != model->params.size()
-                   : r.params.size() != model->params.size()) {
-      Fail(fmt::format("{}/params: {} values, model {} has {} parameters", where, r.params.size(),
-                       r.model, model->params.size()));
-    }
-    if (!r.params.empty()) {
-      if (const std::string bad = CheckModelParamNames(*model, r.param_names); !bad.empty()) {
-        Fail(fmt::format("{}/params@names: {}", where, bad));
+    if (factorization) {
+      // A factorization has no parameters: its textures are files (FactorizationRef).
+      if (!r.params.empty()) Fail(fmt::format("{}/params: a factorization has none", where));
+      e.factorization = Factorization(g, where);
+    } else {
+      if (g.nameExists("factorization")) {
+        Fail(fmt::format("{}/factorization: the entry is a fit of {}", where, r.model));
       }
-    }
-    if (!r.Failed()) {
-      if (const std::string bad = CheckModelParams(r.model, r.params); !bad.empty()) {
-        Fail(fmt::format("{}/params: {}", where, bad));
-      }
+      CheckParams(*model, r, where);
     }
     std::vector<hsize_t> dims;
     const H5::DataSet ab = Dataset(g, where, "at_bound", H5T_INTEGER, &dims);
@@ -454,6 +490,13 @@ std::string FitParamsJson(std::vector<FitReportEntry> entries, bool run_details)
       if (r.at_bound[i]) at_bound.push_back(r.param_names[i]);
     }
     j["at_bound"] = at_bound;
+    if (e.factorization) {
+      const FactorizationRef& f = *e.factorization;
+      j["factorization"] = {{"form", f.form},
+                            {"sidecar", f.sidecar},
+                            {"texture_bytes", f.texture_bytes},
+                            {"values", f.values}};
+    }
     j["metrics"] = {{"log_rmse", r.metrics.log_rmse},
                     {"cbrt_rmse", r.metrics.cbrt_rmse},
                     {"rel_l2", r.metrics.rel_l2},

@@ -15,6 +15,10 @@
 //                    theta_o_deg, log_error; datasets measured [3], predicted [3] (1/sr)
 //       samples      group, attrs cells, valid, nonfinite, negative, beyond_cutoff, eligible,
 //                    selected (fit/samples.h SampleCounts)
+//       factorization  group, only in an entry of model "factorization" (a factorization among
+//                    the candidates, pipeline/batch_fit.h): attrs form, sidecar (its
+//                    .factor.json, as written), texture_bytes, values (the texture values: its
+//                    parameter count for the choice)
 //       timing       group (absent when written without timings), attrs load_ms,
 //                    prepare_ms, init_ms, solve_ms, metrics_ms (wall), init_cpu_ms,
 //                    solve_cpu_ms, metrics_cpu_ms (thread CPU time)
@@ -24,7 +28,10 @@
 // written: FitResult holds none (core/result.h), and the writer refuses one (std::logic_error).
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +41,20 @@ namespace brdfit {
 
 inline constexpr const char* kFitReportFormat = "brdfit-fits";
 inline constexpr int kFitReportVersion = 1;
+
+// The model name of an entry that is a factorization (McCool et al. 2001; factor/factor.h)
+// scored and chosen among the fits: it has no parameters, its textures are files.
+inline constexpr const char* kFactorizationModel = "factorization";
+
+// What a factorization entry holds besides its metrics.
+struct FactorizationRef {
+  std::string form;     // the chosen form's label, e.g. "mccool r2" (factor/factor_form.h)
+  std::string sidecar;  // its .factor.json (io/factor_io.h), as written: relative to the
+                        // working directory of the run when the report path was
+  std::uint64_t texture_bytes = 0;  // GPU memory of its textures (factor/factor_form.h)
+  std::uint64_t values = 0;         // texture values and the diffuse value: its parameters
+  bool operator==(const FactorizationRef&) const = default;
+};
 
 struct FitReportEntry {
   std::string source;    // input file as given
@@ -48,6 +69,13 @@ struct FitReportEntry {
   // before brdfit 0.1.0 recorded it.
   std::string source_hash;
   bool timed = false;  // set by ReadFitReport: the entry had a /timing group
+  // Set exactly when result.model is kFactorizationModel.
+  std::optional<FactorizationRef> factorization;
+  // The number of parameters the model choice weighs (core/model_choice.h): the fit's, or a
+  // factorization's texture values.
+  std::size_t ParameterCount() const {
+    return factorization ? static_cast<std::size_t>(factorization->values) : result.params.size();
+  }
 };
 
 // Sorts entries by (source, model, options): the order of a report does not depend on the order
@@ -67,7 +95,8 @@ std::vector<FitReportEntry> ReadFitReport(const std::filesystem::path& path);
 //  "status", "message", "params": {"name": value, ...}, "metrics": {"log_rmse", "cbrt_rmse",
 //  "rel_l2", "weighting", "cutoff_deg", "rendered": {"psnr_db", "psnr_srgb_db",
 //  "median_rel_error", "p95_rel_error", "ok", "problem" if not ok} (when computed, i.e. not for
-//  a failed fit; io/metrics_json.h, docs/accuracy.md)}, "chosen": bool, "choice": "why" (chosen
+//  a failed fit; io/metrics_json.h, docs/accuracy.md)}, "factorization": {"form", "sidecar",
+//  "texture_bytes", "values"} (factorization entries only), "chosen": bool, "choice": "why" (chosen
 //  fits only), "options": {...}, "source_hash" (when known)},
 //  ...], "provenance": {"brdfit_version", "command_line", "created" (the last two only with
 //  run_details)}} in report order, no timings: deterministic without run_details.

@@ -21,6 +21,7 @@
 #include "fit/fitter.h"
 #include "fit/prepare_cache.h"
 #include "models/registry.h"
+#include "pipeline/factor_candidate.h"
 #include "pipeline/inputs.h"
 #include "pipeline/material_keys.h"
 
@@ -36,7 +37,7 @@ double MsSince(Clock::time_point t0) {
 
 struct Task {
   std::size_t input;
-  std::string model;
+  std::string model;    // a catalog model, or kFactorizationModel (pipeline/factor_candidate.h)
   FitOptions fit;       // the request's, with the run's own loss if it has one
   std::string options;  // OptionsJson of the fit
 };
@@ -45,8 +46,10 @@ struct Task {
 struct InputState {
   std::mutex mu;
   bool ready = false;
-  std::optional<PreparedTable> prepared;
-  std::string error;  // InputError message if loading failed
+  std::optional<PreparedTable> prepared;  // when the input has fits to make
+  std::optional<Table> table;             // kept while a factorization of it is to be made
+  int fits = 0, factorizations = 0;       // tasks of the input, of each kind
+  std::string error;                      // InputError message if loading failed
   double load_ms = 0, prepare_ms = 0;
   std::string content_hash;  // core/provenance.h TableContentHash
   std::atomic<int> remaining{0};
@@ -177,6 +180,10 @@ std::vector<ModelRun> ResolveModelRuns(const std::vector<std::string>& requested
     out.push_back(run);
   };
   for (const std::string& n : requested) {
+    if (n == kFactorizationModel) {
+      add({n, std::nullopt});  // pipeline/factor_candidate.h: no loss of the request's
+      continue;
+    }
     if (n != "auto") {
       if (n.empty()) continue;
       add({ResolveModelNames({n}, diffuse).front(), std::nullopt});
@@ -202,7 +209,8 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
     FitOptions fo = req.fit;
     if (m.loss) fo.loss = *m.loss;
     run_fit.push_back(fo);
-    run_options.push_back(OptionsJson(req.samples, fo));
+    run_options.push_back(m.model == kFactorizationModel ? FactorizationOptionsJson(req.samples)
+                                                         : OptionsJson(req.samples, fo));
   }
   const std::vector<std::string>& inputs = req.inputs;
   // Fits are identified by (material key, model, options) (pipeline/material_keys.h).
@@ -245,6 +253,7 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
       }
       tasks.push_back({f, m, run_fit[k], run_options[k]});
       ++states[f]->remaining;
+      ++(m == kFactorizationModel ? states[f]->factorizations : states[f]->fits);
     }
   }
   result.planned = tasks.size();
@@ -276,9 +285,12 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
   // fitted alone is prepared without it: nothing to share, and its plan would add 15 MB to the
   // peak (docs/fitting.md, "Memory").
   PrepareCache prepare_cache;
-  const auto inputs_fitted = std::count_if(states.begin(), states.end(),
-                                           [](const auto& st) { return st->remaining > 0; });
+  const auto inputs_fitted =
+      std::count_if(states.begin(), states.end(), [](const auto& st) { return st->remaining > 0; });
   PrepareCache* const cache = inputs_fitted > 1 ? &prepare_cache : nullptr;
+  // The factorizations' systems (~100 MB each on the MERL grid): one per parameterization,
+  // shared by the workers from table to table; a single table drops them when done.
+  FactorSystemCache factor_cache(/*capacity=*/2);
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
     while (true) {
@@ -300,8 +312,13 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
             st.content_hash = TableContentHash(table);
             st.load_ms = MsSince(t0);
             t0 = Clock::now();
-            st.prepared.emplace(
-                PrepareTable(std::move(table), req.samples, req.fit, cache));
+            if (st.factorizations > 0) {
+              st.table.emplace(std::move(table));
+              if (st.fits > 0)
+                st.prepared.emplace(PrepareTable(*st.table, req.samples, req.fit, cache));
+            } else {
+              st.prepared.emplace(PrepareTable(std::move(table), req.samples, req.fit, cache));
+            }
             st.prepare_ms = MsSince(t0);
           } catch (const InputError& e) {
             st.error = e.what();
@@ -312,36 +329,54 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
         }
       }
       if (st.error.empty()) {
-        FitResult r;
-        try {
-          r = FitPrepared(t.model, *st.prepared, t.fit);
-        } catch (const std::exception& e) {  // never expected; a failed entry, not a crash
-          r = FitResult{};
-          r.model = t.model;
-          r.status = FitStatus::kFailed;
-          r.message = std::string("internal error: ") + e.what();
-        }
-        r.times.load = st.load_ms;
-        r.times.prepare = st.prepare_ms;
-        FitReportEntry e{input,
-                         keys[t.input],
-                         t.options,
-                         std::move(r),
-                         /*chosen=*/false,
-                         /*choice=*/{},
-                         /*source_hash=*/st.content_hash,
-                         /*timed=*/false};
-        std::lock_guard<std::mutex> lock(mu);
-        if (req.on_fit_done) req.on_fit_done(e);
-        result.fresh.push_back(std::move(e));
-        if (!write_error && MsSince(last_write) > 5000) {
-          // A checkpoint that cannot be written (a full disk) ends the run: no fit after it
-          // could be kept. The error is raised once the workers stopped.
+        FitReportEntry e;
+        if (t.model == kFactorizationModel) {
           try {
-            write_report(false);  // checkpoint for resuming
+            e = FactorizationEntry({&*st.table, input, keys[t.input], st.content_hash, req.samples,
+                                    FactorizationFolder(req.report), req.timings, &factor_cache,
+                                    /*last=*/inputs_fitted == 1});
           } catch (const OutputError&) {
-            write_error = std::current_exception();
+            std::lock_guard<std::mutex> lock(mu);
+            if (!write_error) write_error = std::current_exception();
             next = tasks.size();
+          }
+          {
+            std::lock_guard<std::mutex> lock(st.mu);
+            if (--st.factorizations == 0) st.table.reset();
+          }
+          e.result.times.load = st.load_ms;
+        } else {
+          FitResult r;
+          try {
+            r = FitPrepared(t.model, *st.prepared, t.fit);
+          } catch (const std::exception& ex) {  // never expected; a failed entry, not a crash
+            r = FitResult{};
+            r.model = t.model;
+            r.status = FitStatus::kFailed;
+            r.message = std::string("internal error: ") + ex.what();
+          }
+          r.times.load = st.load_ms;
+          r.times.prepare = st.prepare_ms;
+          e.source = input;
+          e.material = keys[t.input];
+          e.options = t.options;
+          e.result = std::move(r);
+          e.source_hash = st.content_hash;
+        }
+        std::lock_guard<std::mutex> lock(mu);
+        // No model: a factorization's files could not be written, the run ends (write_error).
+        if (!e.result.model.empty()) {
+          if (req.on_fit_done) req.on_fit_done(e);
+          result.fresh.push_back(std::move(e));
+          if (!write_error && MsSince(last_write) > 5000) {
+            // A checkpoint that cannot be written (a full disk) ends the run: no fit after it
+            // could be kept. The error is raised once the workers stopped.
+            try {
+              write_report(false);  // checkpoint for resuming
+            } catch (const OutputError&) {
+              write_error = std::current_exception();
+              next = tasks.size();
+            }
           }
         }
       }
@@ -385,9 +420,13 @@ void MarkChosenFits(std::vector<FitReportEntry>& entries) {
     by_material[entries[i].material].push_back(i);
   }
   for (const auto& [material, indices] : by_material) {
-    std::vector<const FitResult*> fits;
-    for (std::size_t i : indices) fits.push_back(&entries[i].result);
-    const std::optional<ModelChoice> c = ChooseFit(fits);
+    std::vector<ChoiceCandidate> fits;
+    for (std::size_t i : indices) {
+      const FitReportEntry& e = entries[i];
+      fits.push_back({&e.result, e.ParameterCount(),
+                      e.factorization ? "factorization " + e.factorization->form : e.result.model});
+    }
+    const std::optional<ModelChoice> c = ChooseCandidate(fits);
     if (!c) continue;
     FitReportEntry& e = entries[indices[c->index]];
     e.chosen = true;

@@ -45,10 +45,8 @@ struct ModelRun {
 // a sheen lobe over lambert+ggx ("Cloth: a sheen lobe"), is chosen on cloth only: it raises
 // the worst fabric by 1.4 dB for 15 % more time.
 inline const std::vector<ModelRun> kAutoCandidates = {
-    {"lambert+ggx+ggx", LossKind::kRel},
-    {"burley+ggx", LossKind::kRel},
-    {"lambert+abc", LossKind::kRel},
-    {"oren-nayar+ggx", LossKind::kRel},
+    {"lambert+ggx+ggx", LossKind::kRel},   {"burley+ggx", LossKind::kRel},
+    {"lambert+abc", LossKind::kRel},       {"oren-nayar+ggx", LossKind::kRel},
     {"lambert+ggx+sheen", LossKind::kRel},
 };
 
@@ -107,8 +105,11 @@ std::vector<std::string> ResolveModelNames(const std::vector<std::string>& reque
                                            const std::string& diffuse);
 
 // The runs of `brdfit fit --model`: each name through ResolveModelNames under the request's
-// loss, and "auto" as kAutoCandidates (each under its own loss, or all under the request's
-// when the user gave one: loss_given). Duplicate runs are dropped.
+// loss, "auto" as kAutoCandidates (each under its own loss, or all under the request's
+// when the user gave one: loss_given), and "factorization" (kFactorizationModel) as itself:
+// the table factored as `brdfit factor` does by default, a candidate of the model choice
+// (pipeline/factor_candidate.h; its textures go to FactorizationFolder(report)). Duplicate
+// runs are dropped.
 std::vector<ModelRun> ResolveModelRuns(const std::vector<std::string>& requested,
                                        const std::string& diffuse, bool loss_given);
 

@@ -102,8 +102,8 @@ std::vector<double> FitCached(const MaterialSpec& m, const std::filesystem::path
       // A damaged entry (or another model's under a colliding key) is recomputed and
       // overwritten below.
       if (log) {
-        log->Add("note", "cache entry " + entry.string() + " unreadable (" + e.what() +
-                             "): recomputing");
+        log->Add("note",
+                 "cache entry " + entry.string() + " unreadable (" + e.what() + "): recomputing");
       }
     }
   }
@@ -140,6 +140,11 @@ std::vector<double> FromReport(const MaterialSpec& m, ExplainLog* log) {
     if (e.result.model != m.model || (e.material != wanted && e.source != wanted)) continue;
     if (e.result.Failed()) {
       throw InputError(m.fit_report, "entry " + wanted + " / " + m.model + " is a failed fit");
+    }
+    if (e.factorization) {
+      throw InputError(m.fit_report, "entry " + wanted + " / " + m.model +
+                                         " is a factorization: name its sidecar as \"factors\": " +
+                                         e.factorization->sidecar);
     }
     if (log) {
       log->Add("load", "material '" + m.name + "': " + m.model + " parameters of '" + wanted +

@@ -64,6 +64,10 @@ const std::map<std::string, int>& MeasuredRunCost() {
       {"lambert+sheen", 12},
       {"lambert+ggx+sheen", 20},
       {"burley+ggx+sheen", 40},
+      // The factorization candidate (pipeline/factor_candidate.h: four forms, their systems,
+      // scores and files), measured 2026-12-03 as the whole command's difference
+      // (docs/accuracy.md, "Factorizations among the candidates").
+      {"factorization", 60},
   };
   return costs;
 }

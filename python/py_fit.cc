@@ -61,7 +61,7 @@ PyFitResult Fit(const Table& table, const std::string& source, const std::string
     FitResult r = FitPrepared(runs[0].model, prepared, fo);
     r.times.prepare = prepare_ms;
     out.entry = {source, report::MaterialName(source), OptionsJson(req.samples, fo), std::move(r),
-                 false, {}, TableContentHash(table), false};
+                 false, {}, TableContentHash(table), false, std::nullopt};
     std::vector<FitReportEntry> one{out.entry};
     pipeline::MarkChosenFits(one);  // as the CLI marks the fits of a report before writing
     out.entry = one[0];

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
@@ -272,12 +273,53 @@ Entry FitEntry(const FitReportEntry& f) {
   return e;
 }
 
+// A factorization's sidecar named by a fit report or JSON `from` (io/fit_report.h): as written
+// (relative to the run's working directory), else beside `from`, else in the folder beside
+// `from` that `brdfit fit` writes them to (pipeline/factor_candidate.h: fits.h5 ->
+// fits.factors/). Empty when none exists.
+fs::path FindSidecar(const std::string& sidecar, const fs::path& from) {
+  const fs::path given(sidecar);
+  fs::path beside_folder = from;
+  beside_folder.replace_extension(".factors");
+  for (const fs::path& p : {given, from.parent_path() / given, beside_folder / given.filename()}) {
+    std::error_code ec;
+    if (fs::is_regular_file(p, ec)) return p;
+  }
+  return {};
+}
+
+// A factorization among a fit report's candidates: its sidecar's entry (renders, slices, cost)
+// with the report's choice mark, or, when the textures are not found, an entry that says so.
+void AddFactorizationEntry(const std::string& material, const std::string& source,
+                           const FactorizationRef& ref, bool chosen, const std::string& choice,
+                           const fs::path& from, Builder* b) {
+  const fs::path sidecar = FindSidecar(ref.sidecar, from);
+  Entry e;
+  if (!sidecar.empty()) {
+    std::string m, table;
+    e = FactorEntry(sidecar, &m, &table);
+  } else {
+    e.kind = Entry::Kind::kFactor;
+    e.name = "factor:" + ref.form;
+    e.status = "failed";
+    e.message = "textures not found: " + ref.sidecar + " (named by " + from.string() + ")";
+  }
+  e.chosen = chosen;
+  e.choice = choice;
+  AddEntry(b, material, source, std::move(e));
+  if (!sidecar.empty()) b->out.factors.push_back({material, "factor:" + ref.form, sidecar});
+}
+
 // A fit report (HDF5, io/fit_report.h): every fit of every material, and its tables.
-void AddFitReport(const std::vector<FitReportEntry>& entries, Builder* b) {
+void AddFitReport(const std::vector<FitReportEntry>& entries, const fs::path& from, Builder* b) {
   ReportSources* out = &b->out;
   for (const FitReportEntry& f : entries) {
     const std::string material = f.material.empty() ? MaterialName(f.source) : f.material;
-    AddEntry(b, material, f.source, FitEntry(f));
+    if (f.factorization) {
+      AddFactorizationEntry(material, f.source, *f.factorization, f.chosen, f.choice, from, b);
+    } else {
+      AddEntry(b, material, f.source, FitEntry(f));
+    }
     if (!f.source.empty() && !out->tables.count(material) && LoadableTable(f.source)) {
       out->tables[material] = f.source;
     }
@@ -298,6 +340,7 @@ bool AddFitParamsJson(const fs::path& p, Builder* b) {
   struct Fit {
     std::string material, source;
     Entry entry;
+    std::optional<FactorizationRef> factorization;
   };
   std::vector<Fit> read;  // all checked before any is added
   for (std::size_t i = 0; i < fits.size(); ++i) {
@@ -320,9 +363,19 @@ bool AddFitParamsJson(const fs::path& p, Builder* b) {
       e.param_names.push_back(name);
       e.params.push_back(value.get<double>());
     }
-    // A usable fit's parameters are its registered model's, in order and in bounds (as a fit
-    // report's, io/fit_report.h).
-    if (e.status != "failed") {
+    std::optional<FactorizationRef> factorization;
+    if (e.name == kFactorizationModel) {
+      // A factorization among the candidates (io/fit_report.h): its form and sidecar.
+      const JsonFields fz = ff.Child("factorization");
+      const json fo = ff.Object(fj, "factorization");
+      factorization = FactorizationRef{};
+      factorization->form = fz.String(fo, "form", "");
+      factorization->sidecar = fz.String(fo, "sidecar", "");
+      if (factorization->form.empty()) fz.Fail("form", "is missing");
+      if (factorization->sidecar.empty()) fz.Fail("sidecar", "is missing");
+    } else if (e.status != "failed") {
+      // A usable fit's parameters are its registered model's, in order and in bounds (as a
+      // fit report's, io/fit_report.h).
       const ModelInfo* model = FindModel(e.name);
       if (!model) ff.Fail("model", "is '" + e.name + "', not a registered model");
       std::string bad = CheckModelParamNames(*model, e.param_names);
@@ -336,10 +389,15 @@ bool AddFitParamsJson(const fs::path& p, Builder* b) {
     e.choice = ff.String(fj, "choice", "");
     const std::string source = ff.String(fj, "source", "");
     const std::string material = ff.String(fj, "material", MaterialName(source));
-    read.push_back({material, source, std::move(e)});
+    read.push_back({material, source, std::move(e), std::move(factorization)});
   }
   for (Fit& f : read) {
-    AddEntry(b, f.material, f.source, std::move(f.entry));
+    if (f.factorization) {
+      AddFactorizationEntry(f.material, f.source, *f.factorization, f.entry.chosen, f.entry.choice,
+                            p, b);
+    } else {
+      AddEntry(b, f.material, f.source, std::move(f.entry));
+    }
     if (!f.source.empty() && !out->tables.count(f.material) && LoadableTable(f.source)) {
       out->tables[f.material] = f.source;
     }
@@ -427,7 +485,7 @@ void AddInputOf(const fs::path& p, bool explicit_input, Builder* b) {
           }
         }
         if (is_report) {
-          AddFitReport(fits, b);
+          AddFitReport(fits, p, b);
           break;
         }
       }

@@ -381,7 +381,7 @@ TEST(RenderedError, EveryFitCarriesItThroughReportAndJson) {
 
   ScratchDir dir;
   const std::filesystem::path report = dir / "fits.h5";
-  WriteFitReport({{"t.h5", "t", "{}", r, false, {}, {}, false}}, report, false);
+  WriteFitReport({{"t.h5", "t", "{}", r, false, {}, {}, false, std::nullopt}}, report, false);
   const auto back = ReadFitReport(report);
   ASSERT_EQ(back.size(), 1u);
   const RenderedError& b = back[0].result.metrics.rendered;
@@ -417,10 +417,10 @@ TEST(RenderedError, JsonSaysWhenTheMetricFailedAndOmitsItWhenNotComputed) {
 
   FitResult r;
   r.model = "lambert";
-  const auto none = nlohmann::json::parse(FitParamsJson({{"t.h5", "t", "{}", r, false, {}, {}, false}}));
+  const auto none = nlohmann::json::parse(FitParamsJson({{"t.h5", "t", "{}", r, false, {}, {}, false, std::nullopt}}));
   EXPECT_FALSE(none["fits"][0]["metrics"].contains("rendered"));
   r.metrics.rendered = failed;
-  const auto some = nlohmann::json::parse(FitParamsJson({{"t.h5", "t", "{}", r, false, {}, {}, false}}));
+  const auto some = nlohmann::json::parse(FitParamsJson({{"t.h5", "t", "{}", r, false, {}, {}, false, std::nullopt}}));
   EXPECT_EQ(some["fits"][0]["metrics"]["rendered"], j);
 }
 
