@@ -48,7 +48,7 @@ struct InputState {
   bool ready = false;
   std::optional<PreparedTable> prepared;  // when the input has fits to make
   std::optional<Table> table;             // kept while a factorization of it is to be made
-  int fits = 0, factorizations = 0;       // tasks of the input, of each kind
+  int fits = 0, factorizations = 0;       // tasks of the input left, of each kind (st.mu)
   std::string error;                      // InputError message if loading failed
   double load_ms = 0, prepare_ms = 0;
   std::string content_hash;  // core/provenance.h TableContentHash
@@ -357,6 +357,12 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
           }
           r.times.load = st.load_ms;
           r.times.prepare = st.prepare_ms;
+          {
+            // The prepared samples go with the table's last fit, before a factorization of
+            // it that may still run (peak memory).
+            std::lock_guard<std::mutex> lock(st.mu);
+            if (--st.fits == 0) st.prepared.reset();
+          }
           e.source = input;
           e.material = keys[t.input];
           e.options = t.options;
