@@ -69,8 +69,11 @@ FitReportEntry FactorizationEntry(const FactorizationJob& job) {
   if (job.last && job.cache) job.cache->Clear();
   const auto t1 = Clock::now();
   const FactoredBrdf& brdf = c.kept.brdf;
-  // The fits' metric set (same cut-off and weighting), and the rendered metric that chose it.
-  r.metrics = ScoreFactorization(table, brdf, job.samples);
+  // The fits' metric set: every usable cell inside the same cut-off, with the same weights,
+  // whatever the fits' budget (fit/metrics.h); and the rendered metric that chose the form.
+  SampleOptions metric_set = job.samples;
+  metric_set.budget = Budget{};
+  r.metrics = ScoreFactorization(table, brdf, metric_set);
   r.metrics.rendered = c.rendered;
   const FactorForm form = FormOf(brdf);
   const FactorCost cost = ComputeFactorCost(form);

@@ -146,6 +146,12 @@ TEST_F(FactorizationCli, EntryTexturesAndScoreAgreeWithTheFiles) {
   const auto js = ReadFitParamsJson(P("fits.json"));
   ASSERT_EQ(h5.size(), 2u);
   ASSERT_EQ(js.size(), 2u);
+  // Scored on the same metric set as the fit: every cell inside the cut-off, whatever the
+  // fit's budget.
+  const FitReportEntry& h5_lobe = h5[0].factorization ? h5[1] : h5[0];
+  ASSERT_FALSE(h5_lobe.factorization);
+  EXPECT_EQ(h5[0].result.metrics.cells, h5[1].result.metrics.cells);
+  EXPECT_GT(h5_lobe.result.metrics.cells, h5_lobe.result.fit_cells);  // stride:32 fits fewer
   for (std::size_t i = 0; i < 2; ++i) {
     EXPECT_EQ(h5[i].result.model, js[i].result.model);
     EXPECT_EQ(h5[i].factorization, js[i].factorization);
