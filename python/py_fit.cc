@@ -46,6 +46,9 @@ PyFitResult Fit(const Table& table, const std::string& source, const std::string
     throw InputError("model '" + model + "' is " + std::to_string(runs.size()) +
                      " fits; brdfit.fit fits one model (call it once per candidate)");
   }
+  if (runs[0].model == kFactorizationModel) {
+    throw InputError("brdfit.fit fits analytic models; a factorization is brdfit.factor(...)");
+  }
   FitOptions fo = req.fit;
   if (runs[0].loss) fo.loss = *runs[0].loss;
   using Clock = std::chrono::steady_clock;

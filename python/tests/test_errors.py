@@ -63,3 +63,11 @@ def test_wrong_types_raise_type_error():
         brdfit.fit(None)
     with pytest.raises(brdfit.InputError):
         brdfit.fit(brdfit.synth("lambert+ggx", grid=(4, 4, 8)), model="auto")  # five fits
+
+
+def test_fit_of_a_factorization_points_to_factor(small_table):
+    # `brdfit fit --model factorization` is a candidate of the CLI's choice; in Python a
+    # factorization is brdfit.factor's.
+    with pytest.raises(brdfit.InputError) as e:
+        brdfit.fit(small_table, model="factorization")
+    assert "brdfit.factor" in str(e.value)
