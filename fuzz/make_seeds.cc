@@ -493,6 +493,14 @@ void FitReportSeeds(const fs::path& dir) {
                  dir / "two-entries.h5", true);
   WriteFitReport({ReportEntry("t.binary", "lambert+ggx", false)}, dir / "no-timings.h5", false);
   WriteFitReport({}, dir / "empty.h5", true);
+  // A factorization among the candidates (io/fit_report.h): no parameters, its group.
+  FitReportEntry f = ReportEntry("t.binary", kFactorizationModel, false);
+  f.result.param_names.clear();
+  f.result.params.clear();
+  f.result.at_bound.clear();
+  f.factorization = FactorizationRef{"mccool r2", "fits.factors/t.factor.json", 196608, 49152};
+  WriteFitReport({ReportEntry("t.binary", "lambert+ggx", false), f}, dir / "factorization.h5",
+                 false);
 }
 
 void FitReportCrafted(const fs::path& dir) {

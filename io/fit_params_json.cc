@@ -67,21 +67,24 @@ FitReportEntry Entry(const fs::path& p, const nlohmann::ordered_json& f, const s
     // A factorization among the candidates (io/fit_report.h): no parameters, its sidecar.
     const std::string w = where + ".factorization";
     if (!r.params.empty()) throw InputError(p, where + ".params: a factorization has none");
-    if (!fj.contains("factorization") || !fj["factorization"].is_object()) {
-      throw InputError(p, w + " is missing or not an object");
+    // A failed one (its solve, or its files) may have no textures to describe.
+    if (!r.Failed() || fj.contains("factorization")) {
+      if (!fj.contains("factorization") || !fj["factorization"].is_object()) {
+        throw InputError(p, w + " is missing or not an object");
+      }
+      const nlohmann::json& fz = fj["factorization"];
+      FactorizationRef ref;
+      ref.form = String(p, fz, "form", w);
+      ref.sidecar = String(p, fz, "sidecar", w);
+      const double bytes = Number(p, fz, "texture_bytes", w), values = Number(p, fz, "values", w);
+      if (ref.form.empty() || ref.sidecar.empty() || !(bytes >= 0 && bytes < 1e15) ||
+          !(values >= 1 && values < 1e15)) {
+        throw InputError(p, w + ": form, sidecar, texture_bytes >= 0 and values >= 1 are needed");
+      }
+      ref.texture_bytes = static_cast<std::uint64_t>(bytes);
+      ref.values = static_cast<std::uint64_t>(values);
+      e.factorization = ref;
     }
-    const nlohmann::json& fz = fj["factorization"];
-    FactorizationRef ref;
-    ref.form = String(p, fz, "form", w);
-    ref.sidecar = String(p, fz, "sidecar", w);
-    const double bytes = Number(p, fz, "texture_bytes", w), values = Number(p, fz, "values", w);
-    if (ref.form.empty() || ref.sidecar.empty() || !(bytes >= 0 && bytes < 1e15) ||
-        !(values >= 1 && values < 1e15)) {
-      throw InputError(p, w + ": form, sidecar, texture_bytes >= 0 and values >= 1 are needed");
-    }
-    ref.texture_bytes = static_cast<std::uint64_t>(bytes);
-    ref.values = static_cast<std::uint64_t>(values);
-    e.factorization = ref;
   } else if (!r.Failed()) {
     const ModelInfo* m = FindModel(r.model);
     if (!m) throw InputError(p, where + ".model '" + r.model + "' is not a registered model");

@@ -327,7 +327,8 @@ class Reader : public hdf5::Reader {
     if (factorization) {
       // A factorization has no parameters: its textures are files (FactorizationRef).
       if (!r.params.empty()) Fail(fmt::format("{}/params: a factorization has none", where));
-      e.factorization = Factorization(g, where);
+      // A failed one (its solve, or its files) may have no textures to describe.
+      if (!r.Failed() || g.nameExists("factorization")) e.factorization = Factorization(g, where);
     } else {
       if (g.nameExists("factorization")) {
         Fail(fmt::format("{}/factorization: the entry is a fit of {}", where, r.model));

@@ -69,7 +69,8 @@ struct FitReportEntry {
   // before brdfit 0.1.0 recorded it.
   std::string source_hash;
   bool timed = false;  // set by ReadFitReport: the entry had a /timing group
-  // Set exactly when result.model is kFactorizationModel.
+  // Set when result.model is kFactorizationModel, but for a failed factorization that
+  // wrote no textures.
   std::optional<FactorizationRef> factorization;
   // The number of parameters the model choice weighs (core/model_choice.h): the fit's, or a
   // factorization's texture values.

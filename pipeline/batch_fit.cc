@@ -335,10 +335,14 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
             e = FactorizationEntry({&*st.table, input, keys[t.input], st.content_hash, req.samples,
                                     FactorizationFolder(req.report), req.timings, &factor_cache,
                                     /*last=*/inputs_fitted == 1});
-          } catch (const OutputError&) {
-            std::lock_guard<std::mutex> lock(mu);
-            if (!write_error) write_error = std::current_exception();
-            next = tasks.size();
+          } catch (const std::exception& ex) {  // never expected; a failed entry, not a crash
+            e = FitReportEntry{};
+            e.source = input;
+            e.material = keys[t.input];
+            e.options = t.options;
+            e.source_hash = st.content_hash;
+            e.result.model = kFactorizationModel;
+            e.result.message = std::string("internal error: ") + ex.what();
           }
           {
             std::lock_guard<std::mutex> lock(st.mu);
@@ -370,8 +374,7 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
           e.source_hash = st.content_hash;
         }
         std::lock_guard<std::mutex> lock(mu);
-        // No model: a factorization's files could not be written, the run ends (write_error).
-        if (!e.result.model.empty()) {
+        {
           if (req.on_fit_done) req.on_fit_done(e);
           result.fresh.push_back(std::move(e));
           if (!write_error && MsSince(last_write) > 5000) {

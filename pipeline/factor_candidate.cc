@@ -99,10 +99,18 @@ FitReportEntry FactorizationEntry(const FactorizationJob& job) {
                           {"metrics", MetricsJson(r.metrics, c.rendered, ln_rmse)},
                           {"provenance", ProvenanceJson(job.timings)},
                           {"choice", ChoiceJson(c, job.timings)}};
-  std::error_code ec;
-  fs::create_directories(job.folder, ec);
-  if (ec) throw OutputError(job.folder, "cannot create the folder: " + ec.message());
-  SaveFactorization(c.kept, job.folder, stem, extra, job.timings);
+  // Files that cannot be written (a file in the folder's place, a read-only folder, a full
+  // disk) fail this entry, not the run: the report keeps the fits and says why.
+  try {
+    std::error_code ec;
+    fs::create_directories(job.folder, ec);
+    if (ec) throw OutputError(job.folder, "cannot create the folder: " + ec.message());
+    SaveFactorization(c.kept, job.folder, stem, extra, job.timings);
+  } catch (const OutputError& ex) {
+    r.status = FitStatus::kFailed;
+    r.message = std::string("textures not written: ") + ex.what();
+    return e;
+  }
   e.factorization = ref;
   return e;
 }

@@ -40,7 +40,8 @@ struct FactorizationJob {
 };
 
 // Factors, scores, writes the textures (atomically, io/factor_io.h) and returns the entry.
-// A solver failure is a failed entry; an output that cannot be written throws OutputError.
+// A solver failure or files that cannot be written make a failed entry (with no
+// FactorizationRef) that says why; it never throws for either.
 FitReportEntry FactorizationEntry(const FactorizationJob& job);
 
 }  // namespace brdfit::pipeline

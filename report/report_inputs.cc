@@ -318,7 +318,9 @@ void AddFitReport(const std::vector<FitReportEntry>& entries, const fs::path& fr
     if (f.factorization) {
       AddFactorizationEntry(material, f.source, *f.factorization, f.chosen, f.choice, from, b);
     } else {
-      AddEntry(b, material, f.source, FitEntry(f));
+      Entry e = FitEntry(f);
+      if (f.result.model == kFactorizationModel) e.kind = Entry::Kind::kFactor;  // failed: no files
+      AddEntry(b, material, f.source, std::move(e));
     }
     if (!f.source.empty() && !out->tables.count(material) && LoadableTable(f.source)) {
       out->tables[material] = f.source;
@@ -364,7 +366,9 @@ bool AddFitParamsJson(const fs::path& p, Builder* b) {
       e.params.push_back(value.get<double>());
     }
     std::optional<FactorizationRef> factorization;
-    if (e.name == kFactorizationModel) {
+    if (e.name == kFactorizationModel && e.status == "failed" && !fj.contains("factorization")) {
+      e.kind = Entry::Kind::kFactor;  // a failed factorization that wrote no files
+    } else if (e.name == kFactorizationModel) {
       // A factorization among the candidates (io/fit_report.h): its form and sidecar.
       const JsonFields fz = ff.Child("factorization");
       const json fo = ff.Object(fj, "factorization");

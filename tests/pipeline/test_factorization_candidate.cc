@@ -192,6 +192,35 @@ TEST_F(FactorizationCli, ReportAndExportReadTheEntry) {
   EXPECT_NE(Bytes(P("report2.html")).find("textures not found"), std::string::npos);
 }
 
+// Textures that cannot be written (a file where the folder goes) fail the factorization, not
+// the run: the report keeps the fit, says why, and reads back; the report command shows it.
+TEST_F(FactorizationCli, UnwritableTexturesFailTheEntryNotTheRun) {
+  std::ofstream(P("fits.factors")) << "not a folder";
+  const auto r = Fit("fits.h5", {"--json", P("fits.json")});
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;  // some fit failed
+  const auto entries = ReadFitReport(P("fits.h5"));
+  ASSERT_EQ(entries.size(), 2u);
+  for (const FitReportEntry& e : entries) {
+    if (e.result.model == kFactorizationModel) {
+      EXPECT_TRUE(e.result.Failed());
+      EXPECT_FALSE(e.factorization);
+      EXPECT_NE(e.result.message.find("fits.factors"), std::string::npos) << e.result.message;
+    } else {
+      EXPECT_FALSE(e.result.Failed());
+      EXPECT_TRUE(e.chosen);
+    }
+  }
+  EXPECT_EQ(ReadFitParamsJson(P("fits.json")).size(), 2u);
+  const auto rep = RunCli({"report", P("fits.h5"), P("fits.json"), "-o", P("r.html")}, dir_.path());
+  EXPECT_EQ(rep.exit_code, 0) << rep.out << rep.err;
+  // Resumed once the folder can be made: the failed factorization is redone, the fit kept.
+  fs::remove(P("fits.factors"));
+  const auto again = Fit("fits.h5");
+  ASSERT_EQ(again.exit_code, 0) << again.out << again.err;
+  EXPECT_NE(again.out.find("1 fits, 1 skipped"), std::string::npos) << again.out;
+  EXPECT_TRUE(fs::exists(dir_.path() / "fits.factors" / "t.factor.json"));
+}
+
 // Readers refuse what a writer never makes: a factorization with parameters, or without its
 // textures' description.
 TEST_F(FactorizationCli, ReadersRefuseInconsistentEntries) {
@@ -200,7 +229,7 @@ TEST_F(FactorizationCli, ReadersRefuseInconsistentEntries) {
   ASSERT_EQ(entries.size(), 2u);
   FitReportEntry& f = entries[0].factorization ? entries[0] : entries[1];
   ASSERT_TRUE(f.factorization);
-  FitReportEntry no_ref = f;
+  FitReportEntry no_ref = f;  // converged, yet no textures described
   no_ref.factorization.reset();
   WriteFitReport({no_ref}, P("bad1.h5"), false);
   EXPECT_THROW(ReadFitReport(P("bad1.h5")), InputError);
