@@ -119,15 +119,50 @@ class BlockCost final : public ceres::CostFunction {
       gram.Commit();
     };
     if constexpr (AnalyticGradient<M>::kAvailable) {
-      // Closed-form derivatives (fit/lafortune_gradient.h): the values are CostOnly's.
+      // Closed-form derivatives (fit/lafortune_gradient.h): the values are CostOnly's. Channel
+      // ch's gradient is zero outside the channel's weights and the shared shapes (kC - 1 of P
+      // columns: 10 of 18 for three lobes), so each channel's rows go to a Gram matrix of those
+      // columns alone, added into the whole one at the end (a third of the products for three
+      // lobes; the same matrix up to the order of its sums).
+      using AG = AnalyticGradient<M>;
+      constexpr std::array<std::array<int, AG::kC>, 3> cols = AG::ChannelColumns();
+      std::array<GramRows<AG::kC>, 3> grams;
+      auto add_sparse = [&](std::size_t s, int ch, double f, const double* grad) {
+        double saa = 0, sab = 0;
+        for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
+          const double w = l_.sqrt_w[o];
+          const SlopedResidual e = LossResidualWithSlope(l_, o, ch, f);
+          const RobustTerm r = Robustify(robust_, e.e);
+          cost += w * w * r.cost;
+          const double a = e.Slope(w * r.jac_scale);
+          saa += a * a;
+          sab += a * (w * r.res_scale * e.e);
+        }
+        if (!(saa > 0)) return;
+        const double sq = std::sqrt(saa);
+        double* row = grams[ch].Next();
+        for (int j = 0; j + 1 < AG::kC; ++j) row[j] = sq * grad[cols[ch][j]];
+        row[AG::kC - 1] = sab / sq;
+        grams[ch].Commit();
+      };
       double p[P];
       Params(x, p);
-      const auto prepared = AnalyticGradient<M>::Prepare(p, layout_);
+      const auto prepared = AG::Prepare(p, layout_);
       for (std::size_t s = begin_; s < end_; ++s) {
         double rgb[3], grad[3 * P];
-        AnalyticGradient<M>::Eval(prepared, s_.geometry[s], rgb, grad);
-        for (int ch = 0; ch < 3; ++ch) add(s, ch, rgb[ch], grad + ch * P);
+        AG::Eval(prepared, s_.geometry[s], rgb, grad);
+        for (int ch = 0; ch < 3; ++ch) add_sparse(s, ch, rgb[ch], grad + ch * P);
       }
+      // Each channel's lower triangle into the whole one's (its columns ascend: lower stays
+      // lower); the shared shapes' entries are the sum of the three channels'.
+      std::array<double, (P + 1) * (P + 1)> full{};
+      for (int ch = 0; ch < 3; ++ch) {
+        const double* g = grams[ch].Finish();
+        for (int c = 0; c < AG::kC; ++c) {
+          for (int r = c; r < AG::kC; ++r) full[cols[ch][c] * (P + 1) + cols[ch][r]] += g[c * AG::kC + r];
+        }
+      }
+      return CompressGram(full.data(), P, cost, residuals, jacobian);
     } else {
       Jet p[P];
       SeedParams<Jet, P>(layout_, x, p);
