@@ -22,6 +22,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <mutex>
 
 #include "fit/block_compress.h"
 #include "fit/lafortune_gradient.h"
@@ -49,13 +51,35 @@ class BlockCost final : public ceres::CostFunction {
     mutable_parameter_block_sizes()->push_back(P);
   }
 
+  // The last Jacobian evaluation is kept and given again for the same x, bit for bit: Ceres
+  // 2.1's projected line search (bounded problems) evaluates the gradient, so this block's
+  // Jacobian, at x + delta; when the step is taken the minimizer evaluates the cost and then
+  // the Jacobian at that same point again. The cost of WithJacobian is CostOnly's (same sums,
+  // same order), so both repeats are answered from the cache: one Jacobian per LM iteration
+  // instead of two.
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override {
     const double* x = parameters[0];
-    if (jacobians == nullptr || jacobians[0] == nullptr) {
-      return CostOnlyResiduals(P, CostOnly(x), residuals);
+    const bool want_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
+    {
+      const std::lock_guard<std::mutex> lock(cache_.mutex);
+      if (cache_.valid && std::memcmp(cache_.x.data(), x, sizeof cache_.x) == 0) {
+        if (!want_jacobian) return CostOnlyResiduals(P, cache_.cost, residuals);
+        std::memcpy(residuals, cache_.residuals.data(), sizeof cache_.residuals);
+        std::memcpy(jacobians[0], cache_.jacobian.data(), sizeof cache_.jacobian);
+        return true;
+      }
     }
-    return WithJacobian(x, residuals, jacobians[0]);
+    if (!want_jacobian) return CostOnlyResiduals(P, CostOnly(x), residuals);
+    double cost = 0;
+    if (!WithJacobian(x, residuals, jacobians[0], &cost)) return false;
+    const std::lock_guard<std::mutex> lock(cache_.mutex);
+    std::memcpy(cache_.x.data(), x, sizeof cache_.x);
+    std::memcpy(cache_.residuals.data(), residuals, sizeof cache_.residuals);
+    std::memcpy(cache_.jacobian.data(), jacobians[0], sizeof cache_.jacobian);
+    cache_.cost = cost;
+    cache_.valid = true;
+    return true;
   }
 
  private:
@@ -96,9 +120,10 @@ class BlockCost final : public ceres::CostFunction {
   // a_j = sqrt(omega_j) js_j inv_j T'(f c_j) c_j. Per sample and channel, J^T J gains
   // (sum a_j^2) grad f grad f^T and J^T r gains (sum a_j b_j) grad f (b_j the weighted,
   // robustified residual): one rank-1 row [sqrt(sum a^2) grad f, sum a b / sqrt(sum a^2)].
-  bool WithJacobian(const double* x, double* residuals, double* jacobian) const {
+  bool WithJacobian(const double* x, double* residuals, double* jacobian,
+                    double* cost_out) const {
     GramRows<P + 1> gram;
-    double cost = 0;
+    double& cost = *cost_out;
     // One sample's channel: value f and gradient grad (optimization space).
     auto add = [&](std::size_t s, int ch, double f, const double* grad) {
       double saa = 0, sab = 0;
@@ -180,6 +205,15 @@ class BlockCost final : public ceres::CostFunction {
   const ParamLayout& layout_;
   const ceres::LossFunction* robust_;
   std::size_t begin_, end_;
+  struct Cache {
+    std::mutex mutex;
+    bool valid = false;
+    std::array<double, P> x{};
+    std::array<double, P + 1> residuals{};
+    std::array<double, (P + 1) * P> jacobian{};
+    double cost = 0;
+  };
+  mutable Cache cache_;
 };
 
 }  // namespace brdfit::internal
