@@ -120,7 +120,9 @@ TEST(LafortuneGradient, ChannelColumnsHoldEveryNonZero) {
   const ParamLayout layout = ParamLayout::Of(M::kParams);
   std::vector<double> p = {0.2, 0.1, 0.05};
   for (int k = 0; k < G::kLobes; ++k) {
-    for (int i = 0; i < 5; ++i) p.push_back(kLobes[static_cast<std::size_t>(k)][static_cast<std::size_t>(i)]);
+    for (int i = 0; i < 5; ++i) {
+      p.push_back(kLobes[static_cast<std::size_t>(k)][static_cast<std::size_t>(i)]);
+    }
   }
   const auto prepared = G::Prepare(p.data(), layout);
   const Grid grid = Grid::Merl();
@@ -136,7 +138,9 @@ TEST(LafortuneGradient, ChannelColumnsHoldEveryNonZero) {
       for (int i = 0; i < P; ++i) {
         const bool listed =
             std::find(cols[ch].begin(), cols[ch].end() - 1, i) != cols[ch].end() - 1;
-        if (!listed) ASSERT_EQ(grad[ch * P + i], 0.0) << "channel " << ch << " parameter " << i;
+        if (!listed) {
+          ASSERT_EQ(grad[ch * P + i], 0.0) << "channel " << ch << " parameter " << i;
+        }
         nonzero += listed && grad[ch * P + i] != 0.0;
       }
     }
