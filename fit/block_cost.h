@@ -120,8 +120,7 @@ class BlockCost final : public ceres::CostFunction {
   // a_j = sqrt(omega_j) js_j inv_j T'(f c_j) c_j. Per sample and channel, J^T J gains
   // (sum a_j^2) grad f grad f^T and J^T r gains (sum a_j b_j) grad f (b_j the weighted,
   // robustified residual): one rank-1 row [sqrt(sum a^2) grad f, sum a b / sqrt(sum a^2)].
-  bool WithJacobian(const double* x, double* residuals, double* jacobian,
-                    double* cost_out) const {
+  bool WithJacobian(const double* x, double* residuals, double* jacobian, double* cost_out) const {
     GramRows<P + 1> gram;
     double& cost = *cost_out;
     // One sample's channel: value f and gradient grad (optimization space).
@@ -184,7 +183,9 @@ class BlockCost final : public ceres::CostFunction {
       for (int ch = 0; ch < 3; ++ch) {
         const double* g = grams[ch].Finish();
         for (int c = 0; c < AG::kC; ++c) {
-          for (int r = c; r < AG::kC; ++r) full[cols[ch][c] * (P + 1) + cols[ch][r]] += g[c * AG::kC + r];
+          for (int r = c; r < AG::kC; ++r) {
+            full[cols[ch][c] * (P + 1) + cols[ch][r]] += g[c * AG::kC + r];
+          }
         }
       }
       return CompressGram(full.data(), P, cost, residuals, jacobian);

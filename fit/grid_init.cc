@@ -335,12 +335,24 @@ void GridInitializer::SolveWeights(const std::vector<double>& w, const std::vect
     // dynamic-size outer product allocated a temporary per sample.
     double* n = N.data();
     switch (K) {
-      case 1: AccumulateNormal<1>(s_, basis_, offset_, w, y, K, ch, n, b.data()); break;
-      case 2: AccumulateNormal<2>(s_, basis_, offset_, w, y, K, ch, n, b.data()); break;
-      case 3: AccumulateNormal<3>(s_, basis_, offset_, w, y, K, ch, n, b.data()); break;
-      case 4: AccumulateNormal<4>(s_, basis_, offset_, w, y, K, ch, n, b.data()); break;
-      case 5: AccumulateNormal<5>(s_, basis_, offset_, w, y, K, ch, n, b.data()); break;
-      default: AccumulateNormal<0>(s_, basis_, offset_, w, y, K, ch, n, b.data()); break;
+      case 1:
+        AccumulateNormal<1>(s_, basis_, offset_, w, y, K, ch, n, b.data());
+        break;
+      case 2:
+        AccumulateNormal<2>(s_, basis_, offset_, w, y, K, ch, n, b.data());
+        break;
+      case 3:
+        AccumulateNormal<3>(s_, basis_, offset_, w, y, K, ch, n, b.data());
+        break;
+      case 4:
+        AccumulateNormal<4>(s_, basis_, offset_, w, y, K, ch, n, b.data());
+        break;
+      case 5:
+        AccumulateNormal<5>(s_, basis_, offset_, w, y, K, ch, n, b.data());
+        break;
+      default:
+        AccumulateNormal<0>(s_, basis_, offset_, w, y, K, ch, n, b.data());
+        break;
     }
     for (int k = 0; k < K; ++k) {
       const ParamSpec& spec = layout_.specs[layout_.lobes[k][ch]];

@@ -68,8 +68,8 @@ struct ComponentsOf<Sum<Lobes...>> {
   static std::vector<ComponentOps> Get() {
     std::vector<ComponentOps> out;
     std::size_t i = 0;
-    ((out.push_back({&EvalDouble<Lobes>, Sum<Lobes...>::kOffsets[i], kNumParams<Lobes>,
-                     &EvalColumn<Lobes>}),
+    ((out.push_back(
+          {&EvalDouble<Lobes>, Sum<Lobes...>::kOffsets[i], kNumParams<Lobes>, &EvalColumn<Lobes>}),
       ++i),
      ...);
     return out;
