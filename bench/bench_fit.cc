@@ -75,6 +75,9 @@ void BM_Fit(benchmark::State& state, const BenchTable* table, std::string model,
   }
   state.counters["samples"] = static_cast<double>(r.fit_samples);
   state.counters["iterations"] = r.iterations;
+  // The last run's split (thread CPU ms): the initializer against the solve.
+  state.counters["init_cpu_ms"] = r.times.init_cpu;
+  state.counters["solve_cpu_ms"] = r.times.solve_cpu;
   state.SetLabel(std::string(ToString(r.status)));
 }
 

@@ -22,6 +22,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <mutex>
 
 #include "fit/block_compress.h"
 #include "fit/lafortune_gradient.h"
@@ -49,13 +51,35 @@ class BlockCost final : public ceres::CostFunction {
     mutable_parameter_block_sizes()->push_back(P);
   }
 
+  // The last Jacobian evaluation is kept and given again for the same x, bit for bit: Ceres
+  // 2.1's projected line search (bounded problems) evaluates the gradient, so this block's
+  // Jacobian, at x + delta; when the step is taken the minimizer evaluates the cost and then
+  // the Jacobian at that same point again. The cost of WithJacobian is CostOnly's (same sums,
+  // same order), so both repeats are answered from the cache: one Jacobian per LM iteration
+  // instead of two.
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override {
     const double* x = parameters[0];
-    if (jacobians == nullptr || jacobians[0] == nullptr) {
-      return CostOnlyResiduals(P, CostOnly(x), residuals);
+    const bool want_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
+    {
+      const std::lock_guard<std::mutex> lock(cache_.mutex);
+      if (cache_.valid && std::memcmp(cache_.x.data(), x, sizeof cache_.x) == 0) {
+        if (!want_jacobian) return CostOnlyResiduals(P, cache_.cost, residuals);
+        std::memcpy(residuals, cache_.residuals.data(), sizeof cache_.residuals);
+        std::memcpy(jacobians[0], cache_.jacobian.data(), sizeof cache_.jacobian);
+        return true;
+      }
     }
-    return WithJacobian(x, residuals, jacobians[0]);
+    if (!want_jacobian) return CostOnlyResiduals(P, CostOnly(x), residuals);
+    double cost = 0;
+    if (!WithJacobian(x, residuals, jacobians[0], &cost)) return false;
+    const std::lock_guard<std::mutex> lock(cache_.mutex);
+    std::memcpy(cache_.x.data(), x, sizeof cache_.x);
+    std::memcpy(cache_.residuals.data(), residuals, sizeof cache_.residuals);
+    std::memcpy(cache_.jacobian.data(), jacobians[0], sizeof cache_.jacobian);
+    cache_.cost = cost;
+    cache_.valid = true;
+    return true;
   }
 
  private:
@@ -96,9 +120,9 @@ class BlockCost final : public ceres::CostFunction {
   // a_j = sqrt(omega_j) js_j inv_j T'(f c_j) c_j. Per sample and channel, J^T J gains
   // (sum a_j^2) grad f grad f^T and J^T r gains (sum a_j b_j) grad f (b_j the weighted,
   // robustified residual): one rank-1 row [sqrt(sum a^2) grad f, sum a b / sqrt(sum a^2)].
-  bool WithJacobian(const double* x, double* residuals, double* jacobian) const {
+  bool WithJacobian(const double* x, double* residuals, double* jacobian, double* cost_out) const {
     GramRows<P + 1> gram;
-    double cost = 0;
+    double& cost = *cost_out;
     // One sample's channel: value f and gradient grad (optimization space).
     auto add = [&](std::size_t s, int ch, double f, const double* grad) {
       double saa = 0, sab = 0;
@@ -119,15 +143,52 @@ class BlockCost final : public ceres::CostFunction {
       gram.Commit();
     };
     if constexpr (AnalyticGradient<M>::kAvailable) {
-      // Closed-form derivatives (fit/lafortune_gradient.h): the values are CostOnly's.
+      // Closed-form derivatives (fit/lafortune_gradient.h): the values are CostOnly's. Channel
+      // ch's gradient is zero outside the channel's weights and the shared shapes (kC - 1 of P
+      // columns: 10 of 18 for three lobes), so each channel's rows go to a Gram matrix of those
+      // columns alone, added into the whole one at the end (a third of the products for three
+      // lobes; the same matrix up to the order of its sums).
+      using AG = AnalyticGradient<M>;
+      constexpr std::array<std::array<int, AG::kC>, 3> cols = AG::ChannelColumns();
+      std::array<GramRows<AG::kC>, 3> grams;
+      auto add_sparse = [&](std::size_t s, int ch, double f, const double* grad) {
+        double saa = 0, sab = 0;
+        for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
+          const double w = l_.sqrt_w[o];
+          const SlopedResidual e = LossResidualWithSlope(l_, o, ch, f);
+          const RobustTerm r = Robustify(robust_, e.e);
+          cost += w * w * r.cost;
+          const double a = e.Slope(w * r.jac_scale);
+          saa += a * a;
+          sab += a * (w * r.res_scale * e.e);
+        }
+        if (!(saa > 0)) return;
+        const double sq = std::sqrt(saa);
+        double* row = grams[ch].Next();
+        for (int j = 0; j + 1 < AG::kC; ++j) row[j] = sq * grad[cols[ch][j]];
+        row[AG::kC - 1] = sab / sq;
+        grams[ch].Commit();
+      };
       double p[P];
       Params(x, p);
-      const auto prepared = AnalyticGradient<M>::Prepare(p, layout_);
+      const auto prepared = AG::Prepare(p, layout_);
       for (std::size_t s = begin_; s < end_; ++s) {
         double rgb[3], grad[3 * P];
-        AnalyticGradient<M>::Eval(prepared, s_.geometry[s], rgb, grad);
-        for (int ch = 0; ch < 3; ++ch) add(s, ch, rgb[ch], grad + ch * P);
+        AG::Eval(prepared, s_.geometry[s], rgb, grad);
+        for (int ch = 0; ch < 3; ++ch) add_sparse(s, ch, rgb[ch], grad + ch * P);
       }
+      // Each channel's lower triangle into the whole one's (its columns ascend: lower stays
+      // lower); the shared shapes' entries are the sum of the three channels'.
+      std::array<double, (P + 1) * (P + 1)> full{};
+      for (int ch = 0; ch < 3; ++ch) {
+        const double* g = grams[ch].Finish();
+        for (int c = 0; c < AG::kC; ++c) {
+          for (int r = c; r < AG::kC; ++r) {
+            full[cols[ch][c] * (P + 1) + cols[ch][r]] += g[c * AG::kC + r];
+          }
+        }
+      }
+      return CompressGram(full.data(), P, cost, residuals, jacobian);
     } else {
       Jet p[P];
       SeedParams<Jet, P>(layout_, x, p);
@@ -145,6 +206,15 @@ class BlockCost final : public ceres::CostFunction {
   const ParamLayout& layout_;
   const ceres::LossFunction* robust_;
   std::size_t begin_, end_;
+  struct Cache {
+    std::mutex mutex;
+    bool valid = false;
+    std::array<double, P> x{};
+    std::array<double, P + 1> residuals{};
+    std::array<double, (P + 1) * P> jacobian{};
+    double cost = 0;
+  };
+  mutable Cache cache_;
 };
 
 }  // namespace brdfit::internal

@@ -40,12 +40,28 @@ Eigen::VectorXd Enumerate(const Eigen::MatrixXd& N, const Eigen::VectorXd& b,
       if (q < best_q) return x;
     }
   }
+  // The buffers and decompositions of every free-set size, made once per call rather than per
+  // assignment (80 of them for k = 4): the same decompositions of the same matrices (compute()
+  // is what the constructor runs), so the same bits.
   std::vector<int> state(k);
+  std::vector<int> free_idx;
+  free_idx.reserve(static_cast<std::size_t>(k));
+  Eigen::VectorXd x(k);
+  std::vector<Eigen::MatrixXd> nffs(static_cast<std::size_t>(k) + 1);
+  std::vector<Eigen::VectorXd> rhss(static_cast<std::size_t>(k) + 1), xfs(nffs.size());
+  std::vector<Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>> cods;
+  cods.reserve(nffs.size());
+  for (int nf = 0; nf <= k; ++nf) {
+    nffs[static_cast<std::size_t>(nf)].resize(nf, nf);
+    rhss[static_cast<std::size_t>(nf)].resize(nf);
+    xfs[static_cast<std::size_t>(nf)].resize(nf);
+    cods.emplace_back(nf, nf);
+  }
   for (int code = 1; code < combos; ++code) {
     int c = code;
     bool skip = false;
-    std::vector<int> free_idx;
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(k);
+    free_idx.clear();
+    x.setZero();
     for (int i = 0; i < k; ++i) {
       state[i] = c % 3;  // 0 free, 1 at lower, 2 at upper
       c /= 3;
@@ -60,8 +76,8 @@ Eigen::VectorXd Enumerate(const Eigen::MatrixXd& N, const Eigen::VectorXd& b,
     if (skip) continue;
     const int nf = static_cast<int>(free_idx.size());
     if (nf > 0) {
-      Eigen::MatrixXd nff(nf, nf);
-      Eigen::VectorXd rhs(nf);
+      Eigen::MatrixXd& nff = nffs[static_cast<std::size_t>(nf)];
+      Eigen::VectorXd& rhs = rhss[static_cast<std::size_t>(nf)];
       for (int a = 0; a < nf; ++a) {
         rhs[a] = b[free_idx[a]];
         for (int i = 0; i < k; ++i) {
@@ -69,7 +85,10 @@ Eigen::VectorXd Enumerate(const Eigen::MatrixXd& N, const Eigen::VectorXd& b,
         }
         for (int bb = 0; bb < nf; ++bb) nff(a, bb) = N(free_idx[a], free_idx[bb]);
       }
-      const Eigen::VectorXd xf = nff.completeOrthogonalDecomposition().solve(rhs);
+      auto& cod = cods[static_cast<std::size_t>(nf)];
+      cod.compute(nff);
+      Eigen::VectorXd& xf = xfs[static_cast<std::size_t>(nf)];
+      xf = cod.solve(rhs);
       for (int a = 0; a < nf; ++a) x[free_idx[a]] = xf[a];
     }
     bool feasible = true;

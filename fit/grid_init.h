@@ -34,11 +34,17 @@ struct InitCandidate {
 // f_r of a model at a geometry, double precision (models/param.h: M::Eval<double>).
 using EvalFn = void (*)(const double* params, const Geometry& g, double rgb[3]);
 
+// A component at n geometries: rgb[s * stride + ch] for s < n, its EvalFn's values bit for bit
+// without a call through a pointer per sample (a basis column of the initializer).
+using EvalColumnFn = void (*)(const double* params, const Geometry* g, std::size_t n, double* rgb,
+                              std::size_t stride);
+
 // One lobe of a sum (models/sum.h: its own Eval at its slice [offset, offset + count) of the
 // parameter vector), or the whole model for a model that is not a sum.
 struct ComponentOps {
   EvalFn eval;
   std::size_t offset, count;
+  EvalColumnFn column = nullptr;  // null: eval per sample
 };
 
 // Starting points over some shape parameters (indices dims; values in parameter space),

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "fit/block_cost.h"
+#include "fit/lafortune_gradient.h"
 #include "fit/model_ops.h"
 #include "fit/pixel_cost.h"
 #include "fit/sample_geometry.h"
@@ -40,18 +41,36 @@ void EvalSamples(const double* p, const Samples& samples, std::size_t begin, std
   });
 }
 
+// A component's basis column (fit/grid_init.h): M::Eval at each geometry.
+template <class M>
+void EvalColumn(const double* p, const Geometry* g, std::size_t n, double* rgb,
+                std::size_t stride) {
+  for (std::size_t s = 0; s < n; ++s) M::Eval(p, g[s], rgb + s * stride);
+}
+// Lafortune's: the same values with what depends on cxy and n alone computed once per column
+// (fit/lafortune_gradient.h).
+template <>
+inline void EvalColumn<Lafortune>(const double* p, const Geometry* g, std::size_t n, double* rgb,
+                                  std::size_t stride) {
+  LafortuneColumn(p, g, n, rgb, stride);
+}
+
 // The lobes of a sum, each with its own evaluator and parameter slice; a model that is not a
 // sum is one component.
 template <class M>
 struct ComponentsOf {
-  static std::vector<ComponentOps> Get() { return {{&EvalDouble<M>, 0, kNumParams<M>}}; }
+  static std::vector<ComponentOps> Get() {
+    return {{&EvalDouble<M>, 0, kNumParams<M>, &EvalColumn<M>}};
+  }
 };
 template <class... Lobes>
 struct ComponentsOf<Sum<Lobes...>> {
   static std::vector<ComponentOps> Get() {
     std::vector<ComponentOps> out;
     std::size_t i = 0;
-    ((out.push_back({&EvalDouble<Lobes>, Sum<Lobes...>::kOffsets[i], kNumParams<Lobes>}), ++i),
+    ((out.push_back(
+          {&EvalDouble<Lobes>, Sum<Lobes...>::kOffsets[i], kNumParams<Lobes>, &EvalColumn<Lobes>}),
+      ++i),
      ...);
     return out;
   }

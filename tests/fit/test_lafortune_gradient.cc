@@ -18,6 +18,7 @@
 #include "fit/lafortune_gradient.h"
 #include "fit/param_layout.h"
 #include "models/geometry.h"
+#include "models/lafortune.h"
 
 namespace brdfit::internal {
 namespace {
@@ -83,6 +84,68 @@ TEST(LafortuneGradient, OneLobeMatchesAutodiff) {
 
 TEST(LafortuneGradient, ThreeLobesMatchAutodiff) {
   CheckAgainstJets<Sum<Lambert, Lafortune, Lafortune, Lafortune>>(kLobes);
+}
+
+// The initializer's basis column (LafortuneColumn, fit/grid_init.cc): Lafortune::Eval's values
+// bit for bit, written at the given stride.
+TEST(LafortuneGradient, ColumnMatchesEval) {
+  const Grid grid = Grid::Merl();
+  std::vector<Geometry> g;
+  for (std::size_t cell = 3; cell < grid.NumCells(); cell += 4999) {
+    g.push_back(MakeGeometry(grid.CellCentre(cell)));
+  }
+  for (const auto& lobe : kLobes) {
+    for (const double w : {1.0, 0.37}) {
+      const double p[5] = {w, 0.5 * w, 2.0 * w, lobe[3], lobe[4]};
+      constexpr std::size_t kStride = 12;
+      std::vector<double> col(g.size() * kStride, -1.0);
+      LafortuneColumn(p, g.data(), g.size(), col.data() + 3, kStride);
+      for (std::size_t s = 0; s < g.size(); ++s) {
+        double rgb[3];
+        Lafortune::Eval(p, g[s], rgb);
+        ASSERT_EQ(std::memcmp(rgb, &col[s * kStride + 3], sizeof rgb), 0) << s;
+        ASSERT_EQ(col[s * kStride], -1.0);  // nothing written outside its slots
+      }
+    }
+  }
+}
+
+// The compressed block's per-channel Gram matrices (fit/block_cost.h) rely on this: channel c's
+// gradient is zero outside ChannelColumns()[c], which ascend and end with the residual's column.
+TEST(LafortuneGradient, ChannelColumnsHoldEveryNonZero) {
+  using M = Sum<Lambert, Lafortune, Lafortune, Lafortune>;
+  using G = AnalyticGradient<M>;
+  constexpr int P = G::P;
+  const auto cols = G::ChannelColumns();
+  const ParamLayout layout = ParamLayout::Of(M::kParams);
+  std::vector<double> p = {0.2, 0.1, 0.05};
+  for (int k = 0; k < G::kLobes; ++k) {
+    for (int i = 0; i < 5; ++i) {
+      p.push_back(kLobes[static_cast<std::size_t>(k)][static_cast<std::size_t>(i)]);
+    }
+  }
+  const auto prepared = G::Prepare(p.data(), layout);
+  const Grid grid = Grid::Merl();
+  for (int ch = 0; ch < 3; ++ch) {
+    ASSERT_EQ(cols[ch][G::kC - 1], P);
+    for (int j = 1; j < G::kC; ++j) ASSERT_LT(cols[ch][j - 1], cols[ch][j]);
+  }
+  int nonzero = 0;
+  for (std::size_t cell = 11; cell < grid.NumCells(); cell += 7919) {
+    double rgb[3], grad[3 * P];
+    G::Eval(prepared, MakeGeometry(grid.CellCentre(cell)), rgb, grad);
+    for (int ch = 0; ch < 3; ++ch) {
+      for (int i = 0; i < P; ++i) {
+        const bool listed =
+            std::find(cols[ch].begin(), cols[ch].end() - 1, i) != cols[ch].end() - 1;
+        if (!listed) {
+          ASSERT_EQ(grad[ch * P + i], 0.0) << "channel " << ch << " parameter " << i;
+        }
+        nonzero += listed && grad[ch * P + i] != 0.0;
+      }
+    }
+  }
+  EXPECT_GT(nonzero, 1000);
 }
 
 }  // namespace

@@ -69,6 +69,11 @@ TEST(NormalEquations, CompressedBlocksMatchPlainProblem) {
        {"cook-torrance.alpha=0.2"},
        {"cook-torrance.alpha=0.15", "cook-torrance.f0=0.5"}},
       {"lambert+lafortune", {"lafortune.n=30"}, {"lafortune.n=24", "lafortune.cxy=-0.9"}},
+      // Three lobes: each channel's rows go to a Gram matrix of its own columns
+      // (fit/block_cost.h), summed into the whole one.
+      {"lambert+lafortune+lafortune+lafortune",
+       {"lafortune1.n=30", "lafortune2.n=4", "lafortune3.n=200"},
+       {"lafortune1.n=24", "lafortune2.cxy=-0.6", "lafortune3.n=150", "lafortune3.rho_g=0.2"}},
   };
   for (const Case& c : cases) {
     const ModelInfo& m = *FindModel(c.model);
