@@ -123,8 +123,9 @@ class BlockCost final : public ceres::CostFunction {
   bool WithJacobian(const double* x, double* residuals, double* jacobian, double* cost_out) const {
     GramRows<P + 1> gram;
     double& cost = *cost_out;
-    // One sample's channel: value f and gradient grad (optimization space).
-    auto add = [&](std::size_t s, int ch, double f, const double* grad) {
+    // One sample's channel at value f: adds its cost; the row's scale sqrt(sum a^2) and its
+    // right-hand side sum a b / sqrt(sum a^2), or false when no observation has a slope.
+    auto reduce = [&](std::size_t s, int ch, double f, double* sq, double* rhs) {
       double saa = 0, sab = 0;
       for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
         const double w = l_.sqrt_w[o];
@@ -135,11 +136,18 @@ class BlockCost final : public ceres::CostFunction {
         saa += a * a;
         sab += a * (w * r.res_scale * e.e);
       }
-      if (!(saa > 0)) return;
-      const double sq = std::sqrt(saa);
+      if (!(saa > 0)) return false;
+      *sq = std::sqrt(saa);
+      *rhs = sab / *sq;
+      return true;
+    };
+    // One sample's channel: value f and gradient grad (optimization space).
+    auto add = [&](std::size_t s, int ch, double f, const double* grad) {
+      double sq, rhs;
+      if (!reduce(s, ch, f, &sq, &rhs)) return;
       double* row = gram.Next();
       for (int i = 0; i < P; ++i) row[i] = sq * grad[i];
-      row[P] = sab / sq;
+      row[P] = rhs;
       gram.Commit();
     };
     if constexpr (AnalyticGradient<M>::kAvailable) {
@@ -152,21 +160,11 @@ class BlockCost final : public ceres::CostFunction {
       constexpr std::array<std::array<int, AG::kC>, 3> cols = AG::ChannelColumns();
       std::array<GramRows<AG::kC>, 3> grams;
       auto add_sparse = [&](std::size_t s, int ch, double f, const double* grad) {
-        double saa = 0, sab = 0;
-        for (std::uint32_t o = s_.obs_begin[s]; o < s_.obs_begin[s + 1]; ++o) {
-          const double w = l_.sqrt_w[o];
-          const SlopedResidual e = LossResidualWithSlope(l_, o, ch, f);
-          const RobustTerm r = Robustify(robust_, e.e);
-          cost += w * w * r.cost;
-          const double a = e.Slope(w * r.jac_scale);
-          saa += a * a;
-          sab += a * (w * r.res_scale * e.e);
-        }
-        if (!(saa > 0)) return;
-        const double sq = std::sqrt(saa);
+        double sq, rhs;
+        if (!reduce(s, ch, f, &sq, &rhs)) return;
         double* row = grams[ch].Next();
         for (int j = 0; j + 1 < AG::kC; ++j) row[j] = sq * grad[cols[ch][j]];
-        row[AG::kC - 1] = sab / sq;
+        row[AG::kC - 1] = rhs;
         grams[ch].Commit();
       };
       double p[P];
