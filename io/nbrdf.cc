@@ -220,27 +220,34 @@ NbrdfTabulation TabulateNbrdf(const NbrdfNetwork& net, const Grid& grid, int thr
     bool non_finite = false;
     std::size_t non_finite_cell = 0;
   };
-  auto slice = [&](int ih, Counts& cnt) {
+  auto slice = [&](int ih, Counts& cnt, std::vector<Eigen::Index>& above) {
     const double th = grid.ThetaHAt(ih + 0.5);
     const double sh = std::sin(th), ch = std::cos(th);
-    // x = (sin th, 0, cos th, d): the half-vector part adds one row vector to P.
+    // Only the cells above the horizon go through the network (a quarter of the MERL grid is
+    // below it). Directions at the cell centre with phi_h = 0 (geometry.h FromHalfDiff):
+    // wi.z = cos th cos td - sin th sin td cos pd, wo.z = cos th cos td + sin th sin td cos pd.
+    above.clear();
+    for (Eigen::Index r = 0; r < rows; ++r) {
+      const double a = ch * cos_td_row[r], b = sh * sin_td_row[r] * cos_pd[r];
+      if (a - b > 0 && a + b > 0) {
+        above.push_back(r);
+      } else {
+        ++cnt.below;  // masked (valid stays 0, value 0)
+      }
+    }
+    if (above.empty()) return;
+    // x = (sin th, 0, cos th, d): the half-vector part adds one row vector to P. Each output is
+    // the same sum over the hidden units, in the same order, as for the whole slice.
     const Eigen::RowVectorXd hpart = sh * net.k1.row(0) + ch * net.k1.row(2);
-    const Eigen::MatrixXd h1 = (p.rowwise() + hpart).cwiseMax(0.0);
+    const Eigen::MatrixXd h1 = (p(above, Eigen::all).rowwise() + hpart).cwiseMax(0.0);
     const Eigen::MatrixXd h2 = ((h1 * net.k2).rowwise() + net.b2).cwiseMax(0.0);
     const Eigen::MatrixXd y = (h2 * net.k3).rowwise() + net.b3;
     const std::size_t base = grid.Index(ih, 0, 0);
-    for (Eigen::Index r = 0; r < rows; ++r) {
-      const std::size_t idx = base + static_cast<std::size_t>(r);
-      // Directions at the cell centre with phi_h = 0 (geometry.h FromHalfDiff):
-      // wi.z = cos th cos td - sin th sin td cos pd, wo.z = cos th cos td + sin th sin td cos pd.
-      const double a = ch * cos_td_row[r], b = sh * sin_td_row[r] * cos_pd[r];
-      if (!(a - b > 0 && a + b > 0)) {
-        ++cnt.below;
-        continue;  // masked (valid stays 0, value 0)
-      }
+    for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(above.size()); ++i) {
+      const std::size_t idx = base + static_cast<std::size_t>(above[i]);
       bool clamped = false;
       for (int c = 0; c < 3; ++c) {
-        double f = std::expm1(y(r, c));
+        double f = std::expm1(y(i, c));
         if (!std::isfinite(f) && !cnt.non_finite) {
           cnt.non_finite = true;
           cnt.non_finite_cell = idx;
@@ -260,12 +267,14 @@ NbrdfTabulation TabulateNbrdf(const NbrdfNetwork& net, const Grid& grid, int thr
   const int n_threads = std::clamp(threads, 1, grid.n_theta_h);
   std::vector<Counts> counts(n_threads);
   if (n_threads == 1) {
-    for (int ih = 0; ih < grid.n_theta_h; ++ih) slice(ih, counts[0]);
+    std::vector<Eigen::Index> above;
+    for (int ih = 0; ih < grid.n_theta_h; ++ih) slice(ih, counts[0], above);
   } else {
     std::vector<std::thread> pool;
     for (int k = 0; k < n_threads; ++k) {
       pool.emplace_back([&, k] {
-        for (int ih = k; ih < grid.n_theta_h; ih += n_threads) slice(ih, counts[k]);
+        std::vector<Eigen::Index> above;
+        for (int ih = k; ih < grid.n_theta_h; ih += n_threads) slice(ih, counts[k], above);
       });
     }
     for (auto& th : pool) th.join();

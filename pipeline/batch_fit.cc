@@ -21,6 +21,7 @@
 #include "fit/fitter.h"
 #include "fit/prepare_cache.h"
 #include "models/registry.h"
+#include "pipeline/batch_schedule.h"
 #include "pipeline/factor_candidate.h"
 #include "pipeline/inputs.h"
 #include "pipeline/material_keys.h"
@@ -291,12 +292,14 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
   // The factorizations' systems (~100 MB each on the MERL grid): one per parameterization,
   // shared by the workers from table to table; a single table drops them when done.
   FactorSystemCache factor_cache(/*capacity=*/2);
-  std::atomic<std::size_t> next{0};
+  std::vector<std::size_t> task_inputs;
+  for (const Task& t : tasks) task_inputs.push_back(t.input);
+  BatchSchedule schedule(std::move(task_inputs));
   auto worker = [&] {
     while (true) {
-      const std::size_t i = next++;
-      if (i >= tasks.size()) return;
-      const Task& t = tasks[i];
+      const std::optional<std::size_t> i = schedule.Next();
+      if (!i) return;
+      const Task& t = tasks[*i];
       const std::string& input = inputs[t.input];
       InputState& st = *states[t.input];
       if (on_start) {
@@ -326,6 +329,7 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
             st.error = input + ": " + e.what();
           }
           st.ready = true;
+          schedule.MarkLoaded(t.input);
         }
       }
       if (st.error.empty()) {
@@ -384,7 +388,7 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
               write_report(false);  // checkpoint for resuming
             } catch (const OutputError&) {
               write_error = std::current_exception();
-              next = tasks.size();
+              schedule.Stop();
             }
           }
         }
