@@ -5,9 +5,10 @@
 
 #include <string>
 
+#include "core/sanitizer.h"
 #include "preview/gl.h"
 
-#if defined(__SANITIZE_ADDRESS__)
+#if BRDFIT_ASAN
 #include <sanitizer/lsan_interface.h>
 #endif
 
@@ -40,7 +41,7 @@ std::string EglErrorName(EGLint e) {
 }  // namespace
 
 HeadlessGlContext::HeadlessGlContext() {
-#if defined(__SANITIZE_ADDRESS__)
+#if BRDFIT_ASAN
   // Under ASan only: LeakSanitizer's exit-time check can crash in its own tracer (signal 11
   // while stopping the threads) once Mesa llvmpipe's worker threads exist, failing a process
   // that did nothing wrong (make test-asan: the seed004_steps golden test every run,

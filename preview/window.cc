@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/sanitizer.h"
 #include "preview/comparison.h"
 #include "preview/gl_context.h"
 #include "preview/renderer.h"
@@ -137,7 +138,7 @@ class GlfwWindow {
   }
   ~GlfwWindow() {
     glfwDestroyWindow(window_);
-#if defined(__SANITIZE_ADDRESS__)
+#if BRDFIT_ASAN
     // glfwTerminate closes the X display, which unloads Mesa's GLX driver: LeakSanitizer then
     // sees the driver's process-lifetime allocations with no module name and cannot suppress
     // them by library (cli/cmd_render.cc). Under ASan the process's exit cleans up instead, as

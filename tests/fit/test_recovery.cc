@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "core/sanitizer.h"
 #include "fit/fitter.h"
 #include "fit_test_util.h"
 
@@ -114,7 +115,7 @@ std::string Name(const ::testing::TestParamInfo<RecoveryParam>& info) {
 // keeps the sharpest and a broad alpha per model: the Release pass runs the whole acceptance,
 // the sanitizer pass checks the same code paths for memory errors.
 std::vector<RecoveryParam> AllCases() {
-#if defined(__SANITIZE_ADDRESS__)
+#if BRDFIT_ASAN
   const std::vector<int> alphas = {0, 3};
 #else
   const std::vector<int> alphas = {0, 1, 2, 3, 4};
