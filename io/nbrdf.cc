@@ -236,8 +236,9 @@ NbrdfTabulation TabulateNbrdf(const NbrdfNetwork& net, const Grid& grid, int thr
       }
     }
     if (above.empty()) return;
-    // x = (sin th, 0, cos th, d): the half-vector part adds one row vector to P. Each output is
-    // the same sum over the hidden units, in the same order, as for the whole slice.
+    // x = (sin th, 0, cos th, d): the half-vector part adds one row vector to P. Fewer rows can
+    // send some of them through Eigen's GEMM remainder path, which sums in another order: a
+    // few values per table change in the last bits (<= 1.4e-13 relative, docs/fitting.md).
     const Eigen::RowVectorXd hpart = sh * net.k1.row(0) + ch * net.k1.row(2);
     const Eigen::MatrixXd h1 = (p(above, Eigen::all).rowwise() + hpart).cwiseMax(0.0);
     const Eigen::MatrixXd h2 = ((h1 * net.k2).rowwise() + net.b2).cwiseMax(0.0);
