@@ -93,7 +93,20 @@ std::string TableContentHash(const Table& t) {
   constexpr std::uint64_t kPrime = 1099511628211ULL;
   std::uint64_t lane[4] = {h, ~h, h ^ 0x5555555555555555ULL, h ^ 0xaaaaaaaaaaaaaaaaULL};
   const std::size_t n = t.rgb.size();
-  for (std::size_t i = 0; i < n; ++i) {
+  // Word i goes to lane i mod 4; four words per step in locals, so that the four multiply chains
+  // run side by side (the lanes in an indexed array kept them in memory: 3x slower).
+  std::uint64_t l0 = lane[0], l1 = lane[1], l2 = lane[2], l3 = lane[3];
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    std::uint64_t w[4];
+    std::memcpy(w, &t.rgb[i], sizeof w);
+    l0 = (l0 ^ w[0]) * kPrime;
+    l1 = (l1 ^ w[1]) * kPrime;
+    l2 = (l2 ^ w[2]) * kPrime;
+    l3 = (l3 ^ w[3]) * kPrime;
+  }
+  lane[0] = l0, lane[1] = l1, lane[2] = l2, lane[3] = l3;
+  for (; i < n; ++i) {
     std::uint64_t w;
     std::memcpy(&w, &t.rgb[i], 8);
     lane[i & 3] = (lane[i & 3] ^ w) * kPrime;

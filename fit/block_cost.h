@@ -22,8 +22,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
-#include <mutex>
 
 #include "fit/block_compress.h"
 #include "fit/lafortune_gradient.h"
@@ -51,34 +49,17 @@ class BlockCost final : public ceres::CostFunction {
     mutable_parameter_block_sizes()->push_back(P);
   }
 
-  // The last Jacobian evaluation is kept and given again for the same x, bit for bit: Ceres
-  // 2.1's projected line search (bounded problems) evaluates the gradient, so this block's
-  // Jacobian, at x + delta; when the step is taken the minimizer evaluates the cost and then
-  // the Jacobian at that same point again. The cost of WithJacobian is CostOnly's (same sums,
-  // same order), so both repeats are answered from the cache: one Jacobian per LM iteration
-  // instead of two.
+  // Repeated Jacobians at an accepted step come from cache_ (fit/block_compress.h): the cost of
+  // WithJacobian is CostOnly's (same sums, same order).
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override {
     const double* x = parameters[0];
-    const bool want_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
-    {
-      const std::lock_guard<std::mutex> lock(cache_.mutex);
-      if (cache_.valid && std::memcmp(cache_.x.data(), x, sizeof cache_.x) == 0) {
-        if (!want_jacobian) return CostOnlyResiduals(P, cache_.cost, residuals);
-        std::memcpy(residuals, cache_.residuals.data(), sizeof cache_.residuals);
-        std::memcpy(jacobians[0], cache_.jacobian.data(), sizeof cache_.jacobian);
-        return true;
-      }
-    }
-    if (!want_jacobian) return CostOnlyResiduals(P, CostOnly(x), residuals);
+    double* jacobian = jacobians != nullptr ? jacobians[0] : nullptr;
+    if (cache_.Answer(x, residuals, jacobian)) return true;
+    if (jacobian == nullptr) return CostOnlyResiduals(P, CostOnly(x), residuals);
     double cost = 0;
-    if (!WithJacobian(x, residuals, jacobians[0], &cost)) return false;
-    const std::lock_guard<std::mutex> lock(cache_.mutex);
-    std::memcpy(cache_.x.data(), x, sizeof cache_.x);
-    std::memcpy(cache_.residuals.data(), residuals, sizeof cache_.residuals);
-    std::memcpy(cache_.jacobian.data(), jacobians[0], sizeof cache_.jacobian);
-    cache_.cost = cost;
-    cache_.valid = true;
+    if (!WithJacobian(x, residuals, jacobian, &cost)) return false;
+    cache_.Store(x, residuals, jacobian, cost);
     return true;
   }
 
@@ -204,15 +185,7 @@ class BlockCost final : public ceres::CostFunction {
   const ParamLayout& layout_;
   const ceres::LossFunction* robust_;
   std::size_t begin_, end_;
-  struct Cache {
-    std::mutex mutex;
-    bool valid = false;
-    std::array<double, P> x{};
-    std::array<double, P + 1> residuals{};
-    std::array<double, (P + 1) * P> jacobian{};
-    double cost = 0;
-  };
-  mutable Cache cache_;
+  mutable JacobianCache<P> cache_;
 };
 
 }  // namespace brdfit::internal

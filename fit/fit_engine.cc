@@ -1,6 +1,5 @@
 // The fit of one model: initializer, Levenberg-Marquardt stages, result and metrics
 // (pipeline described in fit/fitter.h).
-#include <ceres/manifold.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 
@@ -10,6 +9,7 @@
 #include <memory>
 #include <optional>
 
+#include "fit/bounded_lm.h"
 #include "fit/grid_init.h"
 #include "fit/metrics.h"
 #include "fit/model_ops.h"
@@ -41,102 +41,17 @@ void AddBlocks(const ModelOps& ops, const Samples& s, const LossData& l,
   }
 }
 
-struct LmRun {
-  ceres::Solver::Summary summary;  // of the last round
-  int iterations = 0;              // all rounds
-  bool finite = false;
-};
-
-int Iterations(const ceres::Solver::Summary& s) {
-  // summary.iterations[0] is the evaluation at the starting point.
-  return std::max<int>(static_cast<int>(s.iterations.size()) - 1, 0);
-}
-
-// Indices of x on a bound (within a relative 1e-12 of the range), snapped onto it.
-std::vector<int> OnBounds(const ParamLayout& layout, double* x) {
-  std::vector<int> on;
-  for (std::size_t i = 0; i < layout.size(); ++i) {
-    const double lo = layout.lower_opt[i], hi = layout.upper_opt[i], tol = 1e-12 * (hi - lo);
-    if (x[i] <= lo + tol) {
-      x[i] = lo;
-      on.push_back(static_cast<int>(i));
-    } else if (x[i] >= hi - tol) {
-      x[i] = hi;
-      on.push_back(static_cast<int>(i));
-    }
-  }
-  return on;
-}
-
-// Levenberg-Marquardt within the bounds, with an active set. Ceres projects steps that leave the
-// box, but its Gauss-Newton step still assumes the clipped coordinates move, so a weight pinned
-// at 0 (no diffuse part in a metal) makes it crawl (57 iterations on a full table). Instead:
-// parameters on a bound are held there (ceres::SubsetManifold) while LM runs on the others;
-// then the gradient decides: a held parameter whose gradient points into the box is released,
-// one that reached a bound with the gradient pushing out is held; repeat until the set is
-// stable (Nocedal & Wright 2006, Numerical Optimization, §16.5, active-set methods).
-LmRun RunLm(const ModelOps& ops, const Samples& s, const LossData& l,
-            const ceres::LossFunction* robust, const FitOptions& opt, double* x) {
-  const ParamLayout& layout = ops.layout;
-  const int P = static_cast<int>(layout.size());
+// LM on the fit set's blocks within the bounds (fit/bounded_lm.h).
+BoundedLmRun RunLm(const ModelOps& ops, const Samples& s, const LossData& l,
+                   const ceres::LossFunction* robust, const FitOptions& opt, double* x) {
   ceres::Solver::Options so = LmSolverOptions(opt.threads);
   so.function_tolerance = opt.function_tolerance;
   so.parameter_tolerance = opt.parameter_tolerance;
   so.gradient_tolerance = opt.gradient_tolerance;
-
-  LmRun run;
-  std::vector<int> held = OnBounds(layout, x);
-  constexpr int kMaxRounds = 4;
-  for (int round = 0; round < kMaxRounds; ++round) {
-    ceres::Problem::Options po;
-    po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-    ceres::Problem problem(po);
-    AddBlocks(ops, s, l, robust, x, &problem);
-    for (int i = 0; i < P; ++i) {
-      problem.SetParameterLowerBound(x, i, layout.lower_opt[i]);
-      problem.SetParameterUpperBound(x, i, layout.upper_opt[i]);
-    }
-    std::unique_ptr<ceres::SubsetManifold> subset;
-    if (!held.empty() && static_cast<int>(held.size()) < P) {
-      subset = std::make_unique<ceres::SubsetManifold>(P, held);
-      problem.SetManifold(x, subset.get());
-    }
-    so.max_num_iterations = std::max(opt.max_iterations - run.iterations, 0);
-    if (static_cast<int>(held.size()) == P) so.max_num_iterations = 0;
-    ceres::Solve(so, &problem, &run.summary);
-    run.iterations += Iterations(run.summary);
-    // Ceres #988: CONVERGENCE can come with an infinite cost. Check everything.
-    run.finite = std::isfinite(run.summary.final_cost);
-    for (int i = 0; i < P; ++i) run.finite = run.finite && std::isfinite(x[i]);
-    if (!run.finite || run.summary.termination_type == ceres::FAILURE) return run;
-
-    std::vector<int> on = OnBounds(layout, x);
-    if (on.empty() && held.empty()) return run;  // interior: nothing to check
-    if (subset) problem.SetManifold(x, nullptr);
-    double cost = 0;
-    std::vector<double> gradient;
-    if (!problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, &gradient, nullptr)) {
-      return run;
-    }
-    std::vector<int> next;
-    for (int i : on) {
-      const bool at_lower = x[i] == layout.lower_opt[i];
-      if (at_lower ? gradient[i] >= 0 : gradient[i] <= 0) next.push_back(i);
-    }
-    if (next == held) {
-      if (static_cast<int>(held.size()) == P) {
-        // Every parameter on a bound with the gradient pointing out of the box: a KKT point.
-        // Ceres ran no iteration (max_num_iterations = 0) and calls that NO_CONVERGENCE.
-        run.summary.termination_type = ceres::CONVERGENCE;
-        run.summary.message =
-            "every parameter on a bound, the gradient pointing out of the box (KKT point)";
-      }
-      return run;
-    }
-    held = next;
-    if (run.iterations >= opt.max_iterations) return run;
-  }
-  return run;
+  return RunBoundedLm(
+      ops.layout,
+      [&](double* xb, ceres::Problem* problem) { AddBlocks(ops, s, l, robust, xb, problem); }, so,
+      opt.max_iterations, x);
 }
 
 }  // namespace
@@ -218,11 +133,12 @@ FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& lo
     ++r.starts;
     if (coarse) {
       std::vector<double> xc = x;
-      const LmRun run = RunLm(ops, coarse_set, coarse_loss, robust.get(), coarse_opt, xc.data());
+      const BoundedLmRun run =
+          RunLm(ops, coarse_set, coarse_loss, robust.get(), coarse_opt, xc.data());
       r.iterations += run.iterations;
       if (run.finite) x = xc;  // else continue from the grid point
     }
-    const LmRun run = RunLm(ops, fit, loss, robust.get(), opt, x.data());
+    const BoundedLmRun run = RunLm(ops, fit, loss, robust.get(), opt, x.data());
     r.iterations += run.iterations;
     const bool usable = run.finite && run.summary.termination_type != ceres::FAILURE &&
                         run.summary.termination_type != ceres::USER_FAILURE;
@@ -292,19 +208,15 @@ FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& lo
   // 3. Metrics on the metric set.
   t0 = Clock::now();
   c0 = ThreadCpuMs();
-  // The model at every sample of the metric set, then the metrics, both shared by --threads
-  // (each sample's prediction is independent; the metrics' sums are chunked: same bits).
-  const std::size_t ns = metric.NumSamples();
-  std::vector<double> pred(3 * ns);
-  const int n_threads = static_cast<int>(
-      std::clamp<std::size_t>(static_cast<std::size_t>(std::max(opt.threads, 1)), 1,
-                              std::max<std::size_t>(ns / 4096, 1)));
-  auto predict = [&](int t) {
-    const std::size_t begin = ns * t / n_threads, end = ns * (t + 1) / n_threads;
-    ops.eval_samples(r.params.data(), metric, begin, end, &pred[3 * begin]);
-  };
-  RunOnThreads(n_threads, predict);
-  r.metrics = ComputeMetricsPerSample(metric, pred, opt.threads);
+  // The model on every sample of the metric set, chunk by chunk as the metrics take them, the
+  // chunks shared by --threads (each sample's prediction is independent; the sums are chunked:
+  // same bits for any number of threads).
+  r.metrics = ComputeMetricsStreamed(
+      metric,
+      [&](std::size_t begin, std::size_t end, double* out) {
+        ops.eval_samples(r.params.data(), metric, begin, end, out);
+      },
+      opt.threads);
   // The rendered metric of the result, when the polish already computed it at these parameters
   // (else the caller scores it: fit/fitter.cc).
   if (polished_rendered) r.metrics.rendered = *polished_rendered;

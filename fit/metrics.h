@@ -4,6 +4,8 @@
 // be scored.
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <span>
 
 #include "core/metrics.h"
@@ -23,5 +25,15 @@ FitMetrics ComputeMetrics(const Samples& samples, std::span<const double> predic
 // the size does not match.
 FitMetrics ComputeMetricsPerSample(const Samples& samples, std::span<const double> per_sample_rgb,
                                    int threads = 1);
+
+// Writes the 3 predictions of samples [begin, end) to out (3 (end - begin) values).
+using SampleEvaluator = std::function<void(std::size_t begin, std::size_t end, double* out)>;
+
+// The same metrics (bit-identical to ComputeMetricsPerSample) with the predictions made chunk by
+// chunk, on the thread that scores the chunk, and never stored whole (3 doubles per sample: 11 MB
+// and its page faults on a MERL table). eval must give any sample the same values whatever range
+// it is asked for (ModelOps::eval_samples does: tests/fit/test_sample_eval.cc).
+FitMetrics ComputeMetricsStreamed(const Samples& samples, const SampleEvaluator& eval,
+                                  int threads = 1);
 
 }  // namespace brdfit

@@ -76,10 +76,14 @@ class PixelCost final : public ceres::CostFunction {
     mutable_parameter_block_sizes()->push_back(P);
   }
 
+  // Repeated Jacobians at an accepted step come from cache_ (fit/block_compress.h): the cost of
+  // the Jacobian evaluation sums the same residuals in the same order as the cost-only one.
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override {
     const double* x = parameters[0];
-    if (jacobians == nullptr || jacobians[0] == nullptr) {
+    double* jacobian = jacobians != nullptr ? jacobians[0] : nullptr;
+    if (cache_.Answer(x, residuals, jacobian)) return true;
+    if (jacobian == nullptr) {
       double p[P];
       for (int i = 0; i < P; ++i) p[i] = layout_.FromOpt(i, x[i]);
       double cost = 0;
@@ -107,13 +111,16 @@ class PixelCost final : public ceres::CostFunction {
         gram.Commit();
       }
     }
-    return CompressGram(gram.Finish(), P, cost, residuals, jacobians[0]);
+    if (!CompressGram(gram.Finish(), P, cost, residuals, jacobian)) return false;
+    cache_.Store(x, residuals, jacobian, cost);
+    return true;
   }
 
  private:
   const PolishPixels& px_;
   const ParamLayout& layout_;
   std::size_t begin_, end_;
+  mutable JacobianCache<P> cache_;
 };
 
 }  // namespace brdfit::internal

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/model_choice.h"
+#include "fit/bounded_lm.h"
 #include "fit/pixel_cost.h"
 
 namespace brdfit::internal {
@@ -84,7 +85,6 @@ RenderedPolishOutcome PolishOnRendered(const ModelOps& ops, const RenderedRefere
                                        const RenderedPolishOptions& o, std::vector<double>& x) {
   RenderedPolishOutcome out;
   const ParamLayout& layout = ops.layout;
-  const int P = static_cast<int>(layout.size());
   if (ref.pixels.empty() || ops.make_pixel_block == nullptr) return out;
   out.rendered = RenderedAt(ops, ref, x);
   out.score_before = out.score_after = ScoreOf(out.rendered);
@@ -109,28 +109,25 @@ RenderedPolishOutcome PolishOnRendered(const ModelOps& ops, const RenderedRefere
   px.delta.assign(n, 0.0);
 
   ceres::Solver::Options so = LmSolverOptions(o.threads);
-  so.max_num_iterations = o.max_iterations;
 
   std::vector<double> cur = x;
   for (int round = 0; round < o.rounds; ++round) {
     if (!Reweight(ops, ref, begin, o, cur, px)) break;
-    ceres::Problem problem;
-    // Blocks of 2048 pixels: Ceres' threads share them; accumulation stays short.
+    // Blocks of 2048 pixels: Ceres' threads share them; accumulation stays short. LM with an
+    // active set (fit/bounded_lm.h), as the table fit: a parameter the fit left on a bound (a
+    // metal's zero diffuse) is held there instead of projected after every step.
     const std::size_t nb = std::max<std::size_t>(n / 2048, 1);
-    for (std::size_t b = 0; b < nb; ++b) {
-      problem.AddResidualBlock(ops.make_pixel_block(px, layout, n * b / nb, n * (b + 1) / nb),
-                               nullptr, cur.data());
-    }
-    for (int i = 0; i < P; ++i) {
-      problem.SetParameterLowerBound(cur.data(), i, layout.lower_opt[i]);
-      problem.SetParameterUpperBound(cur.data(), i, layout.upper_opt[i]);
-    }
-    ceres::Solver::Summary summary;
-    ceres::Solve(so, &problem, &summary);
-    out.iterations += std::max<int>(static_cast<int>(summary.iterations.size()) - 1, 0);
-    bool finite = std::isfinite(summary.final_cost);
-    for (double v : cur) finite = finite && std::isfinite(v);
-    if (!finite) break;
+    const BoundedLmRun run = RunBoundedLm(
+        layout,
+        [&](double* xb, ceres::Problem* problem) {
+          for (std::size_t b = 0; b < nb; ++b) {
+            problem->AddResidualBlock(
+                ops.make_pixel_block(px, layout, n * b / nb, n * (b + 1) / nb), nullptr, xb);
+          }
+        },
+        so, o.max_iterations, cur.data());
+    out.iterations += run.iterations;
+    if (!run.finite) break;
     const RenderedError e = RenderedAt(ops, ref, cur);
     const double s = ScoreOf(e);
     if (std::isfinite(s) && s > out.score_after) {
