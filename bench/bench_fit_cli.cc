@@ -3,7 +3,8 @@
 // metrics) beside it.
 //
 //   bench_fit_cli [--repeats 5] [--model lambert+ggx] [--args "--budget full"]
-//                 [--brdfit PATH] [--batch 0|1] [--batch-models a,b,..] [--jobs 2]
+//                 [--brdfit PATH] [--baseline PATH] [--batch 0|1] [--batch-models a,b,..]
+//                 [--jobs 2]
 //
 // Writes, in a scratch folder removed at exit, the six bench tables as users hold them: the
 // synthetic Lambert + GGX table of bench_fit (.h5) and five MERL NBRDF proxies tabulated on the
@@ -15,12 +16,18 @@
 // issue: `brdfit fit nbrdf:all --model <batch-models> -j <jobs>`, once, with its CPU time and the
 // medians of its report's stage times.
 // --brdfit PATH times another build (before / after comparisons on the same tables).
+// --baseline PATH also times that build, run by run alternately with the measured one (each
+// repeat: baseline, then measured, same table), and prints their medians and ratios: on a
+// virtual machine whose speed drifts by tens of percent over an hour, only runs this close in
+// time compare. With --batch 1 the batch runs once per build, baseline first.
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "bench/bench_tables.h"
@@ -68,7 +75,7 @@ std::vector<std::pair<std::string, fs::path>> WriteTables(const fs::path& dir) {
 int main(int argc, char** argv) {
   int repeats = 5, jobs = 2;
   bool batch = false;
-  std::string exe = BRDFIT_EXE, model = "lambert+ggx", extra;
+  std::string exe = BRDFIT_EXE, model = "lambert+ggx", extra, baseline;
   std::string batch_models = "lambert+ggx,lambert+cook-torrance,lambert+ggx+ggx,ue4";
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], v = argv[i + 1];
@@ -80,6 +87,8 @@ int main(int argc, char** argv) {
       extra = v;
     } else if (a == "--brdfit") {
       exe = v;
+    } else if (a == "--baseline") {
+      baseline = v;
     } else if (a == "--batch") {
       batch = v == "1";
     } else if (a == "--batch-models") {
@@ -103,25 +112,40 @@ int main(int argc, char** argv) {
       "metrics ms (CPU) | log_rmse | PSNR dB | median lum. err. |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   int failures = 0;
+  struct Times {
+    std::vector<double> wall, cpu;
+  };
+  std::vector<std::tuple<std::string, Times, Times>> compared;  // label, baseline, measured
+  // One `brdfit fit` of a table by build `bin`; false (and counted) when it failed.
+  auto fit_once = [&](const std::string& bin, const std::string& label, const fs::path& path,
+                      bench::ChildRun* run) {
+    const fs::path out = dir / "fits.h5";
+    std::vector<std::string> args = {"fit", path.string(), "--model", model,
+                                     "-o",  out.string(),  "--force", "-q"};
+    for (const auto& a : SplitArgs(extra)) args.push_back(a);
+    *run = bench::RunChild(bin, args, 600, dir / "fit.log");
+    if (run->exit_code == 0) return true;
+    fmt::print(stderr, "{}: {} fit exited {} (log {})\n", label, bin, run->exit_code,
+               (dir / "fit.log").string());
+    ++failures;
+    return false;
+  };
   for (const auto& [label, path] : tables) {
     std::vector<double> wall, cpu, rss, load, prep, init, solve, metrics, metrics_cpu;
+    Times base_times;
     FitMetrics last;
     for (int k = 0; k < repeats; ++k) {
-      const fs::path out = dir / "fits.h5";
-      std::vector<std::string> args = {"fit", path.string(), "--model", model, "-o",
-                                       out.string(), "--force", "-q"};
-      for (const auto& a : SplitArgs(extra)) args.push_back(a);
-      const bench::ChildRun run = bench::RunChild(exe, args, 600, dir / "fit.log");
-      if (run.exit_code != 0) {
-        fmt::print(stderr, "{}: brdfit fit exited {} (log {})\n", label, run.exit_code,
-                   (dir / "fit.log").string());
-        ++failures;
-        break;
+      bench::ChildRun run;
+      if (!baseline.empty()) {
+        if (!fit_once(baseline, label, path, &run)) break;
+        base_times.wall.push_back(run.seconds);
+        base_times.cpu.push_back(run.cpu_seconds);
       }
+      if (!fit_once(exe, label, path, &run)) break;
       wall.push_back(run.seconds);
       cpu.push_back(run.cpu_seconds);
       rss.push_back(run.peak_rss_mb);
-      const std::vector<FitReportEntry> entries = ReadFitReport(out);
+      const std::vector<FitReportEntry> entries = ReadFitReport(dir / "fits.h5");
       const FitResult& r = entries.front().result;
       load.push_back(r.times.load);
       prep.push_back(r.times.prepare);
@@ -132,6 +156,7 @@ int main(int argc, char** argv) {
       last = r.metrics;
     }
     if (wall.empty()) continue;
+    if (!baseline.empty()) compared.emplace_back(label, base_times, Times{wall, cpu});
     using bench::Median;
     fmt::print("| {} | {:.3f} | {:.3f} | {:.0f} | {:.0f} | {:.0f} | {:.0f} | {:.0f} | {:.0f} ({:.0f}) "
                "| {:.5f} | {:.2f} | {:.1f} % |\n",
@@ -141,8 +166,32 @@ int main(int argc, char** argv) {
                100 * last.rendered.median_rel_error);
     std::fflush(stdout);
   }
+  if (!compared.empty()) {
+    using bench::Median;
+    fmt::print(
+        "\nalternately with the baseline {}:\n"
+        "| table | baseline wall s | wall s | ratio | baseline CPU s | CPU s | ratio |\n"
+        "|---|---|---|---|---|---|---|\n",
+        baseline);
+    for (const auto& [label, b, m] : compared) {
+      if (b.wall.empty() || m.wall.empty()) continue;
+      fmt::print("| {} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} |\n", label,
+                 Median(b.wall), Median(m.wall), Median(m.wall) / Median(b.wall), Median(b.cpu),
+                 Median(m.cpu), Median(m.cpu) / std::max(Median(b.cpu), 1e-9));
+    }
+  }
   if (batch && fs::exists(kZip)) {
     setenv("BRDFIT_NBRDF_ZIP", kZip.c_str(), 1);
+    if (!baseline.empty()) {
+      const bench::ChildRun base =
+          bench::RunChild(baseline,
+                          {"fit", "nbrdf:all", "--model", batch_models, "-j", std::to_string(jobs),
+                           "-o", (dir / "batch-baseline.h5").string(), "-q"},
+                          3600, dir / "batch-baseline.log");
+      fmt::print("\nbatch, baseline {}: {:.1f} s ({:.1f} s CPU), peak RSS {:.0f} MB, exit {}\n",
+                 baseline, base.seconds, base.cpu_seconds, base.peak_rss_mb, base.exit_code);
+      if (base.exit_code != 0) ++failures;
+    }
     const bench::ChildRun run =
         bench::RunChild(exe,
                         {"fit", "nbrdf:all", "--model", batch_models, "-j", std::to_string(jobs),

@@ -27,6 +27,7 @@ struct RenderedPolishOptions {
   // the active set an iteration costs one Jacobian, and over the 100 MERL proxies 10 raise the
   // chosen fits' mean S by 0.26 dB (docs/accuracy.md, "The rendered polish").
   int max_iterations = 10;
+  double function_tolerance = 1e-4;  // a round ends at this relative change of its cost
   double median_weight = 40;  // W (the score's own weight is 20; 40 trades 0.1 dB of S for
                               // a lower median error, docs/accuracy.md)
   double min_error = 0.02;    // e_min
