@@ -100,10 +100,25 @@ TEST(RenderedPolish, PixelBlockMatchesIndependentResiduals) {
     for (int j = 0; j <= P; ++j) g += jac[j * P + k] * res[j];
     EXPECT_NEAR(g, jtr[k], 1e-6 * (std::abs(jtr[k]) + 1e-3 * std::sqrt(cost))) << m.param_names[k];
   }
-  // The cost-only path gives the same cost.
+  // The cost-only path of a fresh block (nothing cached) gives the same cost; the block's own
+  // repeats at the same x come from its cache (fit/block_compress.h JacobianCache), bit for bit.
+  internal::PixelCost<M> fresh(px, layout, 0, px.size());
   std::vector<double> res2(P + 1);
+  ASSERT_TRUE(fresh.Evaluate(params, res2.data(), nullptr));
+  EXPECT_DOUBLE_EQ(res2[P] * res2[P], block_cost);
+  std::vector<double> res3(P + 1), jac3((P + 1) * P);
+  double* jacs3[] = {jac3.data()};
+  ASSERT_TRUE(block.Evaluate(params, res3.data(), jacs3));
+  EXPECT_EQ(res3, res);
+  EXPECT_EQ(jac3, jac);
   ASSERT_TRUE(block.Evaluate(params, res2.data(), nullptr));
   EXPECT_DOUBLE_EQ(res2[P] * res2[P], block_cost);
+  // Another x is evaluated, not answered from the cache.
+  std::vector<double> x2 = x;
+  x2[P - 1] += 0.1;
+  const double* params2[] = {x2.data()};
+  ASSERT_TRUE(block.Evaluate(params2, res3.data(), jacs3));
+  EXPECT_NE(jac3, jac);
 }
 
 // The fit of `model` without and with the polish, on one prepared table (loss rel).
