@@ -122,6 +122,48 @@ TEST(Metrics, PerSamplePredictionsGiveBitIdenticalMetrics) {
   EXPECT_THROW(ComputeMetricsPerSample(s, std::vector<double>(3)), std::invalid_argument);
 }
 
+// The streamed pass (predictions made per chunk, never stored) and its kept measured cube roots
+// give the per-sample pass's bits, on a table with zero cells (the cube roots' guard) and for
+// any thread count; the roots are the metric's own (cbrt(m c), tested against std::cbrt).
+TEST(Metrics, StreamedPassAndKeptRootsGiveBitIdenticalMetrics) {
+  Table t = SynthModel("lambert+ggx", Params("lambert+ggx", {}), SmallGrid(), 0.05, 0.2, 5);
+  for (std::size_t i = 0; i < t.grid.NumCells(); i += 7) t.rgb[3 * i + 1] = 0.0;  // dark cells
+  const ModelInfo& m = *FindModel("lambert+ggx");
+  const std::vector<double> p = Params("lambert+ggx", {"ggx.alpha=0.2"});
+  const Samples s = PrepareSamples(t, SampleOptions{});
+  std::vector<double> per_sample(3 * s.NumSamples());
+  for (std::size_t k = 0; k < s.NumSamples(); ++k)
+    m.eval(p.data(), s.geometry[k], &per_sample[3 * k]);
+  const FitMetrics a = ComputeMetricsPerSample(s, per_sample);
+  const SampleEvaluator eval = [&](std::size_t begin, std::size_t end, double* out) {
+    for (std::size_t k = begin; k < end; ++k)
+      m.eval(p.data(), s.geometry[k], out + 3 * (k - begin));
+  };
+  const std::vector<double> roots = MeasuredCubeRoots(s);
+  ASSERT_EQ(roots.size(), 3 * s.NumObservations());
+  for (std::size_t o = 0; o < s.NumObservations(); o += 97) {
+    for (int ch = 0; ch < 3; ++ch) {
+      const double x = s.Value(o)[ch] * s.cos_i[o];
+      if (x >= 1e-5) {
+        EXPECT_NEAR(roots[3 * o + ch], std::cbrt(x), 4.5e-16 * std::cbrt(x));  // FastCbrt: 4 ulp
+      }
+    }
+  }
+  for (int threads : {1, 3}) {
+    for (const bool kept : {false, true}) {
+      const FitMetrics b = ComputeMetricsStreamed(
+          s, eval, threads, kept ? std::span<const double>(roots) : std::span<const double>());
+      ASSERT_TRUE(a.ok && b.ok);
+      EXPECT_EQ(a.log_rmse, b.log_rmse) << threads << kept;
+      EXPECT_EQ(a.cbrt_rmse, b.cbrt_rmse) << threads << kept;
+      EXPECT_EQ(a.rel_l2, b.rel_l2);
+      EXPECT_EQ(a.worst.cell, b.worst.cell);
+      EXPECT_EQ(a.worst.predicted, b.worst.predicted);
+    }
+  }
+  EXPECT_THROW(ComputeMetricsStreamed(s, eval, 1, std::vector<double>(3)), std::invalid_argument);
+}
+
 TEST(Metrics, PerfectAndScaledPredictions) {
   const Table t = SynthModel("lambert+ggx", Params("lambert+ggx", {}), SmallGrid());
   const Samples s = PrepareSamples(t, SampleOptions{});
