@@ -69,7 +69,7 @@ ceres::Solver::Options LmSolverOptions(int threads) {
 
 FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& loss,
                      const Samples& metric, const FitOptions& opt,
-                     const RenderedReference* polish_on, std::span<const double> metric_roots) {
+                     const RenderedReference* polish_on) {
   const ParamLayout& layout = ops.layout;
   const std::size_t P = layout.size();
   FitResult r;
@@ -216,7 +216,7 @@ FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& lo
       [&](std::size_t begin, std::size_t end, double* out) {
         ops.eval_samples(r.params.data(), metric, begin, end, out);
       },
-      opt.threads, metric_roots);
+      opt.threads);
   // The rendered metric of the result, when the polish already computed it at these parameters
   // (else the caller scores it: fit/fitter.cc).
   if (polished_rendered) r.metrics.rendered = *polished_rendered;

@@ -6,7 +6,6 @@
 #include <optional>
 
 #include "core/error.h"
-#include "fit/metrics.h"
 #include "fit/model_ops.h"
 #include "fit/prepare_cache.h"
 #include "fit/sample_plan.h"
@@ -115,10 +114,6 @@ PreparedTable PrepareTable(Table&& table, const SampleOptions& sample_options,
   return t;
 }
 
-void KeepMetricRoots(PreparedTable& table) {
-  table.metric_roots = MeasuredCubeRoots(table.metric());
-}
-
 FitResult FitPrepared(std::string_view model, const PreparedTable& table,
                       const FitOptions& options) {
   // A table prepared under another loss (brdfit fit --model auto fits candidates under their
@@ -129,8 +124,7 @@ FitResult FitPrepared(std::string_view model, const PreparedTable& table,
   }
   const bool polish = options.polish == PolishKind::kRendered && !table.rendered.Empty();
   FitResult r = internal::FitWithOps(Find(model), table.fit, own_loss ? *own_loss : table.loss,
-                                     table.metric(), options, polish ? &table.rendered : nullptr,
-                                     table.metric_roots);
+                                     table.metric(), options, polish ? &table.rendered : nullptr);
   const ModelInfo* info = FindModel(model);
   if (!r.Failed() && info && !table.rendered.Empty() && !r.metrics.rendered.ok) {
     // The rendered-image metric of the fitted parameters (docs/accuracy.md), unless the polish

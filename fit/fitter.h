@@ -33,9 +33,6 @@ struct PreparedTable {
   // The measured side of the rendered-image metric (fit/rendered_error.h); every fit of the
   // table is scored against it. Empty: no rendered metric (metrics.rendered.ok = false).
   RenderedReference rendered;
-  // MeasuredCubeRoots(metric()) (fit/metrics.h), kept by a caller that fits the table several
-  // times (KeepMetricRoots); empty: each fit's metric pass computes them. Same bits either way.
-  std::vector<double> metric_roots;
   const Samples& metric() const { return has_own_metric ? metric_own : fit; }
 };
 
@@ -48,10 +45,6 @@ PreparedTable PrepareTable(const Table& table, const SampleOptions& sample_optio
 // the peak memory of a fit (brdfit fit; docs/reliability.md, "Memory").
 PreparedTable PrepareTable(Table&& table, const SampleOptions& sample_options,
                            const FitOptions& fit_options, PrepareCache* cache = nullptr);
-
-// Keeps the measured side's cube roots of the metric pass in `table` (22 MB on a MERL table):
-// worth it when the table is fitted more than once.
-void KeepMetricRoots(PreparedTable& table);
 
 // Fits one model. Throws InputError if the name is not a catalog model; every other problem
 // (no samples, non-finite values, solver failure) is a result with status kFailed.

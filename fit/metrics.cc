@@ -66,19 +66,6 @@ void LogRatioArguments(const double* a, const double* b, std::size_t n, double* 
   }
 }
 
-// The metric's cube roots of x[0, n): GuardedCbrt (fit/loss.h) with FastCbrt above the guard.
-// The guess (integer arithmetic) and the refinement (double arithmetic, vectorized: two divisions
-// per instruction) in separate loops, then the guard's few values (below 1e-5: dark or zero
-// cells) on their own, when there are any. Each value is the same bits however the array is cut.
-void CubeRoots(const double* x, std::size_t n, double* root) {
-  for (std::size_t k = 0; k < n; ++k) root[k] = FastCbrtGuess(x[k]);
-  for (std::size_t k = 0; k < n; ++k) root[k] = FastCbrtRefine(x[k], root[k]);
-  if (AllInRange(x, n, kCbrtGuard, 1e300)) return;
-  for (std::size_t k = 0; k < n; ++k) {
-    if (!(x[k] >= kCbrtGuard && x[k] < 1e300)) root[k] = GuardedCbrt(x[k]);
-  }
-}
-
 // The sums of one range of samples.
 struct Partial {
   double log_sum = 0, cbrt_sum = 0, num = 0, den = 0;
@@ -101,11 +88,9 @@ constexpr std::size_t kBlockObs = 256;
 // loop of their own: no registers saved around each call), then the sums in observation order.
 // Each term is computed by the same operations as one observation at a time, and added in the
 // same order: the same bits as a pass one observation at a time.
-// measured_roots: the measured side's cube roots, 3 per observation (MeasuredCubeRoots), or
-// nullptr to compute them here.
 template <class Predicted>
 Partial ScoreRange(const Samples& samples, std::size_t s_begin, std::size_t s_end,
-                   const Predicted& predicted, const double* measured_roots = nullptr) {
+                   const Predicted& predicted) {
   Partial p;
   struct Obs {
     std::uint32_t o;
@@ -114,15 +99,26 @@ Partial ScoreRange(const Samples& samples, std::size_t s_begin, std::size_t s_en
   constexpr std::size_t kM = 3 * kBlockObs;  // offset of the measured half below
   std::array<Obs, kBlockObs> obs;
   // Per observation and channel j = 3 k + ch: arg[j] = f c, arg[kM + j] = m c.
-  std::array<double, 2 * kM> arg{};  // zeroed once per chunk: GCC cannot see every read is written
+  std::array<double, 2 * kM> arg;
   // The metric's cube root of arg: GuardedCbrt (fit/loss.h) with FastCbrt above the guard.
   std::array<double, 2 * kM> root;
   std::array<double, kM> log_diff;  // LogDifference(arg[j], arg[kM + j])
   std::size_t n = 0;
+  // The cube roots of arg[begin, end): the guess (integer arithmetic) and the refinement (double
+  // arithmetic, vectorized: two divisions per instruction) in separate loops, then the guard's
+  // few values (f c or m c below 1e-5: dark or zero cells) on their own, when the block has any.
+  auto cube_roots = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) root[k] = FastCbrtGuess(arg[k]);
+    for (std::size_t k = begin; k < end; ++k) root[k] = FastCbrtRefine(arg[k], root[k]);
+    if (AllInRange(&arg[begin], end - begin, kCbrtGuard, 1e300)) return;
+    for (std::size_t k = begin; k < end; ++k) {
+      if (!(arg[k] >= kCbrtGuard && arg[k] < 1e300)) root[k] = GuardedCbrt(arg[k]);
+    }
+  };
   auto flush = [&] {
     const std::size_t m = 3 * n;
-    CubeRoots(arg.data(), m, root.data());
-    if (measured_roots == nullptr) CubeRoots(arg.data() + kM, m, root.data() + kM);
+    cube_roots(0, m);
+    cube_roots(kM, kM + m);
     // LogDifference's arguments, then its logarithms; the guard's values (an argument below
     // kLogGuard: a negative prediction) marked by NaN and taken the long way.
     LogRatioArguments(arg.data(), arg.data() + kM, m, log_diff.data());
@@ -171,9 +167,6 @@ Partial ScoreRange(const Samples& samples, std::size_t s_begin, std::size_t s_en
       for (int ch = 0; ch < 3; ++ch) {
         arg[3 * n + ch] = f_rgb[ch] * c;
         arg[kM + 3 * n + ch] = measured[ch] * c;
-      }
-      if (measured_roots != nullptr) {
-        for (int ch = 0; ch < 3; ++ch) root[kM + 3 * n + ch] = measured_roots[3 * o + ch];
       }
       obs[n++] = {o, f_rgb};
       if (n == kBlockObs) flush();
@@ -278,13 +271,8 @@ FitMetrics ComputeMetricsPerSample(const Samples& samples, std::span<const doubl
       threads);
 }
 
-FitMetrics ComputeMetricsStreamed(const Samples& samples, const SampleEvaluator& eval, int threads,
-                                  std::span<const double> measured_roots) {
-  if (!measured_roots.empty() && measured_roots.size() != 3 * samples.NumObservations()) {
-    throw std::invalid_argument(
-        "ComputeMetricsStreamed: expected 3 measured roots per observation");
-  }
-  const double* roots = measured_roots.empty() ? nullptr : measured_roots.data();
+FitMetrics ComputeMetricsStreamed(const Samples& samples, const SampleEvaluator& eval,
+                                  int threads) {
   return Score(
       samples,
       [&](std::size_t b, std::size_t e) {
@@ -292,22 +280,10 @@ FitMetrics ComputeMetricsStreamed(const Samples& samples, const SampleEvaluator&
         thread_local std::vector<double> buffer;
         buffer.resize(3 * kChunkSamples);
         eval(b, e, buffer.data());
-        return ScoreRange(
-            samples, b, e, [&](std::size_t, std::size_t s) { return &buffer[3 * (s - b)]; }, roots);
+        return ScoreRange(samples, b, e,
+                          [&](std::size_t, std::size_t s) { return &buffer[3 * (s - b)]; });
       },
       threads);
-}
-
-std::vector<double> MeasuredCubeRoots(const Samples& samples) {
-  const std::size_t n = samples.NumObservations();
-  std::vector<double> arg(3 * n), root(3 * n);
-  for (std::size_t o = 0; o < n; ++o) {
-    const double c = samples.cos_i[o];
-    const double* measured = samples.Value(o);
-    for (int ch = 0; ch < 3; ++ch) arg[3 * o + ch] = measured[ch] * c;  // as ScoreRange
-  }
-  CubeRoots(arg.data(), arg.size(), root.data());
-  return root;
 }
 
 }  // namespace brdfit

@@ -7,7 +7,6 @@
 #include <cstddef>
 #include <functional>
 #include <span>
-#include <vector>
 
 #include "core/metrics.h"
 #include "fit/samples.h"
@@ -34,15 +33,7 @@ using SampleEvaluator = std::function<void(std::size_t begin, std::size_t end, d
 // chunk, on the thread that scores the chunk, and never stored whole (3 doubles per sample: 11 MB
 // and its page faults on a MERL table). eval must give any sample the same values whatever range
 // it is asked for (ModelOps::eval_samples does: tests/fit/test_sample_eval.cc).
-// measured_roots: MeasuredCubeRoots(samples), or empty to compute the measured side's cube roots
-// in the pass (the same bits either way).
 FitMetrics ComputeMetricsStreamed(const Samples& samples, const SampleEvaluator& eval,
-                                  int threads = 1, std::span<const double> measured_roots = {});
-
-// The measured side's cube roots of the metric pass, cbrt(m c) per observation and channel (the
-// cube-root RMSE's half that depends on the table alone): made once for a table fitted several
-// times (a batch's models, --model auto's candidates), they spare each fit's pass half its
-// cube roots. 3 doubles per observation (22 MB on a MERL table).
-std::vector<double> MeasuredCubeRoots(const Samples& samples);
+                                  int threads = 1);
 
 }  // namespace brdfit

@@ -8,7 +8,6 @@
 #include <ceres/loss_function.h>
 #include <ceres/solver.h>
 
-#include <span>
 #include <string>
 #include <vector>
 
@@ -57,11 +56,9 @@ ceres::Solver::Options LmSolverOptions(int threads);
 
 // The engine (fit/fit_engine.cc).
 // polish_on: the rendered reference of options.polish == kRendered (nullptr: no polish).
-// metric_roots: MeasuredCubeRoots(metric) when the caller keeps them (fit/metrics.h), else empty.
 FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& loss,
                      const Samples& metric, const FitOptions& options,
-                     const RenderedReference* polish_on = nullptr,
-                     std::span<const double> metric_roots = {});
+                     const RenderedReference* polish_on = nullptr);
 NormalEquations NormalEquationsWithOps(const ModelOps& ops, const Samples& samples,
                                        const LossData& loss, const FitOptions& options,
                                        const std::vector<double>& params);

@@ -322,9 +322,6 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
             } else {
               st.prepared.emplace(PrepareTable(std::move(table), req.samples, req.fit, cache));
             }
-            // A table fitted more than once (several models, --model auto's candidates) keeps
-            // its metric pass's measured cube roots: each fit after the first is spared them.
-            if (st.prepared && st.fits > 1) KeepMetricRoots(*st.prepared);
             st.prepare_ms = MsSince(t0);
           } catch (const InputError& e) {
             st.error = e.what();
