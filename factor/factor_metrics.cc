@@ -8,13 +8,14 @@ FitMetrics ScoreFactorization(const Table& table, const FactoredBrdf& brdf,
                               const SampleOptions& options) {
   // Only scored, never solved on: no stored geometry (55 MB on the MERL grid).
   const Samples samples = PrepareSamples(table, options, GeometryStorage::kOnDemand);
-  std::vector<double> per_sample(3 * samples.NumSamples());
-  for (std::size_t s = 0; s < samples.NumSamples(); ++s) {
-    const Geometry g = SampleGeometry(samples, s);
-    const auto f = brdf.Eval(g.wi, g.wo);
-    for (int c = 0; c < 3; ++c) per_sample[3 * s + c] = f[c];
-  }
-  return ComputeMetricsPerSample(samples, per_sample);
+  // The predictions chunk by chunk as the metrics take them (fit/metrics.h), not stored whole.
+  return ComputeMetricsStreamed(samples, [&](std::size_t begin, std::size_t end, double* out) {
+    for (std::size_t s = begin; s < end; ++s) {
+      const Geometry g = SampleGeometry(samples, s);
+      const auto f = brdf.Eval(g.wi, g.wo);
+      for (int c = 0; c < 3; ++c) out[3 * (s - begin) + c] = f[c];
+    }
+  });
 }
 
 double FactorLnRatioRmse(const Table& table, const FactoredBrdf& brdf, double max_theta) {

@@ -27,10 +27,9 @@ struct LineResidual {
 };
 
 ParamLayout Layout(double a_lo, double a_hi, double b_lo, double b_hi) {
-  static std::array<ParamSpec, 2> specs;
-  specs[0] = ParamSpec{"a", "1", a_lo, a_hi, 0.0, false, "intercept"};
-  specs[1] = ParamSpec{"b", "1", b_lo, b_hi, 0.0, false, "slope"};
-  return ParamLayout::Of(specs);
+  const std::array<ParamSpec, 2> specs = {ParamSpec{"a", "1", a_lo, a_hi, 0.0, false, "intercept"},
+                                          ParamSpec{"b", "1", b_lo, b_hi, 0.0, false, "slope"}};
+  return ParamLayout::Of(specs);  // copies the specs
 }
 
 struct Line {
