@@ -19,9 +19,11 @@ set_target_properties(brdfit_all PROPERTIES EXPORT_NAME brdfit)
 # The warnings target is a link-only dependency of the static libraries: exported, empty of
 # meaning for consumers.
 set_target_properties(brdfit_warnings PROPERTIES EXPORT_NAME warnings)
+# The io layer's HDF5 (cmake/BrdfitHdf5.cmake): the shared libraries for a consumer.
+set_target_properties(brdfit_hdf5 PROPERTIES EXPORT_NAME hdf5)
 
 list(TRANSFORM _brdfit_layers PREPEND brdfit_ OUTPUT_VARIABLE _brdfit_targets)
-install(TARGETS ${_brdfit_targets} brdfit_all brdfit_warnings EXPORT brdfitTargets
+install(TARGETS ${_brdfit_targets} brdfit_all brdfit_warnings brdfit_hdf5 EXPORT brdfitTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/brdfit)
