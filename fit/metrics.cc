@@ -14,6 +14,7 @@
 #include "fit/fast_cbrt.h"
 #include "fit/loss.h"
 #include "fit/threads.h"
+#include "fit/vector_log1p.h"
 
 namespace brdfit {
 
@@ -84,10 +85,10 @@ constexpr std::size_t kBlockObs = 256;
 
 // predicted(o, s) returns the 3 predictions of observation o of sample s.
 // A block of observations at a time: first their arguments f c and m c, then every cube root of
-// the block (vectorized, below), every log difference (its arguments, then the logarithms in a
-// loop of their own: no registers saved around each call), then the sums in observation order.
-// Each term is computed by the same operations as one observation at a time, and added in the
-// same order: the same bits as a pass one observation at a time.
+// the block (vectorized, below), every log difference (its arguments, then the logarithms four
+// at a time where the CPU allows: fit/vector_log1p.h), then the sums in observation order. Each
+// term depends on its observation alone and is added in observation order: the same bits for
+// any chunking of the samples among threads.
 template <class Predicted>
 Partial ScoreRange(const Samples& samples, std::size_t s_begin, std::size_t s_end,
                    const Predicted& predicted) {
@@ -104,12 +105,12 @@ Partial ScoreRange(const Samples& samples, std::size_t s_begin, std::size_t s_en
   std::array<double, 2 * kM> root;
   std::array<double, kM> log_diff;  // LogDifference(arg[j], arg[kM + j])
   std::size_t n = 0;
-  // The cube roots of arg[begin, end): the guess (integer arithmetic) and the refinement (double
-  // arithmetic, vectorized: two divisions per instruction) in separate loops, then the guard's
+  // The cube roots of arg[begin, end): the guesses (integer arithmetic, two per instruction) and
+  // the refinement (double arithmetic: two or four divisions per instruction), then the guard's
   // few values (f c or m c below 1e-5: dark or zero cells) on their own, when the block has any.
   auto cube_roots = [&](std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) root[k] = FastCbrtGuess(arg[k]);
-    for (std::size_t k = begin; k < end; ++k) root[k] = FastCbrtRefine(arg[k], root[k]);
+    FastCbrtGuesses(&arg[begin], end - begin, &root[begin]);
+    FastCbrtRefineAll(&arg[begin], end - begin, &root[begin]);
     if (AllInRange(&arg[begin], end - begin, kCbrtGuard, 1e300)) return;
     for (std::size_t k = begin; k < end; ++k) {
       if (!(arg[k] >= kCbrtGuard && arg[k] < 1e300)) root[k] = GuardedCbrt(arg[k]);
@@ -122,9 +123,9 @@ Partial ScoreRange(const Samples& samples, std::size_t s_begin, std::size_t s_en
     // LogDifference's arguments, then its logarithms; the guard's values (an argument below
     // kLogGuard: a negative prediction) marked by NaN and taken the long way.
     LogRatioArguments(arg.data(), arg.data() + kM, m, log_diff.data());
+    Log1pAll(log_diff.data(), m, log_diff.data());
     for (std::size_t j = 0; j < m; ++j) {
-      log_diff[j] =
-          std::isnan(log_diff[j]) ? LogDifference(arg[j], arg[kM + j]) : std::log1p(log_diff[j]);
+      if (std::isnan(log_diff[j])) log_diff[j] = LogDifference(arg[j], arg[kM + j]);
     }
     for (std::size_t k = 0; k < n; ++k) {
       const std::uint32_t o = obs[k].o;
