@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "io/hdf5_util.h"
 #include "io/input_file.h"
+#include "io/nbrdf_forward.h"
 
 namespace brdfit {
 
@@ -214,6 +215,9 @@ NbrdfTabulation TabulateNbrdf(const NbrdfNetwork& net, const Grid& grid, int thr
     }
   }
   const Eigen::MatrixXd p = (dvec * net.k1.bottomRows(3)).rowwise() + net.b1;
+  // The hidden layers four cells at a time with AVX2 + FMA where the CPU has them
+  // (io/nbrdf_forward.h: the same values to ~1e-15 relative, not the same bits), else Eigen.
+  const bool vectorized = NbrdfForwardVectorized();
 
   struct Counts {
     std::size_t below = 0, clamped_values = 0, clamped_cells = 0;
@@ -240,9 +244,27 @@ NbrdfTabulation TabulateNbrdf(const NbrdfNetwork& net, const Grid& grid, int thr
     // send some of them through Eigen's GEMM remainder path, which sums in another order: a
     // few values per table change in the last bits (<= 1.4e-13 relative, docs/fitting.md).
     const Eigen::RowVectorXd hpart = sh * net.k1.row(0) + ch * net.k1.row(2);
-    const Eigen::MatrixXd h1 = (p(above, Eigen::all).rowwise() + hpart).cwiseMax(0.0);
-    const Eigen::MatrixXd h2 = ((h1 * net.k2).rowwise() + net.b2).cwiseMax(0.0);
-    const Eigen::MatrixXd y = (h2 * net.k3).rowwise() + net.b3;
+    // y(i, c): the network's log-space output of cell above[i].
+    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> y(above.size(), 3);
+    if (vectorized) {
+      NbrdfForwardArgs args;
+      args.p = p.data();
+      args.p_rows = static_cast<std::size_t>(p.rows());
+      args.rows = above.data();
+      args.n = above.size();
+      args.hpart = hpart.data();
+      args.k2 = net.k2.data();
+      args.b2 = net.b2.data();
+      args.k3 = net.k3.data();
+      args.b3 = net.b3.data();
+      args.h1 = static_cast<int>(net.k2.rows());
+      args.h2 = static_cast<int>(net.k2.cols());
+      NbrdfForwardAvx2(args, y.data());
+    } else {
+      const Eigen::MatrixXd h1 = (p(above, Eigen::all).rowwise() + hpart).cwiseMax(0.0);
+      const Eigen::MatrixXd h2 = ((h1 * net.k2).rowwise() + net.b2).cwiseMax(0.0);
+      y = (h2 * net.k3).rowwise() + net.b3;
+    }
     const std::size_t base = grid.Index(ih, 0, 0);
     for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(above.size()); ++i) {
       const std::size_t idx = base + static_cast<std::size_t>(above[i]);
