@@ -4,8 +4,9 @@
 
 #if defined(BRDFIT_HAVE_LIBMVEC) && defined(__x86_64__)
 #include <immintrin.h>
-// glibc's AVX2 log1p of four doubles (the x86-64 vector function ABI name).
-extern "C" __m256d _ZGVdN4v_log1p(__m256d);
+// glibc's AVX2 log1p of four doubles (the x86-64 vector function ABI name; declared AVX2 so
+// that its __m256d argument passes in a ymm register for every compiler).
+extern "C" __attribute__((target("avx2"))) __m256d _ZGVdN4v_log1p(__m256d);
 #define BRDFIT_LOG1P_AVX2 1
 #endif
 
