@@ -27,6 +27,20 @@ namespace {
 constexpr int kVectors = 4;
 constexpr std::size_t kCells = 4 * kVectors;
 
+// One unit of a dense layer for the 16 cells: acc[v] = bias + sum_j w[j] in[j] (lanes of vector
+// v), summed in input order by fused multiply-adds; in holds kCells values per input unit.
+__attribute__((target("avx2,fma"))) inline void DenseUnit(const double* w, double bias,
+                                                         const double* in, int n_in,
+                                                         __m256d* acc) {
+  for (int v = 0; v < kVectors; ++v) acc[v] = _mm256_set1_pd(bias);
+  for (int j = 0; j < n_in; ++j) {
+    const __m256d wj = _mm256_set1_pd(w[j]);
+    for (int v = 0; v < kVectors; ++v) {
+      acc[v] = _mm256_fmadd_pd(wj, _mm256_loadu_pd(in + kCells * j + 4 * v), acc[v]);
+    }
+  }
+}
+
 // The 16 cells r[0..15]; h1, h2: scratch of kCells * a.h1 and kCells * a.h2 doubles (cell
 // 4 v + l of unit j at kCells j + 4 v + l); y16[kCells c + i]: output c of cell i.
 __attribute__((target("avx2,fma"))) void SixteenCells(const NbrdfForwardArgs& a, const long* r,
@@ -47,29 +61,15 @@ __attribute__((target("avx2,fma"))) void SixteenCells(const NbrdfForwardArgs& a,
     }
   }
   for (int k = 0; k < a.h2; ++k) {
-    const double* w = a.k2 + static_cast<std::size_t>(k) * a.h1;
     __m256d acc[kVectors];
-    for (int v = 0; v < kVectors; ++v) acc[v] = _mm256_set1_pd(a.b2[k]);
-    for (int j = 0; j < a.h1; ++j) {
-      const __m256d wj = _mm256_set1_pd(w[j]);
-      for (int v = 0; v < kVectors; ++v) {
-        acc[v] = _mm256_fmadd_pd(wj, _mm256_loadu_pd(h1 + kCells * j + 4 * v), acc[v]);
-      }
-    }
+    DenseUnit(a.k2 + static_cast<std::size_t>(k) * a.h1, a.b2[k], h1, a.h1, acc);
     for (int v = 0; v < kVectors; ++v) {
       _mm256_storeu_pd(h2 + kCells * k + 4 * v, _mm256_max_pd(acc[v], zero));
     }
   }
   for (int c = 0; c < 3; ++c) {
-    const double* w = a.k3 + static_cast<std::size_t>(c) * a.h2;
     __m256d acc[kVectors];
-    for (int v = 0; v < kVectors; ++v) acc[v] = _mm256_set1_pd(a.b3[c]);
-    for (int k = 0; k < a.h2; ++k) {
-      const __m256d wk = _mm256_set1_pd(w[k]);
-      for (int v = 0; v < kVectors; ++v) {
-        acc[v] = _mm256_fmadd_pd(wk, _mm256_loadu_pd(h2 + kCells * k + 4 * v), acc[v]);
-      }
-    }
+    DenseUnit(a.k3 + static_cast<std::size_t>(c) * a.h2, a.b3[c], h2, a.h2, acc);
     for (int v = 0; v < kVectors; ++v) _mm256_storeu_pd(y16 + kCells * c + 4 * v, acc[v]);
   }
 }

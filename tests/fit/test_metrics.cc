@@ -227,15 +227,23 @@ TEST(Metrics, ThreadsGiveTheSameBits) {
   EXPECT_EQ(obs.worst.cell, one.worst.cell);
 }
 
+// n values log-uniform over the range the metrics' cube roots meet (the guard 1e-5 up to
+// 1e300), from a fixed 64-bit LCG seeded with `seed`: the same values on every platform.
+std::vector<double> MetricRangeValues(int n, std::uint64_t seed) {
+  std::vector<double> x;
+  std::uint64_t state = seed;
+  for (int i = 0; i < n; ++i) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    x.push_back(std::pow(10.0, -5.0 + 305.0 * static_cast<double>(state >> 11) * 0x1.0p-53));
+  }
+  return x;
+}
+
 // FastCbrt (the metrics' cube root) against libm's over the range the metrics meet (the guard
 // 1e-5 up to 1e300), log-uniformly, and at exact cubes.
 TEST(Metrics, FastCbrtMatchesLibm) {
-  std::uint64_t state = 12345;
   double worst = 0;
-  for (int i = 0; i < 200000; ++i) {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    const double u = static_cast<double>(state >> 11) * 0x1.0p-53;
-    const double x = std::pow(10.0, -5.0 + 305.0 * u);
+  for (const double x : MetricRangeValues(200000, 12345)) {
     const double ref = std::cbrt(x);
     worst = std::max(worst, std::abs(FastCbrt(x) - ref) / ref);
   }
@@ -248,12 +256,7 @@ TEST(Metrics, FastCbrtMatchesLibm) {
 // The metric pass's vectorized guesses are the scalar guess, bit for bit (odd lengths take the
 // scalar tail), over the metrics' range and at the edges of the 32-bit division.
 TEST(Metrics, FastCbrtGuessesMatchTheScalarGuess) {
-  std::vector<double> x;
-  std::uint64_t state = 777;
-  for (int i = 0; i < 4097; ++i) {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    x.push_back(std::pow(10.0, -5.0 + 305.0 * static_cast<double>(state >> 11) * 0x1.0p-53));
-  }
+  std::vector<double> x = MetricRangeValues(4097, 777);
   for (const double v : {1e-5, 1.0, 2.0, 3.0, 1e300, std::numeric_limits<double>::max(),
                          std::numeric_limits<double>::min(), 0x1.fffffffffffffp-1}) {
     x.push_back(v);
@@ -308,12 +311,7 @@ TEST(Metrics, ArrayLog1pMatchesLibm) {
 // The refinement over an array (AVX2 clone on a machine that has it, else SSE2) is the scalar
 // refinement, bit for bit, for every length's tail.
 TEST(Metrics, RefinedCubeRootsMatchTheScalarRefinement) {
-  std::vector<double> x;
-  std::uint64_t state = 4242;
-  for (int i = 0; i < 1027; ++i) {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    x.push_back(std::pow(10.0, -5.0 + 305.0 * static_cast<double>(state >> 11) * 0x1.0p-53));
-  }
+  const std::vector<double> x = MetricRangeValues(1027, 4242);
   for (const std::size_t n : {std::size_t{0}, std::size_t{1}, std::size_t{3}, std::size_t{5},
                               x.size()}) {
     std::vector<double> y(n);
