@@ -137,12 +137,16 @@ RenderedPolishOutcome PolishOnRendered(const ModelOps& ops, const RenderedRefere
     if (!run.finite) break;
     const RenderedError e = RenderedAt(ops, ref, cur);
     const double s = ScoreOf(e);
+    out.round_scores.push_back(s);
+    const double gain = std::isfinite(s) ? s - out.score_after : 0.0;
     if (std::isfinite(s) && s > out.score_after) {
       out.score_after = s;
       out.rendered = e;
       out.improved = true;
       x = cur;
     }
+    // IRLS until S stops rising (options' comment): the second round always runs.
+    if (round >= 1 && !(gain >= o.min_round_gain_db)) break;
   }
   return out;
 }

@@ -7,6 +7,7 @@
 
 #include "core/model_choice.h"
 #include "fit/fitter.h"
+#include "fit/model_ops.h"
 #include "fit/pixel_cost.h"
 #include "fit/rendered_polish.h"
 #include "models/catalog.h"
@@ -186,6 +187,77 @@ TEST(RenderedPolish, KeepsANoisyFitNearTheTruth) {
     EXPECT_NEAR(polished.params[i], truth[i], 0.02 * std::abs(truth[i]) + 1e-3)
         << polished.param_names[i] << " (unpolished " << plain.params[i] << ")";
   }
+}
+
+// The polish's own ops for a model (the engine's registry, fit/model_ops.h).
+internal::ModelOps OpsOf(const std::string& model) {
+  std::vector<internal::ModelOps> all;
+  internal::RegisterModels0(all);
+  internal::RegisterModels1(all);
+  internal::RegisterModels2(all);
+  for (auto& ops : all) {
+    if (ops.name == model) return ops;
+  }
+  ADD_FAILURE() << model << " not registered";
+  return {};
+}
+
+// The reweighting rounds (fit/rendered_polish.h): two always, then on while a round raises S
+// by at least min_round_gain_db, at most `rounds`; the x returned is the best by S.
+TEST(RenderedPolish, RoundsGoOnWhileTheScoreRises) {
+  const Table t = SynthModel("lambert+ggx+ggx",
+                             Params("lambert+ggx+ggx", {"ggx1.alpha=0.05", "ggx2.alpha=0.35",
+                                                        "lambert.kd_r=0.02", "lambert.kd_g=0.02",
+                                                        "lambert.kd_b=0.02"}),
+                             kGrid);
+  FitOptions fo;
+  fo.loss = LossKind::kRel;
+  const PreparedTable prepared = PrepareTable(t, SampleOptions{}, fo);
+  const FitResult plain = FitPrepared("lambert+ggx", prepared, fo);
+  ASSERT_FALSE(plain.Failed());
+  const internal::ModelOps ops = OpsOf("lambert+ggx");
+  std::vector<double> x0(plain.params.size());
+  for (std::size_t i = 0; i < x0.size(); ++i) x0[i] = ops.layout.ToOpt(i, plain.params[i]);
+
+  const auto polish = [&](int rounds, double min_gain, std::vector<double>& x) {
+    internal::RenderedPolishOptions o;
+    o.rounds = rounds;
+    o.min_round_gain_db = min_gain;
+    x = x0;
+    return internal::PolishOnRendered(ops, prepared.rendered, o, x);
+  };
+  // An unreachable gain: exactly two rounds, the same bits as a cap of two.
+  std::vector<double> x_two, x_inf, x_rule;
+  const auto two = polish(2, 0.0, x_two);
+  const auto inf = polish(6, INFINITY, x_inf);
+  ASSERT_TRUE(two.ran);
+  EXPECT_EQ(two.round_scores.size(), 2u);
+  EXPECT_EQ(inf.round_scores.size(), 2u);
+  EXPECT_EQ(x_inf, x_two);
+  // The default rule: each round after the second that ran was earned by the one before it.
+  const internal::RenderedPolishOptions defaults;
+  const auto rule = polish(defaults.rounds, defaults.min_round_gain_db, x_rule);
+  const std::vector<double>& s = rule.round_scores;
+  ASSERT_GE(s.size(), 2u);
+  ASSERT_LE(s.size(), static_cast<std::size_t>(defaults.rounds));
+  double best = rule.score_before;
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    const double gain = s[k] - best;
+    if (k >= 1 && k + 1 < s.size()) {
+      EXPECT_GE(gain, defaults.min_round_gain_db) << "round " << k;
+    }
+    if (k >= 1 && k + 1 == s.size() && s.size() < static_cast<std::size_t>(defaults.rounds)) {
+      EXPECT_LT(gain, defaults.min_round_gain_db) << "the last round";
+    }
+    best = std::max(best, s[k]);
+  }
+  // The best round's x is returned and scored; more rounds never score lower than two.
+  EXPECT_DOUBLE_EQ(rule.score_after, best);
+  EXPECT_GE(rule.score_after, two.score_after);
+  std::vector<double> p(x_rule.size());
+  for (std::size_t i = 0; i < p.size(); ++i) p[i] = ops.layout.FromOpt(i, x_rule[i]);
+  const RenderedError again = ScoreRendered(prepared.rendered, ModelBrdf(*FindModel("lambert+ggx"), p));
+  EXPECT_DOUBLE_EQ(RenderedScoreDb(again), rule.score_after);
 }
 
 TEST(RenderedPolish, SameBitsForAnyThreadCount) {
