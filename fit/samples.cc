@@ -11,6 +11,7 @@
 #endif
 
 #include "core/error.h"
+#include "core/sse2_finite.h"
 #include "fit/bin_measure.h"
 #include "fit/loss.h"
 #include "fit/sample_geometry.h"
@@ -84,14 +85,14 @@ namespace {
 constexpr std::uint8_t kUsable = 1, kNegative = 2;
 
 // Bit k of the result: x[k] is finite (k < 6); of *negative: x[k] < 0. Six values (two cells)
-// with SSE2 compares: x - x is 0 for a finite x and NaN for an infinite or NaN one.
+// with SSE2 compares (core/sse2_finite.h).
 #if defined(__SSE2__)
 int FiniteAndNegativeBits6(const double* x, int* negative) {
   const __m128d zero = _mm_setzero_pd();
   int finite = 0, neg = 0;
   for (int k = 0; k < 3; ++k) {
     const __m128d v = _mm_loadu_pd(x + 2 * k);
-    finite |= _mm_movemask_pd(_mm_cmpord_pd(_mm_sub_pd(v, v), zero)) << (2 * k);
+    finite |= _mm_movemask_pd(FiniteLanes(v)) << (2 * k);
     neg |= _mm_movemask_pd(_mm_cmplt_pd(v, zero)) << (2 * k);
   }
   *negative = neg;

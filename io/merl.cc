@@ -20,6 +20,7 @@
 
 #include "io/atomic_file.h"
 #include "core/error.h"
+#include "core/sse2_finite.h"
 #include "io/input_file.h"
 
 namespace brdfit {
@@ -135,10 +136,8 @@ Table ReadMerl(const fs::path& path, MerlReadReport* report) {
       const __m128d r = _mm_loadu_pd(&plane[0][j]);
       const __m128d g = _mm_loadu_pd(&plane[1][j]);
       const __m128d b = _mm_loadu_pd(&plane[2][j]);
-      // x - x is 0 for a finite x, NaN for an infinite or NaN one.
-      const __m128d finite = _mm_and_pd(
-          _mm_cmpord_pd(_mm_sub_pd(r, r), zero),
-          _mm_and_pd(_mm_cmpord_pd(_mm_sub_pd(g, g), zero), _mm_cmpord_pd(_mm_sub_pd(b, b), zero)));
+      const __m128d finite =
+          _mm_and_pd(FiniteLanes(r), _mm_and_pd(FiniteLanes(g), FiniteLanes(b)));
       if (_mm_movemask_pd(finite) != 3) break;
       const __m128d sr = _mm_mul_pd(r, scale_r), sg = _mm_mul_pd(g, scale_g),
                     sb = _mm_mul_pd(b, scale_b);
