@@ -92,4 +92,10 @@ struct SampleOptions;
 // Ceres threads are left out (they change speed, not the problem).
 std::string OptionsJson(const SampleOptions& samples, const FitOptions& fit);
 
+// The fit engine's revision: raised whenever something OptionsJson does not record changes what
+// a fit returns (an internal default such as the rendered polish's rounds). The on-disk cache of
+// fits keys on it (pipeline/material_loader.cc), so a newer brdfit never reuses an older one's
+// fit. 1: until 2026-12-03; 2: the polish's rounds go on while S rises (fit/rendered_polish.h).
+inline constexpr int kFitEngineRevision = 2;
+
 }  // namespace brdfit

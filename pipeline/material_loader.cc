@@ -80,16 +80,14 @@ class TableCache {
 // Cache entry of a fit: {"model", "params", "param_names", "status", "source", "key"}.
 std::vector<double> FitCached(const MaterialSpec& m, const std::filesystem::path& cache_dir,
                               TableCache* tables, ExplainLog* log) {
-  // The fit `brdfit fit TABLE --model M` makes (its defaults: pipeline/fit_settings.h). The key:
-  // table content + model + every option that can change the result (canonical JSON,
-  // fit/options.h): new defaults never reuse an old entry.
-  SampleOptions sample_options;
+  // The fit `brdfit fit TABLE --model M` makes (its defaults: pipeline/fit_settings.h), under
+  // FitCacheKey: new defaults or a new engine revision never reuse an old entry.
+  SampleOptions sample_options;  // the same defaults the key is made of
   FitOptions fit_options;
   ApplyFitSettings(FitSettings{}, &sample_options, &fit_options);
-  Fnv1a64 h;
-  h.Add(InputContentKey(m.fit_table.string()));
-  h.Add("|fit|" + m.model + "|" + OptionsJson(sample_options, fit_options));
-  const std::filesystem::path entry = cache_dir / ("fit-" + h.Hex() + ".json");
+  const std::string key =
+      FitCacheKey(InputContentKey(m.fit_table.string()), m.model, kFitEngineRevision);
+  const std::filesystem::path entry = cache_dir / ("fit-" + key + ".json");
   if (std::filesystem::exists(entry)) {
     try {
       const std::vector<double> params = ReadFitCacheEntry(entry, m.model);
@@ -120,7 +118,7 @@ std::vector<double> FitCached(const MaterialSpec& m, const std::filesystem::path
   cached.param_names = r.param_names;
   cached.status = ToString(r.status);
   cached.source = m.fit_table.string();
-  cached.key = h.Hex();
+  cached.key = key;
   MakeOutputFolder(cache_dir);
   WriteTextAtomically(entry, FitCacheEntryJson(cached));
   if (log) {
@@ -223,6 +221,18 @@ std::shared_ptr<const FactorTextures> FactorCached(const MaterialSpec& m,
 }
 
 }  // namespace
+
+std::string FitCacheKey(const std::string& table_content_key, const std::string& model,
+                        int engine_revision) {
+  SampleOptions sample_options;
+  FitOptions fit_options;
+  ApplyFitSettings(FitSettings{}, &sample_options, &fit_options);
+  Fnv1a64 h;
+  h.Add(table_content_key);
+  h.Add("|fit|" + model + "|" + OptionsJson(sample_options, fit_options) + "|engine " +
+        std::to_string(engine_revision));
+  return h.Hex();
+}
 
 std::filesystem::path DefaultCacheDir() {
   if (const char* d = std::getenv("BRDFIT_CACHE_DIR"); d && *d) return d;

@@ -21,6 +21,12 @@ struct LoadOptions {
 
 std::filesystem::path DefaultCacheDir();
 
+// The cache key (hex) of the fit `brdfit fit TABLE --model MODEL` makes with its defaults: the
+// table's content key (pipeline/inputs.h), the model, every option (OptionsJson) and the fit
+// engine's revision (fit/options.h kFitEngineRevision): an entry of another revision is never read.
+std::string FitCacheKey(const std::string& table_content_key, const std::string& model,
+                        int engine_revision);
+
 // Throws InputError naming the file for unreadable tables, reports, factor files.
 // `used`: the material names to load (UsedMaterials); the others are skipped and logged.
 preview::MaterialSet LoadMaterials(const preview::Scene& scene, const std::set<std::string>& used,

@@ -16,8 +16,11 @@
 #include <cmath>
 
 #include "core/synth.h"
+#include "fit/options.h"
 #include "io/table_io.h"
 #include "models/registry.h"
+#include "pipeline/inputs.h"
+#include "pipeline/material_loader.h"
 #include "io/image_io.h"
 
 namespace brdfit::preview {
@@ -110,6 +113,36 @@ TEST_F(RenderCli, LoadsOnlyWhatTheSceneUsesAndReusesTheCache) {
   EXPECT_EQ(Count(second.out, "reuse: fit lambert+ggx of"), 1) << second.out;
   // Both renders show the same image.
   EXPECT_TRUE(fs::exists(dir_ / "out.png"));
+}
+
+// A fit cached by a build of another engine revision (fit/options.h kFitEngineRevision: a
+// default inside the engine changed what fits return) is not reused: the key says so.
+TEST_F(RenderCli, FitCachedByAnotherEngineRevisionIsNotReused) {
+  const std::string args = (dir_ / "t0.h5").string() + " -o " + (dir_ / "out.png").string() +
+                           " --compare --size 64x32 --explain --cache " +
+                           (dir_ / "cache").string();
+  const CliRun first = RunCli("render " + args);
+  ASSERT_EQ(first.code, 0) << first.out;
+  const std::string content = pipeline::InputContentKey((dir_ / "t0.h5").string());
+  const fs::path current =
+      dir_ / "cache" /
+      ("fit-" + pipeline::FitCacheKey(content, "lambert+ggx", kFitEngineRevision) + ".json");
+  ASSERT_TRUE(fs::exists(current)) << first.out;
+  // The entry as an older build would have left it: under the previous revision's key.
+  const fs::path older =
+      dir_ / "cache" /
+      ("fit-" + pipeline::FitCacheKey(content, "lambert+ggx", kFitEngineRevision - 1) + ".json");
+  ASSERT_NE(older, current);
+  fs::rename(current, older);
+  const CliRun second = RunCli("render " + args);
+  ASSERT_EQ(second.code, 0) << second.out;
+  EXPECT_EQ(Count(second.out, "reuse: fit"), 0) << second.out;
+  EXPECT_EQ(Count(second.out, "compute: fit lambert+ggx of"), 1) << second.out;
+  EXPECT_TRUE(fs::exists(current)) << second.out;
+  // And the current entry is reused by the next render.
+  const CliRun third = RunCli("render " + args);
+  ASSERT_EQ(third.code, 0) << third.out;
+  EXPECT_EQ(Count(third.out, "reuse: fit lambert+ggx of"), 1) << third.out;
 }
 
 // Issue 14 item 5: a cache entry with parameters of 1e300 crashed `render --compare --cache`.
