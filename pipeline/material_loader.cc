@@ -77,14 +77,19 @@ class TableCache {
   std::map<std::string, std::shared_ptr<const Table>> tables_;
 };
 
+// The options of `brdfit fit TABLE --model M` with its defaults (pipeline/fit_settings.h): what
+// the render cache fits with and keys on.
+struct DefaultFitOptions {
+  SampleOptions samples;
+  FitOptions fit;
+  DefaultFitOptions() { ApplyFitSettings(FitSettings{}, &samples, &fit); }
+};
+
 // Cache entry of a fit: {"model", "params", "param_names", "status", "source", "key"}.
 std::vector<double> FitCached(const MaterialSpec& m, const std::filesystem::path& cache_dir,
                               TableCache* tables, ExplainLog* log) {
-  // The fit `brdfit fit TABLE --model M` makes (its defaults: pipeline/fit_settings.h), under
-  // FitCacheKey: new defaults or a new engine revision never reuse an old entry.
-  SampleOptions sample_options;  // the same defaults the key is made of
-  FitOptions fit_options;
-  ApplyFitSettings(FitSettings{}, &sample_options, &fit_options);
+  // The fit `brdfit fit TABLE --model M` makes, under FitCacheKey: new defaults or a new engine
+  // revision never reuse an old entry.
   const std::string key =
       FitCacheKey(InputContentKey(m.fit_table.string()), m.model, kFitEngineRevision);
   const std::filesystem::path entry = cache_dir / ("fit-" + key + ".json");
@@ -107,7 +112,8 @@ std::vector<double> FitCached(const MaterialSpec& m, const std::filesystem::path
   }
   const auto table = tables->Get(m.fit_table);
   const auto t0 = Clock::now();
-  const FitResult r = FitTable(m.model, *table, sample_options, fit_options);
+  const DefaultFitOptions options;
+  const FitResult r = FitTable(m.model, *table, options.samples, options.fit);
   if (r.Failed()) {
     throw InputError(m.fit_table,
                      "fit of '" + m.model + "' for material '" + m.name + "' failed: " + r.message);
@@ -224,12 +230,10 @@ std::shared_ptr<const FactorTextures> FactorCached(const MaterialSpec& m,
 
 std::string FitCacheKey(const std::string& table_content_key, const std::string& model,
                         int engine_revision) {
-  SampleOptions sample_options;
-  FitOptions fit_options;
-  ApplyFitSettings(FitSettings{}, &sample_options, &fit_options);
+  const DefaultFitOptions options;
   Fnv1a64 h;
   h.Add(table_content_key);
-  h.Add("|fit|" + model + "|" + OptionsJson(sample_options, fit_options) + "|engine " +
+  h.Add("|fit|" + model + "|" + OptionsJson(options.samples, options.fit) + "|engine " +
         std::to_string(engine_revision));
   return h.Hex();
 }

@@ -9,6 +9,7 @@
 #include "io/model_params.h"
 #include "core/synth.h"
 #include "core/table.h"
+#include "fit/model_ops.h"
 #include "models/registry.h"
 
 namespace brdfit::testing {
@@ -34,6 +35,15 @@ inline Table SynthModel(const std::string& model, const std::vector<double>& par
   o.seed = seed;
   return SynthesizeTable(
       grid, [&](const Geometry& g, double rgb[3]) { m->eval(params.data(), g, rgb); }, o);
+}
+
+// Every model's fit ops, as the engine registers them (fit/model_ops.h).
+inline std::vector<internal::ModelOps> AllModelOps() {
+  std::vector<internal::ModelOps> ops;
+  internal::RegisterModels0(ops);
+  internal::RegisterModels1(ops);
+  internal::RegisterModels2(ops);
+  return ops;
 }
 
 // A small grid for unit tests (MERL's sqrt theta_h mapping, coarser bins).

@@ -7,7 +7,6 @@
 
 #include "core/model_choice.h"
 #include "fit/fitter.h"
-#include "fit/model_ops.h"
 #include "fit/pixel_cost.h"
 #include "fit/rendered_polish.h"
 #include "models/catalog.h"
@@ -137,14 +136,19 @@ PlainAndPolished FitBoth(const std::string& model, const Table& t) {
   return r;
 }
 
+// A table lambert+ggx cannot express: two GGX lobes (α 0.05 and 0.35) over a dark diffuse.
+Table TwoLobeTable() {
+  return SynthModel("lambert+ggx+ggx",
+                    Params("lambert+ggx+ggx", {"ggx1.alpha=0.05", "ggx2.alpha=0.35",
+                                               "lambert.kd_r=0.02", "lambert.kd_g=0.02",
+                                               "lambert.kd_b=0.02"}),
+                    kGrid);
+}
+
 // A model that cannot express the table (one lobe for two): the polish raises S, and the
 // outcome it reports is the metric of the fit it returns.
 TEST(RenderedPolish, RaisesTheRenderedScoreOfAMismatchedFit) {
-  const Table t = SynthModel("lambert+ggx+ggx",
-                             Params("lambert+ggx+ggx", {"ggx1.alpha=0.05", "ggx2.alpha=0.35",
-                                                        "lambert.kd_r=0.02", "lambert.kd_g=0.02",
-                                                        "lambert.kd_b=0.02"}),
-                             kGrid);
+  const Table t = TwoLobeTable();
   const auto [prepared, plain, polished] = FitBoth("lambert+ggx", t);
   ASSERT_FALSE(plain.Failed());
   ASSERT_FALSE(polished.Failed());
@@ -191,11 +195,7 @@ TEST(RenderedPolish, KeepsANoisyFitNearTheTruth) {
 
 // The polish's own ops for a model (the engine's registry, fit/model_ops.h).
 internal::ModelOps OpsOf(const std::string& model) {
-  std::vector<internal::ModelOps> all;
-  internal::RegisterModels0(all);
-  internal::RegisterModels1(all);
-  internal::RegisterModels2(all);
-  for (auto& ops : all) {
+  for (auto& ops : testing::AllModelOps()) {
     if (ops.name == model) return ops;
   }
   ADD_FAILURE() << model << " not registered";
@@ -205,11 +205,7 @@ internal::ModelOps OpsOf(const std::string& model) {
 // The reweighting rounds (fit/rendered_polish.h): two always, then on while a round raises S
 // by at least min_round_gain_db, at most `rounds`; the x returned is the best by S.
 TEST(RenderedPolish, RoundsGoOnWhileTheScoreRises) {
-  const Table t = SynthModel("lambert+ggx+ggx",
-                             Params("lambert+ggx+ggx", {"ggx1.alpha=0.05", "ggx2.alpha=0.35",
-                                                        "lambert.kd_r=0.02", "lambert.kd_g=0.02",
-                                                        "lambert.kd_b=0.02"}),
-                             kGrid);
+  const Table t = TwoLobeTable();
   FitOptions fo;
   fo.loss = LossKind::kRel;
   const PreparedTable prepared = PrepareTable(t, SampleOptions{}, fo);

@@ -17,10 +17,7 @@ using testing::Params;
 using testing::SynthModel;
 
 TEST(SampleEval, RangeEqualsPerSampleEvaluation) {
-  std::vector<internal::ModelOps> ops;
-  internal::RegisterModels0(ops);
-  internal::RegisterModels1(ops);
-  internal::RegisterModels2(ops);
+  const std::vector<internal::ModelOps> ops = testing::AllModelOps();
   ASSERT_GT(ops.size(), 10u);
   const Grid g{16, 16, 33, ThetaHMapping::kSqrt};  // odd phi_d: a unit of one cell per row
   const Table t = SynthModel("lambert", Params("lambert", {}), g, 0.0, 0.3, 5);

@@ -81,6 +81,11 @@ class RenderCli : public ::testing::Test {
     }
   }
   void TearDown() override { fs::remove_all(dir_); }
+  // `render t0.h5 --compare` at 64x32 with --explain, caching in dir_/cache.
+  std::string CompareT0Args() const {
+    return (dir_ / "t0.h5").string() + " -o " + (dir_ / "out.png").string() +
+           " --compare --size 64x32 --explain --cache " + (dir_ / "cache").string();
+  }
   void WriteScene(const std::string& json) { std::ofstream(dir_ / "scene.json") << json; }
   fs::path dir_;
 };
@@ -118,9 +123,7 @@ TEST_F(RenderCli, LoadsOnlyWhatTheSceneUsesAndReusesTheCache) {
 // A fit cached by a build of another engine revision (fit/options.h kFitEngineRevision: a
 // default inside the engine changed what fits return) is not reused: the key says so.
 TEST_F(RenderCli, FitCachedByAnotherEngineRevisionIsNotReused) {
-  const std::string args = (dir_ / "t0.h5").string() + " -o " + (dir_ / "out.png").string() +
-                           " --compare --size 64x32 --explain --cache " +
-                           (dir_ / "cache").string();
+  const std::string args = CompareT0Args();
   const CliRun first = RunCli("render " + args);
   ASSERT_EQ(first.code, 0) << first.out;
   const std::string content = pipeline::InputContentKey((dir_ / "t0.h5").string());
@@ -148,9 +151,7 @@ TEST_F(RenderCli, FitCachedByAnotherEngineRevisionIsNotReused) {
 // Issue 14 item 5: a cache entry with parameters of 1e300 crashed `render --compare --cache`.
 // An entry whose parameters are out of the model's bounds is recomputed, with a note naming it.
 TEST_F(RenderCli, OutOfRangeCacheEntryIsRecomputed) {
-  const std::string args = (dir_ / "t0.h5").string() + " -o " + (dir_ / "out.png").string() +
-                           " --compare --size 64x32 --explain --cache " +
-                           (dir_ / "cache").string();
+  const std::string args = CompareT0Args();
   const CliRun first = RunCli("render " + args);
   ASSERT_EQ(first.code, 0) << first.out;
   std::vector<fs::path> entries;
