@@ -16,10 +16,10 @@
 // issue: `brdfit fit nbrdf:all --model <batch-models> -j <jobs>`, once, with its CPU time and the
 // medians of its report's stage times.
 // --brdfit PATH times another build (before / after comparisons on the same tables).
-// --baseline PATH also times that build, run by run alternately with the measured one (each
-// repeat: baseline, then measured, same table), and prints their medians and ratios: on a
-// virtual machine whose speed drifts by tens of percent over an hour, only runs this close in
-// time compare. With --batch 1 the batch runs once per build, baseline first.
+// --baseline PATH also times that build, run by run alternately with the measured one (same
+// table; baseline first on even repeats, measured first on odd ones, so that neither always
+// runs second), and prints their medians and ratios: on a virtual machine whose speed drifts by
+// tens of percent over an hour, only runs this close in time compare. With --batch 1 the batch runs once per build, baseline first.
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -136,11 +136,15 @@ int main(int argc, char** argv) {
     FitMetrics last;
     for (int k = 0; k < repeats; ++k) {
       bench::ChildRun run;
-      if (!baseline.empty()) {
-        if (!fit_once(baseline, label, path, &run)) break;
-        base_times.wall.push_back(run.seconds);
-        base_times.cpu.push_back(run.cpu_seconds);
-      }
+      auto time_baseline = [&] {
+        if (baseline.empty()) return true;
+        bench::ChildRun b;
+        if (!fit_once(baseline, label, path, &b)) return false;
+        base_times.wall.push_back(b.seconds);
+        base_times.cpu.push_back(b.cpu_seconds);
+        return true;
+      };
+      if (k % 2 == 0 && !time_baseline()) break;
       if (!fit_once(exe, label, path, &run)) break;
       wall.push_back(run.seconds);
       cpu.push_back(run.cpu_seconds);
@@ -154,6 +158,8 @@ int main(int argc, char** argv) {
       metrics.push_back(r.times.metrics);
       metrics_cpu.push_back(r.times.metrics_cpu);
       last = r.metrics;
+      // On odd repeats the baseline runs now, once the measured build's report has been read.
+      if (k % 2 == 1 && !time_baseline()) break;
     }
     if (wall.empty()) continue;
     if (!baseline.empty()) compared.emplace_back(label, base_times, Times{wall, cpu});
