@@ -19,7 +19,8 @@
 // --baseline PATH also times that build, run by run alternately with the measured one (same
 // table; baseline first on even repeats, measured first on odd ones, so that neither always
 // runs second), and prints their medians and ratios: on a virtual machine whose speed drifts by
-// tens of percent over an hour, only runs this close in time compare. With --batch 1 the batch runs once per build, baseline first.
+// tens of percent over an hour, only runs this close in time compare. With --batch 1 the batch
+// runs once per build, baseline first.
 #include <fmt/core.h>
 
 #include <algorithm>

@@ -40,8 +40,7 @@ namespace {
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 // The four partial sums as the four lanes of one AVX register (separate multiply and add).
-__attribute__((target("avx"))) void GramColumnsAvx(const double* columns, int cols,
-                                                   double* gram) {
+__attribute__((target("avx"))) void GramColumnsAvx(const double* columns, int cols, double* gram) {
   for (int j = 0; j < cols; ++j) {
     const double* b = columns + j * kGramChunk;
     for (int i = j; i < cols; ++i) {

@@ -94,7 +94,8 @@ void CheckGramRows(int n) {
   const double* g = gram.Finish();
   ExpectMatchesOracle(g, OracleGram(rows, n, kCols), kCols);
   for (int j = 1; j < kCols; ++j) {
-    for (int i = 0; i < j; ++i) EXPECT_EQ(g[i + j * kCols], 0.0) << "upper (" << i << ", " << j << ")";
+    for (int i = 0; i < j; ++i)
+      EXPECT_EQ(g[i + j * kCols], 0.0) << "upper (" << i << ", " << j << ")";
   }
 }
 
