@@ -21,6 +21,7 @@
 #include "fit/fitter.h"
 #include "fit/prepare_cache.h"
 #include "models/registry.h"
+#include "pipeline/batch_hold.h"
 #include "pipeline/batch_schedule.h"
 #include "pipeline/factor_candidate.h"
 #include "pipeline/inputs.h"
@@ -220,6 +221,8 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
   // Resume: keep what the report holds; skip fits already done with the same options.
   std::vector<FitReportEntry> kept = ReadKept(req.report, req.force);
   if (req.on_report_written) req.on_report_written(kept.size());  // reliability hook
+  const BatchHold hold = BatchHold::FromEnvironment();            // tests only (batch_hold.h)
+  hold.HoldAt(0);
   CheckKeptMaterials(kept, inputs, keys, req.report);
   std::set<std::tuple<std::string, std::string, std::string>> done;
   for (const auto& e : kept) {
@@ -381,7 +384,8 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
         {
           if (req.on_fit_done) req.on_fit_done(e);
           result.fresh.push_back(std::move(e));
-          if (!write_error && MsSince(last_write) > 5000) {
+          const std::size_t fits_done = result.fresh.size();
+          if (!write_error && (MsSince(last_write) > 5000 || hold.CheckpointAfter(fits_done))) {
             // A checkpoint that cannot be written (a full disk) ends the run: no fit after it
             // could be kept. The error is raised once the workers stopped.
             try {
@@ -391,6 +395,7 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
               schedule.Stop();
             }
           }
+          hold.HoldAt(fits_done);
         }
       }
       if (--st.remaining == 0) {

@@ -33,6 +33,8 @@ using namespace std::chrono_literals;
 using ::testing::HasSubstr;
 using testing_cli::ReadAll;
 using testing_cli::Spawn;
+using testing_cli::SpawnHeld;
+using testing_cli::WaitForFile;
 using testing_cli::Wait;
 
 using testing_cli::CliRun;
@@ -280,13 +282,10 @@ TEST(StandardOutput, AFailedWriteToStandardOutputIsAnError) {
 
 // ---- item 7: signals -----------------------------------------------------------------------
 
-std::vector<std::string> FitArgs(const std::vector<std::string>& tables, const fs::path& out,
-                                 int multistart = 2) {
+std::vector<std::string> FitArgs(const std::vector<std::string>& tables, const fs::path& out) {
   std::vector<std::string> a = {"fit"};
   a.insert(a.end(), tables.begin(), tables.end());
-  // --budget full: fits slow enough (tens of ms) for a signal to land inside the batch.
-  for (const char* s : {"--model", "ggx,ward", "--budget", "full", "--no-timings"}) a.push_back(s);
-  a.insert(a.end(), {"--multistart", std::to_string(multistart)});
+  for (const char* s : {"--model", "ggx,ward", "--no-timings"}) a.push_back(s);
   a.insert(a.end(), {"-o", out.string()});
   return a;
 }
@@ -299,17 +298,6 @@ std::vector<std::string> Leftovers(const fs::path& dir) {
     if (name != "fits.h5" && !name.ends_with(".log")) out.push_back(name);
   }
   return out;
-}
-
-// Waits until `path` exists (or the process ends); true if it appeared while it ran.
-bool WaitFor(const fs::path& path, pid_t pid, std::chrono::seconds limit) {
-  for (auto t0 = std::chrono::steady_clock::now();
-       std::chrono::steady_clock::now() - t0 < limit;) {
-    if (fs::exists(path)) return true;
-    if (waitpid(pid, nullptr, WNOHANG) == pid) return false;
-    std::this_thread::sleep_for(5ms);
-  }
-  return false;
 }
 
 // A pid that is certainly not running: a child that has exited and been reaped.
@@ -325,30 +313,20 @@ TEST(Signals, SigtermKeepsTheReportRemovesTemporariesAndTheRerunResumes) {
   const std::vector<std::string> tables = MakeTables(dir / "tables", 12, 32);
   const fs::path run = dir / "run", report = run / "fits.h5";
   fs::create_directories(run);
-  // SIGTERM shortly after the first checkpoint (written after 5 s); more multistarts when the
-  // machine finishes the batch before that.
-  int multistart = 4;
-  for (;; multistart *= 4) {
-    ASSERT_LE(multistart, 256) << "every batch finished before its first checkpoint";
-    fs::remove_all(run);
-    fs::create_directories(run);
-    const pid_t pid = Spawn(FitArgs(tables, report, multistart), dir / "fit.log");
-    if (!WaitFor(report, pid, 300s)) continue;
-    std::this_thread::sleep_for(300ms);
-    ASSERT_EQ(kill(pid, SIGTERM), 0);
-    const int code = Wait(pid);
-    if (code == 0) continue;  // finished in the meantime
-    EXPECT_EQ(code, 143);
-    break;
-  }
+  // SIGTERM while the batch holds after the checkpoint of its 7th fit (pipeline/batch_hold.h).
+  constexpr std::size_t kAfterFits = 7;
+  const fs::path hold = dir / "held";
+  const pid_t pid = SpawnHeld(FitArgs(tables, report), dir / "fit.log", hold, kAfterFits);
+  ASSERT_TRUE(WaitForFile(hold, pid)) << ReadAll(dir / "fit.log");
+  ASSERT_EQ(kill(pid, SIGTERM), 0);
+  EXPECT_EQ(Wait(pid), 143);
   const std::string log = ReadAll(dir / "fit.log");
   std::smatch m;
   ASSERT_TRUE(std::regex_search(log, m, std::regex(R"(interrupted: (\d+) fits kept, rerun to resume)")))
       << log;
   const std::size_t kept = ReadFitReport(report).size();  // a complete report
   EXPECT_EQ(std::stoul(m[1]), kept) << log;
-  EXPECT_GT(kept, 0u);
-  EXPECT_LT(kept, 2 * tables.size()) << "interrupted after the last fit";
+  EXPECT_EQ(kept, kAfterFits) << log;
   EXPECT_THAT(Leftovers(run), ::testing::IsEmpty()) << "temporaries or a lock left";
 
   // A dead process's temporary beside the report goes with the rerun; a live one's stays.
@@ -356,7 +334,7 @@ TEST(Signals, SigtermKeepsTheReportRemovesTemporariesAndTheRerunResumes) {
   const std::string live = ".fits.h5.tmp-" + std::to_string(::getpid()) + "-0";
   std::ofstream(run / stale) << "partial";
   std::ofstream(run / live) << "partial";
-  const CliRun rerun = RunBrdfit(FitArgs(tables, report, multistart), dir / "rerun.log");
+  const CliRun rerun = RunBrdfit(FitArgs(tables, report), dir / "rerun.log");
   EXPECT_EQ(rerun.code, 0) << rerun.log;
   ASSERT_TRUE(std::regex_search(rerun.log, m, std::regex(R"((\d+) fits, (\d+) skipped)")))
       << rerun.log;
@@ -373,15 +351,12 @@ TEST(Signals, SigintAndSighupExitWith130And129AndLeaveNothing) {
   for (const auto& [sig, code] : {std::pair{SIGINT, 130}, std::pair{SIGHUP, 129}}) {
     const fs::path run = dir / ("run" + std::to_string(sig));
     fs::create_directories(run);
-    const pid_t pid = Spawn(FitArgs(tables, run / "fits.h5"), run / "fit.log");
-    // Interrupt once the run holds its lock (it has started, no checkpoint yet).
-    ASSERT_TRUE(WaitFor(run / ".fits.h5.lock", pid, 60s)) << ReadAll(run / "fit.log");
-    // The lock file exists from open(2); it is registered for removal once locked and its pid
-    // written: wait for the pid, then a little (under ASan the steps are slow).
-    for (int i = 0; i < 600 && ReadAll(run / ".fits.h5.lock").empty(); ++i) {
-      std::this_thread::sleep_for(10ms);
-    }
-    std::this_thread::sleep_for(200ms);
+    // Interrupt while the run holds before its first fit, its report's lock taken (with its
+    // pid written) and its interrupt hook installed (pipeline/batch_hold.h).
+    const fs::path hold = dir / ("held" + std::to_string(sig));
+    const pid_t pid = SpawnHeld(FitArgs(tables, run / "fits.h5"), run / "fit.log", hold, 0);
+    ASSERT_TRUE(WaitForFile(hold, pid)) << ReadAll(run / "fit.log");
+    EXPECT_THAT(ReadAll(run / ".fits.h5.lock"), HasSubstr(std::to_string(pid)));
     ASSERT_EQ(kill(pid, sig), 0);
     EXPECT_EQ(Wait(pid), code);
     EXPECT_THAT(ReadAll(run / "fit.log"), HasSubstr("fits kept, rerun to resume"));
@@ -395,13 +370,16 @@ TEST(TwoWriters, ASecondFitOfTheSameReportRefusesAndNoFitIsLost) {
   ScratchDir dir;
   const std::vector<std::string> tables = MakeTables(dir / "tables", 4, 32);
   const fs::path report = dir / "fits.h5";
-  const pid_t first = Spawn(FitArgs(tables, report), dir / "first.log");
-  ASSERT_TRUE(WaitFor(dir / ".fits.h5.lock", first, 60s)) << ReadAll(dir / "first.log");
+  // The first run holds before its first fit, its lock taken, until the second has tried.
+  const fs::path hold = dir / "held";
+  const pid_t first = SpawnHeld(FitArgs(tables, report), dir / "first.log", hold, 0);
+  ASSERT_TRUE(WaitForFile(hold, first)) << ReadAll(dir / "first.log");
   const CliRun second = RunBrdfit(FitArgs(tables, report), dir / "second.log");
   EXPECT_EQ(second.code, 2) << second.log;
   EXPECT_THAT(second.log, HasSubstr(report.string() + ": is being written by another brdfit "
                                                       "process (pid " +
                                     std::to_string(first) + ")"));
+  fs::remove(hold);
   EXPECT_EQ(Wait(first), 0) << ReadAll(dir / "first.log");
   EXPECT_EQ(ReadFitReport(report).size(), 2 * tables.size()) << "fits lost";
   EXPECT_FALSE(fs::exists(dir / ".fits.h5.lock")) << "lock file left after the run";

@@ -3,9 +3,9 @@
 // uninterrupted run writes (byte for byte: --no-timings reports carry nothing run-dependent,
 // io/fit_report.h). Inputs are never modified.
 //
-// The kill lands after the first checkpoint of the report (cli/cmd_fit.cc writes one every few
-// seconds) plus a short delay, so that the resumed run has both kept and fresh fits. If the
-// machine is fast enough to finish the batch before that, the batch is doubled and retried.
+// The kill lands at a known point whatever the machine's speed: the batch runner's test hook
+// (pipeline/batch_hold.h) writes a checkpoint after the run's kAfterFits-th fit and holds there,
+// so the resumed run has exactly kAfterFits kept fits and the rest to make.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
@@ -39,6 +39,8 @@ using namespace std::chrono_literals;
 
 using testing_cli::ReadAll;
 using testing_cli::Spawn;
+using testing_cli::SpawnHeld;
+using testing_cli::WaitForFile;
 using testing_cli::Wait;
 
 class KillResume : public ::testing::Test {
@@ -80,9 +82,7 @@ class KillResume : public ::testing::Test {
   std::vector<std::string> FitArgs(const std::vector<std::string>& tables, const fs::path& out) {
     std::vector<std::string> a = {"fit"};
     a.insert(a.end(), tables.begin(), tables.end());
-    // --budget full: fits slow enough (tens of ms each) that a kill lands between checkpoints.
-    for (const char* s : {"--model", "ggx,ward", "--multistart", "2", "--budget", "full",
-                          "--no-timings", "--no-progress"}) {
+    for (const char* s : {"--model", "ggx,ward", "--jobs", "2", "--no-timings", "--no-progress"}) {
       a.push_back(s);
     }
     a.insert(a.end(), {"--json", (out.parent_path() / "fits.json").string(), "-o", out.string()});
@@ -93,81 +93,68 @@ class KillResume : public ::testing::Test {
 };
 
 TEST_F(KillResume, KilledBatchLeavesCompleteOutputsAndResumesToTheSameReport) {
-  for (int n_tables = 8; n_tables <= 64; n_tables *= 2) {
-    fs::remove_all(dir_ / "run");
-    fs::remove_all(dir_ / "ref");
-    fs::create_directories(dir_ / "run");
-    fs::create_directories(dir_ / "ref");
-    const std::vector<std::string> tables = MakeTables(n_tables);
-    std::map<std::string, std::string> inputs;
-    for (const auto& t : tables) inputs[t] = ReadAll(t);
-    const std::size_t total = 2 * tables.size();
-    const fs::path report = dir_ / "run" / "fits.h5";
+  constexpr int kTables = 8;
+  constexpr std::size_t kAfterFits = 5;  // of 16: fits kept, fits in flight and fits to come
+  fs::create_directories(dir_ / "run");
+  fs::create_directories(dir_ / "ref");
+  const std::vector<std::string> tables = MakeTables(kTables);
+  std::map<std::string, std::string> inputs;
+  for (const auto& t : tables) inputs[t] = ReadAll(t);
+  const std::size_t total = 2 * tables.size();
+  const fs::path report = dir_ / "run" / "fits.h5";
 
-    // 1. Start the batch; SIGKILL it shortly after its first checkpoint appears.
-    const pid_t pid = Spawn(FitArgs(tables, report), dir_ / "run.log");
-    bool killed = false;
-    for (int polls = 0; polls < 60000 && !killed; ++polls) {
-      int status;
-      if (waitpid(pid, &status, WNOHANG) == pid) break;  // finished before a checkpoint
-      if (fs::exists(report)) {
-        std::this_thread::sleep_for(700ms);  // let it get into the next fits, or a checkpoint
-        killed = kill(pid, SIGKILL) == 0 && Wait(pid) == 128 + SIGKILL;
-        break;
-      }
-      std::this_thread::sleep_for(10ms);
+  // 1. Start the batch; SIGKILL it while it holds after the checkpoint of its kAfterFits-th fit
+  //    (the other worker is inside a fit then, or waiting to record one).
+  const fs::path hold = dir_ / "held";
+  const pid_t pid = SpawnHeld(FitArgs(tables, report), dir_ / "run.log", hold, kAfterFits);
+  ASSERT_TRUE(WaitForFile(hold, pid)) << "the batch ended before its hold point:\n"
+                                      << ReadAll(dir_ / "run.log");
+  ASSERT_EQ(kill(pid, SIGKILL), 0);
+  ASSERT_EQ(Wait(pid), 128 + SIGKILL);
+
+  // 2. Only complete outputs: the report reads; anything else is an atomic writer's
+  //    temporary (".<name>.tmp-<pid>-<n>"), never a partial file under a final name.
+  std::size_t kept = 0;
+  std::vector<std::string> temporaries;
+  ASSERT_TRUE(fs::exists(report)) << "no checkpoint before the kill";
+  for (const auto& e : fs::directory_iterator(dir_ / "run")) {
+    const std::string name = e.path().filename().string();
+    if (name == ".fits.h5.lock") continue;  // the report's lock (io/file_lock.h)
+    if (name == "fits.h5") {
+      std::vector<FitReportEntry> entries;
+      ASSERT_NO_THROW(entries = ReadFitReport(e.path())) << "partial report after SIGKILL";
+      kept = entries.size();
+      for (const auto& en : entries) EXPECT_FALSE(en.result.Failed()) << en.result.message;
+    } else {
+      temporaries.push_back(name);
+      EXPECT_TRUE(name.starts_with(".fits.h5.tmp-") || name.starts_with(".fits.json.tmp-"))
+          << "unexpected file after SIGKILL: " << name;
     }
-    if (!killed) {
-      waitpid(pid, nullptr, 0);
-      continue;  // too fast for this batch size: double it
-    }
-
-    // 2. Only complete outputs: the report (if any) reads; anything else is an atomic writer's
-    //    temporary (".<name>.tmp-<pid>-<n>"), never a partial file under a final name.
-    std::size_t kept = 0;
-    std::vector<std::string> temporaries;
-    for (const auto& e : fs::directory_iterator(dir_ / "run")) {
-      const std::string name = e.path().filename().string();
-      if (name == ".fits.h5.lock") continue;  // the report's lock (io/file_lock.h)
-      if (name != "fits.h5") temporaries.push_back(name);
-      if (name == "fits.h5") {
-        std::vector<FitReportEntry> entries;
-        ASSERT_NO_THROW(entries = ReadFitReport(e.path())) << "partial report after SIGKILL";
-        kept = entries.size();
-        for (const auto& en : entries) EXPECT_FALSE(en.result.Failed()) << en.result.message;
-      } else {
-        EXPECT_TRUE(name.starts_with(".fits.h5.tmp-") || name.starts_with(".fits.json.tmp-"))
-            << "unexpected file after SIGKILL: " << name;
-      }
-    }
-    EXPECT_FALSE(fs::exists(dir_ / "run" / "fits.json")) << "the JSON is written at the end";
-    std::printf("killed a batch of %zu fits (%d tables) holding a checkpoint of %zu; %zu "
-                "temporary file(s) left by the kill\n",
-                total, n_tables, kept, temporaries.size());
-    ASSERT_GT(kept, 0u) << "the checkpoint holds no fit";
-    ASSERT_LT(kept, total) << "killed after the last fit: nothing left to resume";
-
-    // 3. Rerun: resumes (the kept fits are skipped, the others fitted) and completes.
-    EXPECT_EQ(Wait(Spawn(FitArgs(tables, report), dir_ / "resume.log")), 0)
-        << ReadAll(dir_ / "resume.log");
-    const std::string log = ReadAll(dir_ / "resume.log");
-    std::smatch m;
-    ASSERT_TRUE(std::regex_search(log, m, std::regex(R"((\d+) fits, (\d+) skipped)"))) << log;
-    EXPECT_EQ(std::stoul(m[2]), kept) << log;
-    EXPECT_EQ(std::stoul(m[1]), total - kept) << log;
-
-    // 4. The same report and JSON as an uninterrupted run, byte for byte.
-    const fs::path ref = dir_ / "ref" / "fits.h5";
-    EXPECT_EQ(Wait(Spawn(FitArgs(tables, ref), dir_ / "ref.log")), 0) << ReadAll(dir_ / "ref.log");
-    EXPECT_EQ(ReadFitReport(report).size(), total);
-    EXPECT_TRUE(ReadAll(report) == ReadAll(ref)) << "resumed report differs from the reference";
-    EXPECT_TRUE(ReadAll(dir_ / "run" / "fits.json") == ReadAll(dir_ / "ref" / "fits.json"));
-
-    // 5. Inputs untouched.
-    for (const auto& [file, bytes] : inputs) EXPECT_TRUE(ReadAll(file) == bytes) << file;
-    return;
   }
-  FAIL() << "every batch finished before its first checkpoint could be interrupted";
+  EXPECT_FALSE(fs::exists(dir_ / "run" / "fits.json")) << "the JSON is written at the end";
+  std::printf("killed a batch of %zu fits (%d tables) holding a checkpoint of %zu; %zu "
+              "temporary file(s) left by the kill\n",
+              total, kTables, kept, temporaries.size());
+  ASSERT_EQ(kept, kAfterFits) << "the checkpoint does not hold the fits made before the hold";
+
+  // 3. Rerun: resumes (the kept fits are skipped, the others fitted) and completes.
+  EXPECT_EQ(Wait(Spawn(FitArgs(tables, report), dir_ / "resume.log")), 0)
+      << ReadAll(dir_ / "resume.log");
+  const std::string log = ReadAll(dir_ / "resume.log");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(log, m, std::regex(R"((\d+) fits, (\d+) skipped)"))) << log;
+  EXPECT_EQ(std::stoul(m[2]), kept) << log;
+  EXPECT_EQ(std::stoul(m[1]), total - kept) << log;
+
+  // 4. The same report and JSON as an uninterrupted run, byte for byte.
+  const fs::path ref = dir_ / "ref" / "fits.h5";
+  EXPECT_EQ(Wait(Spawn(FitArgs(tables, ref), dir_ / "ref.log")), 0) << ReadAll(dir_ / "ref.log");
+  EXPECT_EQ(ReadFitReport(report).size(), total);
+  EXPECT_TRUE(ReadAll(report) == ReadAll(ref)) << "resumed report differs from the reference";
+  EXPECT_TRUE(ReadAll(dir_ / "run" / "fits.json") == ReadAll(dir_ / "ref" / "fits.json"));
+
+  // 5. Inputs untouched.
+  for (const auto& [file, bytes] : inputs) EXPECT_TRUE(ReadAll(file) == bytes) << file;
 }
 
 }  // namespace
