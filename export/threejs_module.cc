@@ -194,7 +194,8 @@ std::string ThreejsFactoredModule(const ThreejsFactored& f, const Provenance& p,
                                   Fidelity* fidelity) {
   std::string s = Header(p, "the factorization");
   s += "// The texels are rounded to half floats (relative error <= 2^-11); the lookup is the\n"
-       "// preview's (bilinear, texel centres, clamp to edge).\n\n";
+       "// preview's (bilinear, texel centres, clamp to edge), filtered in the shader with float\n"
+       "// weights (texelFetch), so the texture unit samples the nearest texel only.\n\n";
   s += ProvenanceObject(
       p, fmt::format("  parameterization: {},\n  rank: {},\n  diffuse: [{:.9g}, {:.9g}, {:.9g}],\n",
                      JsString(f.parameterization), f.p.size(), f.diffuse[0], f.diffuse[1],
@@ -204,7 +205,7 @@ std::string ThreejsFactoredModule(const ThreejsFactored& f, const Provenance& p,
        "  const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));\n"
        "  const t = new THREE.DataTexture(new Uint16Array(bytes.buffer), width, height,\n"
        "                                  THREE.RGBAFormat, THREE.HalfFloatType);\n"
-       "  t.minFilter = THREE.LinearFilter;\n  t.magFilter = THREE.LinearFilter;\n"
+       "  t.minFilter = THREE.NearestFilter;\n  t.magFilter = THREE.NearestFilter;\n"
        "  t.generateMipmaps = false;\n  t.wrapS = THREE.ClampToEdgeWrapping;\n"
        "  t.wrapT = repeatRows ? THREE.RepeatWrapping : THREE.ClampToEdgeWrapping;\n"
        "  t.colorSpace = THREE.NoColorSpace;\n  t.needsUpdate = true;\n  return t;\n}\n\n";

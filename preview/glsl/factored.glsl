@@ -5,12 +5,14 @@
 //   FACTOR_MCCOOL:  f = d + sum_k p_k(wi) q_k(wh) p_k(wo)    p: parabolic disk, q: sqrt-theta disk
 //   otherwise:      f = d + sum_k p_k(wh) q_k(theta_d, phi_d) p: sqrt-theta disk, q: rectangle
 // d = uFactorDiffuse (kd / pi, 1/sr; zero for the pure form); term k's textures are uFactorP,
-// uFactorQ (k = 1), uFactorP2, uFactorQ2, ... Texels sit at texel centres (GL_LINEAR, clamp to
-// edge; phi_d repeats), as the CPU evaluator (factor/factor_eval.h). Per light: two texture
+// uFactorQ (k = 1), uFactorP2, uFactorQ2, ... Texels sit at texel centres (bilinear, clamp to
+// edge; phi_d repeats), as the CPU evaluator (factor/factor_eval.h); filtered in the shader with
+// float weights (texel_filter.glsl), not by the texture unit. Per light: two texture
 // fetches per term; p_k(wo) of mccool is fetched once per fragment (core/factor_form.h). Point
 // and directional lights only with this material (the limit course notes give for factored
 // BRDFs, docs/preview.md; spot lights are dropped by the renderer, which says so).
 // brdfit-requires: preview/glsl/halfdiff.glsl
+// brdfit-requires: preview/glsl/texel_filter.glsl
 uniform vec3 uFactorDiffuse;
 uniform sampler2D uFactorP;
 uniform sampler2D uFactorQ;
@@ -36,7 +38,7 @@ vec2 brdfit_DiskSqrtTheta(vec3 w) {
   float rho = sqrt(atan(r_xy, w.z) / (0.5 * PI));
   return rho * w.xy / r_xy;
 }
-vec3 brdfit_Disk(sampler2D t, vec2 st) { return texture(t, 0.5 * (st + 1.0)).rgb; }
+vec3 brdfit_Disk(sampler2D t, vec2 st) { return brdfit_Bilinear(t, 0.5 * (st + 1.0), false).rgb; }
 
 #if FACTOR_MCCOOL
 // p_k(wo), once per fragment (wo does not change between lights).
@@ -75,7 +77,7 @@ vec3 EvalBrdf(const in BrdfGeometry g) {
 }
 #else
 vec3 brdfit_FactorTerm(sampler2D p, sampler2D q, vec2 h_st, vec2 d_uv) {
-  return brdfit_Disk(p, h_st) * texture(q, d_uv).rgb;
+  return brdfit_Disk(p, h_st) * brdfit_Bilinear(q, d_uv, true).rgb;  // phi_d (rows) repeats
 }
 vec3 EvalBrdf(const in BrdfGeometry g) {
   vec3 a = brdfit_HalfDiff(g);
