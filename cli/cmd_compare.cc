@@ -56,7 +56,7 @@ int RunCompare(CompareCliOptions o) {
     auto j = report::ComparisonToJson(c);
     j["old"] = o.old_path;
     j["new"] = o.new_path;
-    fmt::print("{}\n", j.dump(2));
+    fmt::print("{}\n", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace));
   } else {
     fmt::print("old {}\nnew {}\n\n{}", o.old_path, o.new_path, report::FormatComparison(c, o.all));
   }

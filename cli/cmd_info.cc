@@ -127,7 +127,7 @@ int RunInfo(const InfoOptions& o) {
   j.update(TableStatsToJson(s));
   if (format == InfoFormat::kMerl) j["negative_in_file"] = report.negative_cells;
   if (format != InfoFormat::kMerl) j["provenance"] = ProvenanceJson(t.provenance);
-  fmt::print("{}\n", j.dump(2));
+  fmt::print("{}\n", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace));
   return kExitOk;
 }
 

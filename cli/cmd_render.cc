@@ -193,7 +193,7 @@ int DemoRender(DemoContext& ctx) {
   const auto scene_path = ctx.out_dir / "compare_scene.json";
   {
     std::ofstream out(scene_path);
-    out << s.dump(2) << "\n";
+    out << s.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   }
   RenderOptions o;
   o.scene = scene_path.string();

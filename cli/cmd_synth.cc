@@ -307,7 +307,8 @@ int DemoSynth(DemoContext& ctx) {
                           {"missing_fraction", r.table.provenance.missing_fraction},
                           {"seed", r.table.provenance.seed}};
     const fs::path info_path = ctx.out_dir / (name + ".info.json");
-    WriteTextAtomically(info_path, info.dump(2) + "\n");
+    WriteTextAtomically(info_path,
+                        info.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     ctx.tables.push_back(table);
     ctx.outputs.push_back(table);
     ctx.outputs.push_back(info_path);

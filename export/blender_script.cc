@@ -2,18 +2,15 @@
 
 #include <fmt/core.h>
 
+#include "export/comment_text.h"
+
 namespace brdfit::exports {
 
 namespace {
 
 // Printable ASCII for a '#' comment line.
 std::string PythonComment(const std::string& s) {
-  std::string out = "# ";
-  for (const char ch : s) {
-    const unsigned char c = static_cast<unsigned char>(ch);
-    out += c >= 0x20 && c < 0x7f ? ch : '?';
-  }
-  return out + "\n";
+  return "# " + CommentText(s) + "\n";
 }
 
 std::string Tuple3(const Rgb& v) {

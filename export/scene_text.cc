@@ -2,6 +2,8 @@
 
 #include <fmt/core.h>
 
+#include "export/comment_text.h"
+
 namespace brdfit::exports {
 
 namespace {
@@ -9,11 +11,9 @@ namespace {
 // Text safe inside an XML comment and a pbrt '#' comment: printable ASCII, no "--".
 std::string CommentSafe(const std::string& s) {
   std::string out;
-  for (const char ch : s) {
-    const unsigned char c = static_cast<unsigned char>(ch);
-    const char keep = c >= 0x20 && c < 0x7f ? ch : '?';
-    if (keep == '-' && !out.empty() && out.back() == '-') out += ' ';
-    out += keep;
+  for (const char ch : CommentText(s)) {
+    if (ch == '-' && !out.empty() && out.back() == '-') out += ' ';  // XML: no "--" inside
+    out += ch;
   }
   if (!out.empty() && out.back() == '-') out += ' ';
   return out;

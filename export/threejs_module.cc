@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "export/comment_text.h"
+
 namespace brdfit::exports {
 
 namespace {
@@ -21,18 +23,48 @@ std::string TemplateLiteral(const std::string& s) {
   return out;
 }
 
-// A JS string literal (JSON's escaping is JS's).
+// Decodes one UTF-8 sequence (RFC 3629, section 4: no overlongs, surrogates or code points
+// past U+10FFFF) at s[i]; returns its length, or 0 if the bytes there are not one.
+std::size_t Utf8Sequence(const std::string& s, std::size_t i, std::uint32_t* cp) {
+  const auto b = [&](std::size_t k) { return static_cast<unsigned char>(s[i + k]); };
+  const unsigned char c = b(0);
+  std::size_t n = c < 0x80           ? 1
+                  : (c >> 5) == 0x6  ? 2
+                  : (c >> 4) == 0xe  ? 3
+                  : (c >> 3) == 0x1e ? 4
+                                     : 0;
+  if (n == 0 || i + n > s.size()) return 0;
+  std::uint32_t v = n == 1 ? c : c & (0x7f >> n);
+  for (std::size_t k = 1; k < n; ++k) {
+    if ((b(k) & 0xc0) != 0x80) return 0;
+    v = (v << 6) | (b(k) & 0x3f);
+  }
+  static constexpr std::uint32_t kMin[] = {0, 0, 0x80, 0x800, 0x10000};
+  if (v < kMin[n] || v > 0x10ffff || (v >= 0xd800 && v <= 0xdfff)) return 0;
+  *cp = v;
+  return n;
+}
+
+// A JS string literal in printable ASCII: quotes and backslashes escaped, every other character
+// outside printable ASCII as \uXXXX (a surrogate pair past U+FFFF), so no line terminator
+// (U+2028 and U+2029 included) or control character stands in the module's text. A byte that
+// is not valid UTF-8 becomes U+FFFD, the replacement character: visibly not the original.
 std::string JsString(const std::string& s) {
   std::string out = "\"";
-  for (const char ch : s) {
-    const unsigned char c = static_cast<unsigned char>(ch);
-    if (ch == '"' || ch == '\\') {
+  for (std::size_t i = 0; i < s.size();) {
+    std::uint32_t cp = 0xfffd;
+    const std::size_t n = Utf8Sequence(s, i, &cp);
+    i += n == 0 ? 1 : n;
+    if (cp == '"' || cp == '\\') {
       out += '\\';
-      out += ch;
-    } else if (c < 0x20 || c >= 0x7f) {
-      out += fmt::format("\\u{:04x}", c);
+      out += static_cast<char>(cp);
+    } else if (cp >= 0x20 && cp < 0x7f) {
+      out += static_cast<char>(cp);
+    } else if (cp < 0x10000) {
+      out += fmt::format("\\u{:04x}", cp);
     } else {
-      out += ch;
+      const std::uint32_t v = cp - 0x10000;
+      out += fmt::format("\\u{:04x}\\u{:04x}", 0xd800 + (v >> 10), 0xdc00 + (v & 0x3ff));
     }
   }
   return out + "\"";
@@ -140,7 +172,7 @@ std::string HalfRgbaBase64(const RgbImage& img, bool* clipped) {
 
 std::string Header(const Provenance& p, const char* what) {
   std::string s;
-  for (const std::string& line : p.Lines()) s += "// " + line + "\n";
+  for (const std::string& line : p.Lines()) s += "// " + CommentText(line) + "\n";
   s += std::string("//\n// A three.js ShaderMaterial of ") + what +
        ", with brdfit's own GLSL (the preview's).\n"
        "// Lit by the scene's DirectionalLights (other light types are ignored); linear radiance\n"

@@ -199,7 +199,9 @@ void WriteFactorFiles(const FactorPaths& paths, FactorFiles files) {
       t["height"] = tex.image.height;
     }
   }
-  WriteTextAtomically(paths.json, j.dump(2) + "\n");
+  // Invalid UTF-8 in a name (a file or HDF5 attribute) becomes U+FFFD rather than an exception.
+  WriteTextAtomically(paths.json,
+                      j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 FactorFiles ReadFactorFiles(const std::filesystem::path& json_path) {

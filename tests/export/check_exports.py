@@ -141,7 +141,7 @@ def check_pbrt(path, text):
     for n in used + mixes:
         if n not in defined:
             return f"{path}: material {n!r} used but not defined"
-    if text.count("AttributeBegin") != text.count("AttributeEnd"):
+    if t.count("AttributeBegin") != t.count("AttributeEnd"):  # tokens: not inside comments
         return f"{path}: AttributeBegin/End unbalanced"
     return None
 

@@ -83,5 +83,34 @@ TEST(ThreejsModule, FactoredModuleDeclaresEveryTermsTextures) {
   EXPECT_NE(fid.approximations[0].find("65504"), std::string::npos);
 }
 
+// Names reach the module's header comment and its provenance object: neither may end early.
+// The comment holds printable ASCII only ('?' for the rest); the strings escape every character
+// outside printable ASCII, and bytes that are not UTF-8 become U+FFFD.
+TEST(ThreejsModule, NamesCannotLeaveTheirCommentOrString) {
+  exports::Provenance p = Prov();
+  p.material = "paint\nconsole.log('INJECTED');//\r\xe2\x80\xa8x";
+  p.source = std::string("caf\xc3\xa9 \xf0\x9f\x8e\xa8 \xff\xc0\xaf nul\0", 19) + "\"\\";
+  const exports::ThreejsAnalytic a{"lambert+ggx", {0.5, 0.5, 0.5, 0.04, 0.04, 0.04, 0.1}, "x"};
+  const std::string js = exports::ThreejsModule(a, p);
+  // Every line that holds the payload is a comment, or the provenance object's string.
+  std::size_t at = 0;
+  while ((at = js.find("console.log", at)) != std::string::npos) {
+    const std::size_t line = js.rfind('\n', at) + 1;
+    const std::string text = js.substr(line, js.find('\n', at) - line);
+    EXPECT_TRUE(text.starts_with("// ") || text.starts_with("  material: \"")) << text;
+    ++at;
+  }
+  EXPECT_NE(js.find("(material paint?console.log('INJECTED');//????x)"), std::string::npos);
+  EXPECT_NE(js.find("material: \"paint\\u000aconsole.log('INJECTED');//\\u000d\\u2028x\""),
+            std::string::npos);
+  EXPECT_NE(
+      js.find("source: \"caf\\u00e9 \\ud83c\\udfa8 \\ufffd\\ufffd\\ufffd nul\\u0000\\\"\\\\\""),
+      std::string::npos)
+      << js.substr(js.find("source: "), 80);
+  for (const char c : js) {  // printable ASCII and newlines only
+    EXPECT_TRUE(c == '\n' || (c >= 0x20 && c < 0x7f)) << static_cast<int>(c);
+  }
+}
+
 }  // namespace
 }  // namespace brdfit
