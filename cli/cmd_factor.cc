@@ -114,6 +114,18 @@ FactorOptions CheckOptions(const FactorCliOptions& o, const std::vector<FactorIn
   const FactorOptions f = pipeline::MakeFactorOptions({o.param, o.resolution, o.lambda, o.weighting,
                                                        o.max_theta_deg, o.diffuse, o.rank, o.refine,
                                                        o.refine_iterations, o.refine_loss});
+  // The forms tried include halfdiff: its limit before any solve (a mccool solve at 1024 takes
+  // minutes, and the halfdiff candidate after it would be refused).
+  if ((o.auto_form || f.param == FactorParam::kHalfDiff) && o.resolution > kMaxHalfDiffResolution) {
+    throw InputError(fmt::format(
+        "--res {} is too large for halfdiff{} (at most {}: its q texture is solved texel by "
+        "texel); {}",
+        o.resolution, o.auto_form ? ", one of the parameterizations --auto tries" : "",
+        kMaxHalfDiffResolution,
+        o.auto_form ? "give --param mccool for larger textures, or --res " +
+                          std::to_string(kMaxHalfDiffResolution) + " or less"
+                    : "give --res " + std::to_string(kMaxHalfDiffResolution) + " or less"));
+  }
   std::map<std::string, std::string> stems;
   std::vector<PlannedOutput> outputs;
   std::vector<std::string> files;

@@ -257,6 +257,7 @@ int RunFit(const FitCliOptions& o) {
   }
 
   if (!o.quiet) {
+    for (const auto& c : run.changed_sources) fmt::print(stderr, "brdfit: note: {}\n", c);
     std::FILE* table_out = json_to_stdout ? stderr : stdout;
     if (!run.fresh.empty()) PrintTable(table_out, run.fresh);
     if (num_inputs > 1 && !run.fresh.empty()) PrintSummary(table_out, run.fresh);
@@ -278,6 +279,16 @@ int RunFit(const FitCliOptions& o) {
   if (!run.input_errors.empty()) return kExitBadInput;
   const bool failed = std::any_of(run.fresh.begin(), run.fresh.end(),
                                   [](const FitReportEntry& e) { return e.result.Failed(); });
+  // -q keeps a success silent, not a failure: each failed fit is named on stderr (the table,
+  // which names them otherwise, is not printed).
+  if (o.quiet) {
+    for (const FitReportEntry& e : run.fresh) {
+      if (e.result.Failed()) {
+        fmt::print(stderr, "brdfit: error: {} {}: fit failed: {}\n", e.source, e.result.model,
+                   e.result.message.empty() ? std::string("(no message)") : e.result.message);
+      }
+    }
+  }
   return failed ? kExitFitFailed : kExitOk;
 }
 

@@ -149,8 +149,24 @@ int RunReport(const ReportCliOptions& o) {
       bar.Step(m.name);
       const auto t = src.tables.find(m.name);
       if (t == src.tables.end()) {
-        const char* why = "the table of this material was not given and the results do not name "
-                          "a readable one";
+        std::string why =
+            "the table of this material was not given and the results do not name "
+            "a readable one";
+        if (const auto u = src.unloadable_tables.find(m.name); u != src.unloadable_tables.end()) {
+          std::error_code ec;
+          if (fs::exists(u->second, ec)) {
+            // A device, a folder, a socket where a table should be: bad input, like a damaged one.
+            why = problems.Add(InputError(u->second, "named as the table of material '" + m.name +
+                                                         "' but not a regular file"));
+          } else {
+            // Results moved without their tables still report their numbers; said, not silent.
+            why = "its table " + u->second.string() + " (named by the results) is missing";
+            if (!o.quiet) {
+              fmt::print(stderr, "brdfit: warning: material '{}': {}: no slices or renders\n",
+                         m.name, why);
+            }
+          }
+        }
         if (!o.no_slices) m.notes.push_back(fmt::format("No θh slices: {}.", why));
         if (!o.no_renders) m.views.missing = fmt::format("No renders: {}.", why);
         continue;

@@ -13,6 +13,12 @@
 
 namespace brdfit {
 
+// The largest texture side of a halfdiff factorization: its q texture is solved texel by texel
+// (factor/factor_system.h). Checked with the options, before any solve (cli/cmd_factor.cc,
+// preview/scene.cc); mccool goes to kMaxFactorResolution.
+inline constexpr int kMaxHalfDiffResolution = 256;
+inline constexpr int kMaxFactorResolution = 1024;
+
 struct FactorTextureSize {
   int width = 0, height = 0;
 };

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "core/factor_form.h"
 #include "core/table.h"
 #include "factor/factor_param.h"
 
@@ -117,7 +118,7 @@ class FactorSystem {
                      const Eigen::MatrixX3d& x) const;
 
   static constexpr std::size_t kMaxRemovedRows = 4096;
-  static constexpr int kMaxHalfDiffResolution = 256;
+  static constexpr int kMaxHalfDiffResolution = brdfit::kMaxHalfDiffResolution;
   static constexpr int kMaxPcgIterations = 60;
 
  private:

@@ -424,9 +424,23 @@ class Reader : public hdf5::Reader {
     }
     return out;
   }
+  // The root's brdfit_version ("" when absent); the format is checked as by Read().
+  std::string WriterVersion() const {
+    const H5::H5File f = Open();
+    if (String(f, "/", "format") != kFitReportFormat) Fail("not a fit report");
+    return f.attrExists("brdfit_version") ? String(f, "/", "brdfit_version") : std::string();
+  }
 };
 
 }  // namespace
+
+std::string ReadFitReportWriterVersion(const fs::path& path) {
+  try {
+    return Reader(path).WriterVersion();
+  } catch (const H5::Exception& e) {
+    throw InputError(path, hdf5::Describe(e));
+  }
+}
 
 void SortEntries(std::vector<FitReportEntry>& entries) {
   std::stable_sort(entries.begin(), entries.end(),

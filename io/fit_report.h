@@ -91,6 +91,9 @@ void WriteFitReport(std::vector<FitReportEntry> entries, const std::filesystem::
 
 // Throws InputError naming the file and the problem.
 std::vector<FitReportEntry> ReadFitReport(const std::filesystem::path& path);
+// The brdfit version that wrote the report (its root attribute brdfit_version; "" in a report
+// without one). Throws InputError as ReadFitReport.
+std::string ReadFitReportWriterVersion(const std::filesystem::path& path);
 
 // {"format": "brdfit-fit-params", "format_version": 1, "fits": [{"source", "material", "model",
 //  "status", "message", "params": {"name": value, ...}, "metrics": {"log_rmse", "cbrt_rmse",

@@ -126,6 +126,39 @@ void CheckKeptMaterials(const std::vector<FitReportEntry>& kept,
   }
 }
 
+// Resume keeps a fit only of the table it was made from: the material keys of this run's
+// inputs whose kept entries record another content hash (core/provenance.h TableContentHash)
+// than the table has now, e.g. a table regenerated under the same name. Their fits are made
+// again and replace the old entries; each is said in result->changed_sources. Entries without
+// a hash (older reports) cannot be compared and are kept. An input that cannot be loaded any
+// more is an input error of the run (not hidden behind "skipped"); its kept fits stay.
+std::set<std::string> ChangedSources(const std::vector<FitReportEntry>& kept,
+                                     const std::vector<std::string>& inputs,
+                                     const std::vector<std::string>& keys, BatchFitResult* result) {
+  std::map<std::string, std::string> hash_of;  // key -> the hash its kept entries record
+  for (const FitReportEntry& e : kept) {
+    if (!e.source_hash.empty()) hash_of.emplace(e.material, e.source_hash);
+  }
+  std::set<std::string> changed;
+  for (std::size_t f = 0; f < inputs.size(); ++f) {
+    const auto it = hash_of.find(keys[f]);
+    if (it == hash_of.end()) continue;
+    std::string now;
+    try {
+      now = TableContentHash(LoadInput(inputs[f]));
+    } catch (const InputError& e) {
+      result->input_errors.push_back(e.what());  // its kept fits stay; nothing is refitted
+      continue;
+    }
+    if (now == it->second) continue;
+    changed.insert(keys[f]);
+    result->changed_sources.push_back(
+        inputs[f] + ": its contents changed since the report's fits (content hash " + it->second +
+        ", now " + now + "): fitted again");
+  }
+  return changed;
+}
+
 }  // namespace
 
 std::vector<std::string> ResolveModelNames(const std::vector<std::string>& requested,
@@ -224,11 +257,14 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
   const BatchHold hold = BatchHold::FromEnvironment();            // tests only (batch_hold.h)
   hold.HoldAt(0);
   CheckKeptMaterials(kept, inputs, keys, req.report);
+  BatchFitResult result;
+  const std::set<std::string> changed = ChangedSources(kept, inputs, keys, &result);
   std::set<std::tuple<std::string, std::string, std::string>> done;
   for (const auto& e : kept) {
-    if (!e.result.Failed()) done.insert({e.material, e.result.model, e.options});
+    if (!e.result.Failed() && !changed.count(e.material)) {
+      done.insert({e.material, e.result.model, e.options});
+    }
   }
-  BatchFitResult result;
   // The shard's slice of the work list, before resuming: it never depends on what is done.
   std::vector<ShardRun> shard_runs;
   for (std::size_t k = 0; k < req.models.size(); ++k) {
@@ -427,6 +463,8 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
     result.fresh.push_back(e);
   }
   std::sort(result.input_errors.begin(), result.input_errors.end());
+  result.input_errors.erase(std::unique(result.input_errors.begin(), result.input_errors.end()),
+                            result.input_errors.end());
   return result;
 }
 

@@ -6,8 +6,10 @@
 //    what depends only on the grid (fit/prepare_cache.h) is made once for the whole batch.
 //  * Fits are identified by (material key, model, options): the key is unique in the batch and
 //    the same on every machine (pipeline/material_keys.h); a report holds one source per key.
-//  * Resume: entries already in the report with the same key, model and options are kept
-//    and skipped (unless `force`); entries this run redoes replace the old ones. A kept entry of
+//  * Resume: entries already in the report with the same key, model and options, fitted to
+//    the same table contents (their source_hash), are kept and skipped (unless `force`);
+//    entries this run redoes replace the old ones, and a table whose contents changed since is
+//    fitted again (docs/scale.md, "Resume"). A kept entry of
 //    one of the run's keys but another source is an InputError (the report is not resumed).
 //  * Checkpoints: the report is rewritten (atomically, io/atomic_file.h) at most every 5 s
 //    while fits finish, and once at the end, so a killed run loses at most the fits in flight.
@@ -74,6 +76,9 @@ struct BatchFitResult {
   std::vector<FitReportEntry> fresh;      // fits made by this run, sorted (SortEntries)
   std::vector<FitReportEntry> all;        // what the report holds now: kept + fresh
   std::vector<std::string> input_errors;  // one message per unreadable input, sorted
+  // Inputs whose kept fits were of other contents (a table rewritten under the same name):
+  // refitted, one message each naming the input and both content hashes.
+  std::vector<std::string> changed_sources;
   std::size_t skipped = 0;                // (input, model) pairs already in the report
   std::size_t planned = 0;                // fits this run set out to make
   std::size_t other_shards = 0;           // (input, model) pairs left to the other shards

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/factor_io.h"
 
 namespace brdfit::pipeline {
 namespace {
@@ -40,6 +41,10 @@ std::vector<std::string> PartFiles(const fs::path& part) {
       continue;
     }
     names.push_back(name);
+    // The whole factorization reads as the report, render and export will read it (format,
+    // version, rank, diffuse, each EXR whole and finite, its attributes and size): a damaged
+    // part is refused here, with the offending file named, not copied.
+    ReadFactorFiles(d.path());
     nlohmann::json j;
     try {
       j = nlohmann::json::parse(ReadBytes(d.path()));

@@ -7,6 +7,7 @@
 #include <iterator>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <system_error>
 #include <tuple>
@@ -61,8 +62,23 @@ MergedReports MergeFitReports(const std::vector<fs::path>& parts) {
   std::vector<std::size_t> from;    // part of each kept entry
   std::map<std::string, std::pair<std::string, std::size_t>> source_of;  // material -> source, part
   std::unique_ptr<Scratch> scratch;
+  // The parts of one batch: written by one brdfit version, each model fitted under one set of
+  // options, each material from one table's contents. Anything else is a mix of runs whose
+  // fits do not compare (the choice would weigh them as if they did).
+  std::string version;
+  std::map<std::string, std::map<std::size_t, std::set<std::string>>> options_of;  // model, part
+  std::map<std::string, std::pair<std::string, std::size_t>> hash_of;  // material -> hash, part
   for (std::size_t p = 0; p < parts.size(); ++p) {
     std::vector<FitReportEntry> entries = ReadFitReport(parts[p]);
+    const std::string v = ReadFitReportWriterVersion(parts[p]);
+    if (p == 0) version = v;
+    if (v != version) {
+      throw InputError(fmt::format(
+          "{} was written by brdfit {} but {} by brdfit {}; refusing to merge fits of two "
+          "versions (refit one part with the other's brdfit)",
+          parts[0].string(), version.empty() ? "(unknown)" : version, parts[p].string(),
+          v.empty() ? "(unknown)" : v));
+    }
     out.read += entries.size();
     for (FitReportEntry& e : entries) {
       // One source per material key (pipeline/material_keys.h).
@@ -73,6 +89,17 @@ MergedReports MergeFitReports(const std::vector<fs::path>& parts) {
             "refusing to merge (fit both in one run, or give every shard the same paths)",
             e.material, src->second.first, parts[src->second.second].string(), e.source,
             parts[p].string()));
+      }
+      options_of[e.result.model][p].insert(e.options);
+      if (!e.source_hash.empty()) {
+        const auto [h, new_hash] = hash_of.emplace(e.material, std::make_pair(e.source_hash, p));
+        if (!new_hash && h->second.first != e.source_hash) {
+          throw InputError(fmt::format(
+              "material '{}' ({}) was fitted to contents {} in {} but {} in {}: the table "
+              "changed between the runs; refusing to merge (refit the stale part)",
+              e.material, e.source, h->second.first, parts[h->second.second].string(),
+              e.source_hash, parts[p].string()));
+        }
       }
       const Key key{e.material, e.result.model, e.options};
       const auto it = seen.find(key);
@@ -95,6 +122,21 @@ MergedReports MergeFitReports(const std::vector<fs::path>& parts) {
             ToString(e.result.status)));
       }
       ++out.duplicates;
+    }
+  }
+  for (const auto& [model, by_part] : options_of) {
+    const auto& [p0, o0] = *by_part.begin();
+    for (const auto& [p, o] : by_part) {
+      if (o == o0) continue;
+      const auto join = [](const std::set<std::string>& set) {
+        std::string s;
+        for (const std::string& x : set) s += (s.empty() ? "" : " and ") + x;
+        return s;
+      };
+      throw InputError(fmt::format(
+          "model {} was fitted with options {} in {} but {} in {}; refusing to merge parts of "
+          "different runs (fit every shard with the same options)",
+          model, join(o0), parts[p0].string(), join(o), parts[p].string()));
     }
   }
   for (const FitReportEntry& e : out.entries) out.timed = out.timed || e.timed;

@@ -1,5 +1,6 @@
 #include "preview/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -9,6 +10,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/factor_form.h"
 #include "io/input_file.h"
 #include "io/nbrdf.h"
 #include "io/unique_keys_json.h"
@@ -28,6 +30,12 @@ namespace {
 
 using Json = nlohmann::json;
 constexpr double kDeg = kPi / 180.0;
+
+std::string Fmt(double v) {
+  std::ostringstream o;
+  o << v;
+  return o.str();
+}
 
 // Reads one JSON object strictly: every key must be consumed, so typos are errors.
 class Reader {
@@ -97,14 +105,35 @@ class Reader {
     }
     return r;
   }
+  // A position in world units: each coordinate within kMaxSceneCoordinate.
+  Vec3 Point(const std::string& k, const Vec3& def) {
+    const Vec3 p = Vector(k, def);
+    if (std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kMaxSceneCoordinate) {
+      Fail("'" + k + "' must be within " + Fmt(kMaxSceneCoordinate) +
+           " of the origin in x, y and z");
+    }
+    return p;
+  }
+  // A number in [lo, hi] (lo excluded when lo_open).
+  double InRange(const std::string& k, double def, double lo, double hi, bool lo_open = false) {
+    const double d = Number(k, def);
+    if (lo_open ? !(d > lo) : !(d >= lo)) {
+      Fail("'" + k + "' must be " + (lo_open ? "> " : ">= ") + Fmt(lo));
+    }
+    if (d > hi) Fail("'" + k + "' must be <= " + Fmt(hi));
+    return d;
+  }
   Vec3 Direction(const std::string& k, const Vec3& def) {
     const Vec3 d = Vector(k, def);
     if (!(Length(d) > 0)) Fail("'" + k + "' must be a non-zero vector");
     return Normalize(d);
   }
-  Vec3 Colour(const std::string& k) {
-    const Vec3 c = Vector(k, {1, 1, 1});
+  Vec3 Colour(const std::string& k, const Vec3& def = {1, 1, 1}) {
+    const Vec3 c = Vector(k, def);
     if (c.x < 0 || c.y < 0 || c.z < 0) Fail("'" + k + "' must be >= 0");
+    if (std::max({c.x, c.y, c.z}) > kMaxSceneRadiometric) {
+      Fail("'" + k + "' must be <= " + Fmt(kMaxSceneRadiometric));
+    }
     return c;
   }
   std::filesystem::path Path(const std::string& k) {
@@ -131,12 +160,12 @@ class Reader {
 
 Camera ParseCamera(Reader r) {
   Camera c;
-  c.position = r.Vector("position", c.position);
-  c.target = r.Vector("target", c.target);
+  c.position = r.Point("position", c.position);
+  c.target = r.Point("target", c.target);
   c.up = r.Direction("up", c.up);
   c.fov_y = r.Positive("fov_deg", 30.0) * kDeg;
-  c.near = r.Positive("near", c.near);
-  c.far = r.Positive("far", c.far);
+  c.near = r.InRange("near", c.near, kMinSceneLength, kMaxSceneCoordinate);
+  c.far = r.InRange("far", c.far, kMinSceneLength, 4 * kMaxSceneCoordinate);
   r.Done();
   if (c.fov_y >= kPi) r.Fail("'fov_deg' must be < 180");
   if (c.far <= c.near) r.Fail("'far' must exceed 'near'");
@@ -155,21 +184,21 @@ Light ParseLight(Reader r, int index) {
   if (!kind) r.Fail(kLightTypeNames.Unknown(type));
   l.type = *kind;
   l.colour = r.Colour("color");
-  l.intensity = r.NonNegative("intensity", 1.0);
+  l.intensity = r.InRange("intensity", 1.0, 0.0, kMaxSceneRadiometric);
   if (l.type == LightType::kDirectional) {
     if (!r.Has("direction")) r.Fail("a directional light needs 'direction' (towards the light)");
     l.direction = r.Direction("direction", l.direction);
   } else {
     if (!r.Has("position")) r.Fail("a " + type + " light needs 'position'");
-    l.position = r.Vector("position", l.position);
-    l.distance = r.NonNegative("distance", 0.0);
-    l.decay = r.NonNegative("decay", 0.0);
+    l.position = r.Point("position", l.position);
+    l.distance = r.InRange("distance", 0.0, 0.0, 4 * kMaxSceneCoordinate);
+    l.decay = r.InRange("decay", 0.0, 0.0, 1000.0);
     if (l.decay > 0 && l.distance == 0) {
       r.Fail("'decay' > 0 needs 'distance' > 0 (the falloff is (1 - d / distance)^decay, as "
              "Three.js point lights)");
     }
     if (l.type == LightType::kSpot) {
-      l.target = r.Vector("target", l.target);
+      l.target = r.Point("target", l.target);
       if (!(Length(l.target - l.position) > 0)) r.Fail("'target' equals 'position'");
       l.angle = r.Positive("angle_deg", 30.0) * kDeg;
       if (l.angle > kPi / 2) r.Fail("'angle_deg' must be <= 90 (Three.js)");
@@ -279,8 +308,14 @@ MaterialSpec ParseMaterial(Reader r, const std::string& name) {
     if (m.table.empty() == m.factors.empty()) {
       r.Fail("a factored material needs either 'factors' (a .factor.json) or 'table' (to factor)");
     }
-    if (m.factor_resolution < 4 || m.factor_resolution > 1024) {
-      r.Fail("'resolution' must be in [4, 1024]");
+    if (m.factor_resolution < 4 || m.factor_resolution > kMaxFactorResolution) {
+      r.Fail("'resolution' must be in [4, " + std::to_string(kMaxFactorResolution) + "]");
+    }
+    if ((m.factor_auto || m.factor_param == "halfdiff") &&
+        m.factor_resolution > kMaxHalfDiffResolution) {
+      r.Fail("'resolution' must be at most " + std::to_string(kMaxHalfDiffResolution) +
+             (m.factor_auto ? " with \"form\": \"auto\" (it tries halfdiff" : " for halfdiff (") +
+             ", whose q texture is solved texel by texel)");
     }
     if (m.factor_rank < 1 || m.factor_rank > kMaxFactorTextureTerms) {
       r.Fail("'rank' must be in [1, " + std::to_string(kMaxFactorTextureTerms) + "]");
@@ -305,8 +340,8 @@ Object ParseObject(Reader r, int index) {
   } else if (shape != "sphere") {
     r.Fail("unknown shape '" + shape + "' (expected sphere or mesh)");
   }
-  o.centre = r.Vector("centre", o.centre);
-  o.radius = r.Positive("radius", 1.0);
+  o.centre = r.Point("centre", o.centre);
+  o.radius = r.InRange("radius", 1.0, kMinSceneLength, kMaxSceneCoordinate);
   o.material = r.RequiredString("material");
   r.Done();
   return o;
@@ -334,7 +369,7 @@ Scene ParseScene(const std::string& text, const std::filesystem::path& source) {
     if (s.width < 1 || s.height < 1 || s.width > 8192 || s.height > 8192) {
       ir.Fail("width and height must be in [1, 8192]");
     }
-    s.background = ir.Vector("background", s.background);
+    s.background = ir.Colour("background", s.background);
     ir.Done();
   }
   if (r.Has("display")) {
@@ -345,8 +380,10 @@ Scene ParseScene(const std::string& text, const std::filesystem::path& source) {
     } catch (const InputError& e) {
       dr.Fail(e.what());
     }
-    s.display.exposure = dr.Positive("exposure", 1.0);
-    s.display.white_point = dr.Positive("white_point", 1.0);
+    s.display.exposure =
+        dr.InRange("exposure", 1.0, 1 / kMaxSceneRadiometric, kMaxSceneRadiometric);
+    s.display.white_point =
+        dr.InRange("white_point", 1.0, 1 / kMaxSceneRadiometric, kMaxSceneRadiometric);
     dr.Done();
   }
   s.punctual_pi = r.Bool("punctual_pi", true);
@@ -373,6 +410,15 @@ Scene ParseScene(const std::string& text, const std::filesystem::path& source) {
       r.Fail("object '" + o.name + "' references unknown material '" + o.material + "'");
     }
     s.objects.push_back(std::move(o));
+  }
+  // A camera that sees no object renders the background alone: refused rather than drawn.
+  const bool any_in_range = std::any_of(s.objects.begin(), s.objects.end(), [&](const Object& o) {
+    const bool bounded = o.shape == ObjectShape::kSphere || o.mesh_normalize;  // by its radius
+    return !bounded || Length(o.centre - s.camera.position) - o.radius < s.camera.far;
+  });
+  if (!any_in_range) {
+    r.Fail("every object lies beyond the camera's 'far' (" + Fmt(s.camera.far) +
+           "): nothing would be drawn");
   }
   if (r.Has("comparison")) {
     Reader cr(r.Raw("comparison"), "comparison", source);

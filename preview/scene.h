@@ -17,6 +17,15 @@
 
 namespace brdfit::preview {
 
+// The ranges a scene's numbers are checked against (preview/scene.cc, docs/scenes.md "Ranges"):
+// positions within kMaxSceneCoordinate of the origin on each axis, lengths (radius, near) at
+// least kMinSceneLength, colours, intensities and exposure at most kMaxSceneRadiometric. The
+// renderer computes in 32-bit floats: inside these ranges no product of two of them overflows
+// and the depth buffer still separates near and far.
+inline constexpr double kMaxSceneCoordinate = 1e6;
+inline constexpr double kMinSceneLength = 1e-6;
+inline constexpr double kMaxSceneRadiometric = 1e6;
+
 struct Camera {
   Vec3 position{0, 0, 4};
   Vec3 target{0, 0, 0};

@@ -70,6 +70,18 @@ bool LoadableTable(const std::string& source) {
   return IsNbrdfInput(source) || fs::is_regular_file(source, ec);
 }
 
+// The table a result names for its material: kept for the slices and renders when it can be
+// loaded, else remembered as named but not there (unless the material has a table already).
+void NoteNamedTable(const std::string& material, const std::string& source, ReportSources* out) {
+  if (source.empty() || out->tables.count(material)) return;
+  if (LoadableTable(source)) {
+    out->tables[material] = source;
+    out->unloadable_tables.erase(material);
+  } else {
+    out->unloadable_tables.emplace(material, source);
+  }
+}
+
 // The declared size of every texture of the first `rank` terms ("textures": p, q, p2, q2, ...,
 // io/factor_io.h), or nothing when one is missing or not a pair of integers >= 0.
 std::vector<FactorForm::Term> TermSizes(const json& j, int rank) {
@@ -322,9 +334,7 @@ void AddFitReport(const std::vector<FitReportEntry>& entries, const fs::path& fr
       if (f.result.model == kFactorizationModel) e.kind = Entry::Kind::kFactor;  // failed: no files
       AddEntry(b, material, f.source, std::move(e));
     }
-    if (!f.source.empty() && !out->tables.count(material) && LoadableTable(f.source)) {
-      out->tables[material] = f.source;
-    }
+    NoteNamedTable(material, f.source, out);
   }
 }
 
@@ -402,9 +412,7 @@ bool AddFitParamsJson(const fs::path& p, Builder* b) {
     } else {
       AddEntry(b, f.material, f.source, std::move(f.entry));
     }
-    if (!f.source.empty() && !out->tables.count(f.material) && LoadableTable(f.source)) {
-      out->tables[f.material] = f.source;
-    }
+    NoteNamedTable(f.material, f.source, out);
   }
   return true;
 }
@@ -414,6 +422,7 @@ void AddInputOf(const fs::path& p, bool explicit_input, Builder* b);
 // A table: the source of its material's θh slices and renders (loaded by the caller).
 void AddTable(const fs::path& p, Builder* b) {
   b->out.tables[MaterialName(p)] = p;
+  b->out.unloadable_tables.erase(MaterialName(p));
   Material& m = b->index.GetOrAddMaterial(MaterialName(p));
   if (m.source.empty()) m.source = p.string();
 }
@@ -437,9 +446,7 @@ void AddInputOf(const fs::path& p, bool explicit_input, Builder* b) {
       Entry e = FactorEntry(p, &material, &table);
       Material& m = b->index.GetOrAddMaterial(material);
       if (m.source.empty()) m.source = table;
-      if (!table.empty() && !out->tables.count(material) && LoadableTable(table)) {
-        out->tables[material] = table;
-      }
+      NoteNamedTable(material, table, out);
       // Two factorizations with the same name and budget (e.g. --suffix runs): keep both apart.
       const Entry& added = b->index.Add(material, std::move(e), p.filename().string());
       out->factors.push_back({material, added.name, p});

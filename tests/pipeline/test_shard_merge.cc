@@ -19,11 +19,15 @@
 #include <string>
 #include <vector>
 
+#include <H5Cpp.h>
+
 #include "core/error.h"
+#include "core/provenance.h"
 #include "core/synth.h"
 #include "fit/fitter.h"
 #include "io/fit_report.h"
 #include "io/hdf5_table.h"
+#include "io/hdf5_util.h"
 #include "models/registry.h"
 #include "pipeline/shard.h"
 
@@ -313,6 +317,94 @@ TEST_F(ShardCli, MergeKeepsIdenticalDuplicatesOnceAndRefusesConflicts) {
   EXPECT_FALSE(fs::exists(dir_ / "x.h5"));
   EXPECT_EQ(Run(FitArgs("--shard 3/3 -o " + P("y.h5")), &log), 2);
   EXPECT_NE(log.find("--shard '3/3'"), std::string::npos) << log;
+}
+
+// Resume keeps a fit only of the table it was made from: a table rewritten under the same name
+// with other contents is fitted again (its old entries replaced, the change said on stderr);
+// the other tables' fits stay skipped (docs/scale.md, "Resume and merge: what must agree").
+TEST_F(ShardCli, ResumeRefitsATableWhoseContentsChanged) {
+  std::string log;
+  ASSERT_EQ(Run(FitArgs("-o " + P("r.h5")), &log), 0) << log;
+  const std::vector<FitReportEntry> before = ReadFitReport(dir_ / "r.h5");
+  std::string old_hash;
+  for (const auto& e : before) {
+    if (e.source == tables_[0]) old_hash = e.source_hash;
+  }
+  ASSERT_FALSE(old_hash.empty());
+  // t0.h5 regenerated with other contents (table 4's) under the same name.
+  const Table other = ReadHdf5Table(tables_[4]);
+  fs::remove(tables_[0]);
+  WriteHdf5Table(other, tables_[0]);
+  const std::string new_hash = TableContentHash(other);
+  ASSERT_NE(new_hash, old_hash);
+  std::string rerun = FitArgs("-o " + P("r.h5"));
+  rerun.replace(rerun.find(" -q "), 4, " ");
+  ASSERT_EQ(Run(rerun, &log), 0) << log;
+  EXPECT_NE(log.find("3 fits, 12 skipped"), std::string::npos) << log;
+  EXPECT_NE(log.find("brdfit: note: " + tables_[0] +
+                     ": its contents changed since the report's "
+                     "fits (content hash " +
+                     old_hash + ", now " + new_hash + "): fitted again"),
+            std::string::npos)
+      << log;
+  const std::vector<FitReportEntry> after = ReadFitReport(dir_ / "r.h5");
+  ASSERT_EQ(after.size(), 15u);
+  for (const auto& e : after) {
+    if (e.source == tables_[0]) {
+      EXPECT_EQ(e.source_hash, new_hash) << e.result.model;
+    }
+  }
+  // The report is now the one a fresh run of the new tables writes.
+  ASSERT_EQ(Run(FitArgs("-o " + P("fresh.h5")), &log), 0) << log;
+  EXPECT_TRUE(ReadAll(dir_ / "r.h5") == ReadAll(dir_ / "fresh.h5"));
+  // A third run: nothing changed, everything skipped.
+  ASSERT_EQ(Run(rerun, &log), 0) << log;
+  EXPECT_NE(log.find("0 fits, 15 skipped"), std::string::npos) << log;
+  EXPECT_EQ(log.find("contents changed"), std::string::npos) << log;
+}
+
+// Merge joins the parts of one batch only: refused, naming both parts, when a model was fitted
+// under other options in another part, a material to other table contents, or the parts were
+// written by two brdfit versions. Nothing is written then, and the parts are untouched.
+TEST_F(ShardCli, MergeRefusesPartsOfDifferentRunsNamingBoth) {
+  std::string log;
+  ASSERT_EQ(Run(FitArgs("--shard 0/2 -o " + P("s0.h5")), &log), 0) << log;
+  ASSERT_EQ(Run(FitArgs("--shard 1/2 -o " + P("s1.h5")), &log), 0) << log;
+  // Shard 1 again, under another loss.
+  ASSERT_EQ(Run(FitArgs("--shard 1/2 --loss log -o " + P("s1log.h5")), &log), 0) << log;
+  const std::string s0 = ReadAll(dir_ / "s0.h5"), s1log = ReadAll(dir_ / "s1log.h5");
+  EXPECT_EQ(Run("merge " + P("m.h5") + " " + P("s0.h5") + " " + P("s1log.h5"), &log), 2) << log;
+  EXPECT_NE(log.find("was fitted with options"), std::string::npos) << log;
+  EXPECT_NE(log.find("\"loss\":\"rel\""), std::string::npos) << log;
+  EXPECT_NE(log.find("\"loss\":\"log\""), std::string::npos) << log;
+  EXPECT_NE(log.find((dir_ / "s0.h5").string()), std::string::npos) << log;
+  EXPECT_NE(log.find((dir_ / "s1log.h5").string()), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir_ / "m.h5"));
+  EXPECT_TRUE(ReadAll(dir_ / "s0.h5") == s0 && ReadAll(dir_ / "s1log.h5") == s1log);
+
+  // One material fitted to other contents in another part.
+  std::vector<FitReportEntry> stale = ReadFitReport(dir_ / "s0.h5");
+  ASSERT_FALSE(stale.empty());
+  for (auto& e : stale) e.source_hash = std::string(e.source_hash.size(), 'f');
+  WriteFitReport(stale, dir_ / "stale.h5", false);
+  EXPECT_EQ(Run("merge " + P("m.h5") + " " + P("s0.h5") + " " + P("stale.h5"), &log), 2) << log;
+  EXPECT_NE(log.find("the table changed between the runs"), std::string::npos) << log;
+  EXPECT_NE(log.find(stale[0].source_hash), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir_ / "m.h5"));
+
+  // Another brdfit version wrote one part.
+  fs::copy_file(dir_ / "s1.h5", dir_ / "s1old.h5");
+  {
+    H5::H5File f((dir_ / "s1old.h5").string(), H5F_ACC_RDWR);
+    f.removeAttr("brdfit_version");
+    hdf5::WriteStringAttr(f, "brdfit_version", "0.0.9-other");
+  }
+  EXPECT_EQ(Run("merge " + P("m.h5") + " " + P("s0.h5") + " " + P("s1old.h5"), &log), 2) << log;
+  EXPECT_NE(log.find("by brdfit 0.0.9-other"), std::string::npos) << log;
+  EXPECT_NE(log.find((dir_ / "s1old.h5").string()), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir_ / "m.h5"));
+  // The shards of one run still merge.
+  EXPECT_EQ(Run("merge " + P("m.h5") + " " + P("s0.h5") + " " + P("s1.h5"), &log), 0) << log;
 }
 
 // Every report a fit writes reads back, so that it resumes and merges: an ABC fit of

@@ -66,6 +66,49 @@ TEST(Scene, RejectsBadInput) {
                   "lights": [{"type": "area"}]})", "unknown light type 'area'");
 }
 
+// Every number of a scene is finite and inside its documented range (docs/scenes.md
+// "Ranges"): a camera at 1e308 rendered an all-black image with exit 0. Each key is refused
+// just outside its range, and accepted at its edge.
+TEST(Scene, EveryNumberIsInItsDocumentedRange) {
+  const auto scene = [](const std::string& camera, const std::string& object,
+                        const std::string& light, const std::string& extra = "") {
+    return R"({"materials": {"m": {"type": "analytic", "model": "ggx"}},
+               "camera": {)" +
+           camera + R"(},
+               "objects": [{"material": "m")" +
+           object + R"(}],
+               "lights": [{"type": "point")" +
+           (light.find("position") == std::string::npos ? R"(, "position": [0, 0, 5])" + light
+                                                        : light) +
+           "}]" + extra + "}";
+  };
+  ExpectError(scene(R"("position": [0, 0, 1e308])", "", ""), "'position' must be within 1e+06");
+  ExpectError(scene(R"("position": [0, -1e7, 4])", "", ""), "'position' must be within");
+  ExpectError(scene(R"("target": [1e300, 0, 0])", "", ""), "'target' must be within");
+  ExpectError(scene(R"("near": 1e-300)", "", ""), "'near' must be >= 1e-06");
+  ExpectError(scene(R"("far": 1e300)", "", ""), "'far' must be <= 4e+06");
+  ExpectError(scene("", R"(, "centre": [0, 1e308, 0])", ""), "'centre' must be within");
+  ExpectError(scene("", R"(, "radius": 1e300)", ""), "'radius' must be <= 1e+06");
+  ExpectError(scene("", R"(, "radius": 1e-300)", ""), "'radius' must be >= 1e-06");
+  ExpectError(scene("", "", R"(, "intensity": 1e300)"), "'intensity' must be <= 1e+06");
+  ExpectError(scene("", "", R"(, "color": [1e300, 1, 1])"), "'color' must be <= 1e+06");
+  ExpectError(scene("", "", R"(, "position": [0, 0, -1e9])"), "'position' must be within");
+  ExpectError(scene("", "", R"(, "distance": 10, "decay": 1e300)"), "'decay' must be <= 1000");
+  ExpectError(scene("", "", "", R"(, "display": {"exposure": 1e-300})"), "'exposure' must be >=");
+  ExpectError(scene("", "", "", R"(, "image": {"background": [1e300, 0, 0]})"),
+              "'background' must be <= 1e+06");
+  // In range but nothing to see: every object beyond the far plane.
+  ExpectError(scene(R"("position": [0, 0, 500], "far": 100)", "", ""),
+              "every object lies beyond the camera's 'far'");
+  // The edges are accepted.
+  const Scene s =
+      ParseScene(scene(R"("position": [0, 0, 1e6], "far": 4e6, "near": 1e-6)",
+                       R"(, "centre": [0, 0, -1e6], "radius": 1e6)", R"(, "intensity": 1e6)"),
+                 "edge.json");
+  EXPECT_EQ(s.camera.position.z, 1e6);
+  EXPECT_EQ(s.objects[0].radius, 1e6);
+}
+
 // Three.js r8x's falloff: colour * intensity * (1 - d / distance)^decay, zero outside the range;
 // the spot's smoothstep between cos(angle) and cos(angle (1 - penumbra)).
 // A factored material computed from a table takes its form (rank, diffuse value).
