@@ -15,11 +15,12 @@
 #include "core/error.h"
 #include "core/metrics.h"
 #include "core/result.h"
+#include "core/suggest.h"
 #include "fit/fitter.h"
 #include "io/atomic_file.h"
-#include "io/output_policy.h"
 #include "io/input_file.h"
 #include "io/nbrdf.h"
+#include "io/output_policy.h"
 #include "pipeline/bench_sweep.h"
 #include "pipeline/inputs.h"
 #include "pipeline/material_keys.h"
@@ -86,7 +87,8 @@ Plan CheckOptions(const BenchCliOptions& o) {
     if (!IsFittable(m)) {
       std::string names;
       for (const auto& n : FittableModels()) names += (names.empty() ? "" : ", ") + n;
-      throw InputError("unknown model '" + m + "'; fittable models: " + names);
+      throw InputError("unknown model '" + m + "'" + SuggestionAfter(m, FittableModels()) +
+                       "; fittable models: " + names);
     }
   }
   for (const auto& b : o.budgets) p.budgets.push_back(Budget::Parse(b));

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cli/command.h"
+#include "cli/terminal_text.h"
 #include "core/error.h"
 #include "export/write_export.h"
 #include "io/factor_io.h"
@@ -47,7 +48,7 @@ int RunFactorExport(const ExportOptions& o, exports::Format format) {
   for (const std::string& a : r.fidelity.approximations) {
     fmt::print(stderr, "brdfit: export: approximate: {}\n", a);
   }
-  if (!o.quiet) fmt::print("{} -> {}\n", o.fits, o.out);
+  if (!o.quiet) fmt::print("{} -> {}\n", TerminalSafe(o.fits), TerminalSafe(o.out));
   return kExitOk;
 }
 
@@ -60,7 +61,14 @@ int RunExport(const ExportOptions& o) {
   }
   CheckOutputs({o.fits}, outs);
   const std::vector<FitReportEntry> entries = ReadFitsAnyFormat(o.fits);
-  const FitReportEntry& e = exports::SelectEntry(entries, o.material, o.model, format);
+  const FitReportEntry& e = [&]() -> const FitReportEntry& {
+    try {
+      return exports::SelectEntry(entries, o.material, o.model, format);
+    } catch (const InputError& err) {
+      if (!err.path().empty()) throw;
+      throw InputError(o.fits, err.what());  // which fits hold no such entry
+    }
+  }();
   for (const FitReportEntry& c : entries) {
     if (c.chosen && c.factorization && c.material == e.material && o.model.empty()) {
       fmt::print(stderr,
@@ -79,7 +87,8 @@ int RunExport(const ExportOptions& o) {
   if (!o.quiet) {
     std::string files;
     for (const auto& p : r.written) files += (files.empty() ? "" : ", ") + p.string();
-    fmt::print("{} {} ({}) -> {} [{}]\n", e.material, e.result.model, e.source, files,
+    fmt::print("{} {} ({}) -> {} [{}]\n", TerminalSafe(e.material), e.result.model,
+               TerminalSafe(e.source), TerminalSafe(files),
                r.fidelity.Exact() ? "exact" : "approximate");
   }
   return kExitOk;

@@ -22,6 +22,7 @@
 #include "cli/demo.h"
 #include "cli/interrupt.h"
 #include "cli/progress.h"
+#include "cli/terminal_text.h"
 #include "core/error.h"
 #include "export/fit_targets.h"
 #include "io/atomic_file.h"
@@ -213,7 +214,10 @@ int RunFit(const FitCliOptions& o) {
   for (const std::string& f : req.inputs) {
     if (!IsNbrdfInput(f)) CheckInputFile(f);
   }
-  CheckOutputs(pipeline::InputFiles(req.inputs), {{o.out, "-o"}, {o.json, "--json"}});
+  // The report's lock file is written too (its pid): never onto an input.
+  CheckOutputs(
+      pipeline::InputFiles(req.inputs),
+      {{o.out, "-o"}, {o.json, "--json"}, {LockPathFor(o.out).string(), "the report's lock"}});
   // The hook first: a signal that arrives while the lock is being taken still gets the fit's
   // message (make test-asan: SIGINT right after the lock file appeared found no hook).
   const auto state = std::make_shared<RunState>();
@@ -257,7 +261,9 @@ int RunFit(const FitCliOptions& o) {
   }
 
   if (!o.quiet) {
-    for (const auto& c : run.changed_sources) fmt::print(stderr, "brdfit: note: {}\n", c);
+    for (const auto& c : run.changed_sources) {
+      fmt::print(stderr, "brdfit: note: {}\n", TerminalSafe(c));
+    }
     std::FILE* table_out = json_to_stdout ? stderr : stdout;
     if (!run.fresh.empty()) PrintTable(table_out, run.fresh);
     if (num_inputs > 1 && !run.fresh.empty()) PrintSummary(table_out, run.fresh);
@@ -268,14 +274,19 @@ int RunFit(const FitCliOptions& o) {
                  req.shard.index, req.shard.count, run.skipped + run.planned,
                  run.skipped + run.planned + run.other_shards);
     }
-    fmt::print(table_out, "{} fits, {} skipped{}; report {}{}\n", run.fresh.size(), run.skipped,
+    // Nothing fitted and no report before (every input unreadable): no file is named.
+    std::error_code ec;
+    const bool written = fs::exists(o.out, ec);
+    const bool json_written = !o.json.empty() && !json_to_stdout && fs::exists(o.json, ec);
+    fmt::print(table_out, "{} fits, {} skipped{}; {}{}\n", run.fresh.size(), run.skipped,
                run.skipped ? " (already in the report with the same options; --force redoes "
                              "them)"
                            : "",
-               o.out, o.json.empty() || json_to_stdout ? "" : ", parameters " + o.json);
+               written ? "report " + o.out : std::string("no report written"),
+               json_written ? ", parameters " + o.json : "");
   }
   if (target && !o.quiet) PrintTargetFidelity(json_to_stdout ? stderr : stdout, *target, run.fresh);
-  for (const auto& e : run.input_errors) fmt::print(stderr, "brdfit: error: {}\n", e);
+  for (const auto& e : run.input_errors) fmt::print(stderr, "brdfit: error: {}\n", TerminalSafe(e));
   if (!run.input_errors.empty()) return kExitBadInput;
   const bool failed = std::any_of(run.fresh.begin(), run.fresh.end(),
                                   [](const FitReportEntry& e) { return e.result.Failed(); });
@@ -284,8 +295,9 @@ int RunFit(const FitCliOptions& o) {
   if (o.quiet) {
     for (const FitReportEntry& e : run.fresh) {
       if (e.result.Failed()) {
-        fmt::print(stderr, "brdfit: error: {} {}: fit failed: {}\n", e.source, e.result.model,
-                   e.result.message.empty() ? std::string("(no message)") : e.result.message);
+        fmt::print(stderr, "brdfit: error: {} {}: fit failed: {}\n", TerminalSafe(e.source),
+                   e.result.model,
+                   TerminalSafe(e.result.message.empty() ? "(no message)" : e.result.message));
       }
     }
   }
@@ -368,7 +380,9 @@ Registrar reg{
                      "I/N: fit only the I-th of N cost-balanced slices of the (table x model) "
                      "work list, for N processes or machines (docs/scale.md); merge their "
                      "reports with brdfit merge");
-      sub.add_flag("--force", o->force, "redo fits already in the report");
+      sub.add_flag("--force", o->force,
+                   "redo this run's fits even where the report holds them (its other fits stay); "
+                   "replace a report that cannot be read");
       sub.add_option("-o,--out", o->out, "HDF5 report (docs/formats.md)")->capture_default_str();
       sub.add_option("--json", o->json,
                      "also write the parameters as JSON (- for standard output)");

@@ -8,6 +8,7 @@
 
 #include "cli/command.h"
 #include "core/error.h"
+#include "core/suggest.h"
 #include "models/registry.h"
 
 namespace brdfit::cli {
@@ -73,7 +74,8 @@ int RunModels(const ModelsOptions& opts) {
     for (const auto& name : opts.names) {
       const ModelInfo* m = FindModel(name);
       if (m == nullptr) {
-        throw InputError("unknown model '" + name + "'; known models: " + ModelNames());
+        throw InputError("unknown model '" + name + "'" + SuggestionAfter(name, AllModelNames()) +
+                         "; known models: " + ModelNames());
       }
       selected.push_back(m);
     }

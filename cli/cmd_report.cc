@@ -11,18 +11,19 @@
 
 #include "cli/command.h"
 #include "cli/demo.h"
-#include "pipeline/inputs.h"
 #include "cli/progress.h"
-#include "pipeline/factor_export.h"
-#include "pipeline/rendered_views.h"
+#include "cli/terminal_text.h"
+#include "core/error.h"
 #include "fit/metrics.h"
 #include "io/atomic_file.h"
 #include "io/output_policy.h"
-#include "core/error.h"
+#include "io/table_io.h"
+#include "pipeline/factor_export.h"
+#include "pipeline/inputs.h"
+#include "pipeline/rendered_views.h"
 #include "report/html_report.h"
 #include "report/report_inputs.h"
 #include "report/report_slices.h"
-#include "io/table_io.h"
 
 namespace brdfit::cli {
 namespace {
@@ -163,7 +164,7 @@ int RunReport(const ReportCliOptions& o) {
             why = "its table " + u->second.string() + " (named by the results) is missing";
             if (!o.quiet) {
               fmt::print(stderr, "brdfit: warning: material '{}': {}: no slices or renders\n",
-                         m.name, why);
+                         TerminalSafe(m.name), TerminalSafe(why));
             }
           }
         }
@@ -207,7 +208,9 @@ int RunReport(const ReportCliOptions& o) {
                r.renders.size());
   }
   if (!problems.All().empty()) {
-    for (const std::string& p : problems.All()) fmt::print(stderr, "brdfit: error: {}\n", p);
+    for (const std::string& p : problems.All()) {
+      fmt::print(stderr, "brdfit: error: {}\n", TerminalSafe(p));
+    }
     fmt::print(stderr, "brdfit: {} problem{} noted in {} (--keep-going)\n", problems.All().size(),
                problems.All().size() == 1 ? "" : "s", o.out);
     return kExitBadInput;

@@ -17,16 +17,17 @@
 
 #include "cli/command.h"
 #include "cli/demo.h"
-#include "pipeline/inputs.h"
-#include "io/atomic_file.h"
-#include "io/output_policy.h"
 #include "core/error.h"
+#include "core/suggest.h"
+#include "core/synth.h"
+#include "core/table_stats.h"
+#include "io/atomic_file.h"
 #include "io/model_params.h"
 #include "io/nbrdf.h"
-#include "core/synth.h"
+#include "io/output_policy.h"
 #include "io/table_io.h"
-#include "core/table_stats.h"
 #include "models/registry.h"
+#include "pipeline/inputs.h"
 
 namespace brdfit::cli {
 namespace {
@@ -218,7 +219,11 @@ int RunSynth(const SynthCliOptions& o) {
   SynthResult r;
   if (!o.model.empty()) {
     const ModelInfo* m = FindModel(o.model);
-    if (!m) throw InputError("unknown model '" + o.model + "'; known models: " + ModelNames());
+    if (!m) {
+      throw InputError("unknown model '" + o.model + "'" +
+                       SuggestionAfter(o.model, AllModelNames()) +
+                       "; known models: " + ModelNames());
+    }
     r = SynthesizeFromModel(*m, ResolveModelParams(*m, o.params), grid, so);
   } else {
     r = SynthesizeFromNbrdf(pipeline::NbrdfArchive(o.nbrdf_zip), o.nbrdf, grid, so);

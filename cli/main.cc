@@ -4,17 +4,22 @@
 #include <malloc.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <exception>
 #include <map>
+#include <string>
+#include <vector>
 
 #include "cli/command.h"
 #include "cli/demo.h"
 #include "cli/interrupt.h"
-#include "core/provenance.h"
+#include "cli/terminal_text.h"
 #include "core/error.h"
+#include "core/provenance.h"
+#include "core/suggest.h"
 
 namespace brdfit::cli {
 std::vector<CommandSpec>& Commands() {
@@ -57,6 +62,40 @@ void KeepLargeArraysOnTheHeap() {
   mallopt(M_TRIM_THRESHOLD, 16 << 20);
 }
 
+// For a usage error: the command or option the user most likely meant (core/suggest.h), as
+// "unknown command 'fti' (did you mean fit?)" or " (did you mean --model?)" for the first
+// unknown long option of the command; "" when nothing is close.
+std::string UsageHint(CLI::App& app, int argc, char** argv, bool* replaces) {
+  *replaces = false;
+  if (argc < 2) return "";
+  const std::string first = argv[1];
+  std::vector<std::string> commands;
+  CLI::App* command = nullptr;
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+    commands.push_back(sub->get_name());
+    if (sub->get_name() == first) command = sub;
+  }
+  if (!command) {
+    if (first.starts_with("-")) return "";
+    const std::string hint = brdfit::SuggestionAfter(first, commands);
+    *replaces = !hint.empty();
+    return hint.empty() ? "" : "unknown command '" + first + "'" + hint;
+  }
+  std::vector<std::string> options;
+  for (const CLI::Option* o : command->get_options()) {
+    for (const std::string& l : o->get_lnames()) options.push_back("--" + l);
+  }
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = std::string(argv[i]).substr(0, std::string(argv[i]).find('='));
+    if (a == "--") break;
+    if (!a.starts_with("--") || std::find(options.begin(), options.end(), a) != options.end()) {
+      continue;
+    }
+    return brdfit::SuggestionAfter(a, options);
+  }
+  return "";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -80,9 +119,12 @@ int main(int argc, char** argv) {
     // --help and --version print as CLI11 does; a usage error gets brdfit's prefix like every
     // other error (issue 14 item 16).
     if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
-    fmt::print(stderr, "brdfit: error: {}\nRun 'brdfit --help' or 'brdfit <command> --help' for "
-                       "the options.\n",
-               e.what());
+    bool replaces = false;
+    const std::string hint = UsageHint(app, argc, argv, &replaces);
+    fmt::print(stderr,
+               "brdfit: error: {}\nRun 'brdfit --help' or 'brdfit <command> --help' for "
+               "the options.\n",
+               TerminalSafe(replaces ? hint : e.what() + hint));
     return kExitBadInput;
   }
   try {
@@ -90,10 +132,10 @@ int main(int argc, char** argv) {
       if (sub->parsed()) return CheckStdout(run());
     }
   } catch (const brdfit::InputError& e) {
-    fmt::print(stderr, "brdfit: error: {}\n", e.what());
+    fmt::print(stderr, "brdfit: error: {}\n", TerminalSafe(e.what()));
     return kExitBadInput;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "brdfit: error: {}\n", e.what());
+    fmt::print(stderr, "brdfit: error: {}\n", TerminalSafe(e.what()));
     return kExitBadInput;
   }
   return kExitBadInput;

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/provenance.h"
+#include "core/suggest.h"
 #include "export/blender_script.h"
 #include "export/gltf.h"
 #include "export/lobe_material.h"
@@ -54,9 +55,10 @@ const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
     if (!e.result.Failed() && !e.factorization) of.push_back(&e);
   }
   if (of.empty()) {
-    throw InputError(material.empty() ? std::string("no successful fit to export")
-                                      : "no successful fit of material '" + material +
-                                            "' (materials: " + list + ")");
+    throw InputError(material.empty()
+                         ? std::string("no successful fit to export")
+                         : "no successful fit of material '" + material + "'" +
+                               SuggestionAfter(material, materials) + " (materials: " + list + ")");
   }
   std::string models;
   for (const auto* e : of) models += (models.empty() ? "" : ", ") + e->result.model;
@@ -64,7 +66,10 @@ const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
     for (const auto* e : of) {
       if (e->result.model == model) return *e;
     }
-    throw InputError("no fit of model '" + model + "' (fitted: " + models + ")");
+    std::vector<std::string> fitted;
+    for (const auto* e : of) fitted.push_back(e->result.model);
+    throw InputError("no fit of model '" + model + "'" + SuggestionAfter(model, fitted) +
+                     " (fitted: " + models + ")");
   }
   if (format == Format::kThreejs) {
     for (const auto* e : of) {

@@ -16,8 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "io/atomic_file.h"
 #include "core/error.h"
+#include "io/atomic_file.h"
+#include "io/exr_memory_stream.h"
 #include "io/input_file.h"
 
 namespace brdfit {
@@ -86,23 +87,23 @@ void WriteRgbExr(const std::filesystem::path& path, const RgbImage& image,
     }
     header.insert(name, Imf::StringAttribute(value));
   }
-  WriteFileAtomically(path, [&](const std::filesystem::path& tmp) {
-    try {
-      Imf::OutputFile file(tmp.c_str(), header);
-      Imf::FrameBuffer fb;
-      // The slices only read from the buffer; OpenEXR's Slice takes a non-const pointer.
-      char* base = reinterpret_cast<char*>(const_cast<float*>(image.rgb.data()));
-      const std::size_t xs = 3 * sizeof(float);
-      const std::size_t ys = xs * image.width;
-      for (int c = 0; c < 3; ++c) {
-        fb.insert(kChannels[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
-      }
-      file.setFrameBuffer(fb);
-      file.writePixels(image.height);
-    } catch (const std::exception& e) {
-      throw OutputError(path, std::string("writing OpenEXR failed: ") + e.what());
+  ExrMemoryOStream stream(path.string());
+  try {
+    Imf::OutputFile file(stream, header);  // its destructor writes the line-offset table
+    Imf::FrameBuffer fb;
+    // The slices only read from the buffer; OpenEXR's Slice takes a non-const pointer.
+    char* base = reinterpret_cast<char*>(const_cast<float*>(image.rgb.data()));
+    const std::size_t xs = 3 * sizeof(float);
+    const std::size_t ys = xs * image.width;
+    for (int c = 0; c < 3; ++c) {
+      fb.insert(kChannels[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
     }
-  });
+    file.setFrameBuffer(fb);
+    file.writePixels(image.height);
+  } catch (const std::exception& e) {
+    throw OutputError(path, std::string("writing OpenEXR failed: ") + e.what());
+  }
+  WriteBytesAtomically(path, stream.bytes().data(), stream.bytes().size());
 }
 
 RgbImage ReadRgbExr(const std::filesystem::path& path, ExrAttributes* attributes) {

@@ -40,10 +40,22 @@ std::string HolderOf(int fd) {
 OutputLock::OutputLock(const fs::path& output) : lock_path_(LockPathFor(output)) {
   // Retry when the file we locked was unlinked by its previous holder in between.
   for (int attempt = 0; attempt < 100; ++attempt) {
-    const int fd = ::open(lock_path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    // O_NOFOLLOW: a symbolic link planted under the lock's name would have the pid written
+    // through it into whatever it points to (an input, another user's file).
+    const int fd = ::open(lock_path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
     if (fd < 0) {
+      const int err = errno;
       throw OutputError(output, "cannot create lock file " + lock_path_.string() + ": " +
-                                    std::strerror(errno));
+                                    (err == ELOOP ? std::string("it is a symbolic link (remove it)")
+                                                  : std::strerror(err)));
+    }
+    // Only a file of its own: a hard link to another file would be truncated by the pid.
+    struct stat own {};
+    if (::fstat(fd, &own) != 0 || !S_ISREG(own.st_mode) || own.st_nlink != 1) {
+      ::close(fd);
+      throw OutputError(output, "the lock file " + lock_path_.string() +
+                                    " is not a regular file of its own (a hard link or a special "
+                                    "file); remove it");
     }
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
       const int err = errno;

@@ -133,7 +133,13 @@ std::vector<FitReportEntry> ReadFitParamsJson(const fs::path& path) {
   }
   std::vector<FitReportEntry> out;
   for (std::size_t i = 0; i < j["fits"].size(); ++i) {
-    out.push_back(Entry(path, j["fits"][i], fmt::format("fits[{}]", i)));
+    const std::string where = fmt::format("fits[{}]", i);
+    try {
+      out.push_back(Entry(path, j["fits"][i], where));
+    } catch (const nlohmann::json::exception& e) {
+      // A member of another type than the reader expects: named with the file and the fit.
+      throw InputError(path, where + ": a member of the wrong type (" + e.what() + ")");
+    }
   }
   return out;
 }

@@ -15,8 +15,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "io/atomic_file.h"
 #include "core/error.h"
+#include "io/atomic_file.h"
+#include "io/exr_memory_stream.h"
 
 namespace brdfit {
 namespace {
@@ -91,27 +92,27 @@ Image ReadPng(const std::filesystem::path& path) {
 }
 
 void WriteExr(const std::filesystem::path& path, const Image& linear) {
-  WriteFileAtomically(path, [&](const std::filesystem::path& tmp) {
-    try {
-      Imf::Header header(linear.width, linear.height);
-      header.compression() = Imf::ZIP_COMPRESSION;
-      const char* names[4] = {"R", "G", "B", "A"};
-      for (const char* n : names) header.channels().insert(n, Imf::Channel(Imf::FLOAT));
-      Imf::FrameBuffer fb;
-      const size_t xs = 4 * sizeof(float), ys = xs * static_cast<size_t>(linear.width);
-      for (int c = 0; c < 4; ++c) {
-        fb.insert(names[c], Imf::Slice(Imf::FLOAT,
-                                       const_cast<char*>(reinterpret_cast<const char*>(
-                                           linear.rgba.data() + c)),
-                                       xs, ys));
-      }
-      Imf::OutputFile out(tmp.c_str(), header);
-      out.setFrameBuffer(fb);
-      out.writePixels(linear.height);
-    } catch (const std::exception& e) {
-      throw OutputError(path, std::string("OpenEXR: ") + e.what());
+  ExrMemoryOStream stream(path.string());  // io/exr_memory_stream.h: checked writes
+  try {
+    Imf::Header header(linear.width, linear.height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    const char* names[4] = {"R", "G", "B", "A"};
+    for (const char* n : names) header.channels().insert(n, Imf::Channel(Imf::FLOAT));
+    Imf::FrameBuffer fb;
+    const size_t xs = 4 * sizeof(float), ys = xs * static_cast<size_t>(linear.width);
+    for (int c = 0; c < 4; ++c) {
+      fb.insert(names[c],
+                Imf::Slice(Imf::FLOAT,
+                           const_cast<char*>(reinterpret_cast<const char*>(linear.rgba.data() + c)),
+                           xs, ys));
     }
-  });
+    Imf::OutputFile out(stream, header);  // its destructor writes the line-offset table
+    out.setFrameBuffer(fb);
+    out.writePixels(linear.height);
+  } catch (const std::exception& e) {
+    throw OutputError(path, std::string("OpenEXR: ") + e.what());
+  }
+  WriteBytesAtomically(path, stream.bytes().data(), stream.bytes().size());
 }
 
 Image ReadExr(const std::filesystem::path& path) {

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "core/error.h"
+#include "core/suggest.h"
 #include "io/hdf5_util.h"
 #include "io/input_file.h"
 #include "io/nbrdf_forward.h"
@@ -137,6 +138,11 @@ NbrdfNetwork ReadNbrdf(const fs::path& zip, const std::string& material) {
   const std::string member = kMemberDir + material + kMemberExt;
   if (zip_name_locate(z.get(), member.c_str(), 0) < 0) {
     const auto names = Materials(zip, z.get());
+    if (const std::string hint = DidYouMean(material, names); !hint.empty()) {
+      throw InputError(zip, fmt::format("no material '{}': {} (brdfit synth --list-nbrdf lists "
+                                        "the archive's {})",
+                                        material, hint, names.size()));
+    }
     std::string list;
     for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
     throw InputError(zip, fmt::format("no material '{}' (the archive has {}: {})", material,

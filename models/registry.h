@@ -65,6 +65,13 @@ inline const ModelInfo* FindModel(std::string_view name) {
   return nullptr;
 }
 
+// Every registered name, in the registry's order.
+inline std::vector<std::string> AllModelNames() {
+  std::vector<std::string> names;
+  for (const auto& m : AllModels()) names.push_back(m.name);
+  return names;
+}
+
 // Comma-separated list of every registered name, for error messages.
 inline std::string ModelNames() {
   std::string s;

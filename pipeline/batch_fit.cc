@@ -18,6 +18,7 @@
 #include "core/error.h"
 #include "core/model_choice.h"
 #include "core/provenance.h"
+#include "core/suggest.h"
 #include "fit/fitter.h"
 #include "fit/prepare_cache.h"
 #include "models/registry.h"
@@ -57,12 +58,14 @@ struct InputState {
   std::atomic<int> remaining{0};
 };
 
-// The report's entries, or none when it does not exist or `force` discards it.
+// The report's entries (none when it does not exist). `force` redoes this run's fits; it does
+// not drop the report's other fits: only a report that cannot be read is replaced whole.
 std::vector<FitReportEntry> ReadKept(const fs::path& report, bool force) {
-  if (force || !fs::exists(report)) return {};
+  if (!fs::exists(report)) return {};
   try {
     return ReadFitReport(report);
   } catch (const InputError& e) {
+    if (force) return {};
     throw InputError(report, std::string("exists but is not a readable fit report (use --force "
                                          "to overwrite): ") +
                                  e.what());
@@ -197,7 +200,8 @@ std::vector<std::string> ResolveModelNames(const std::vector<std::string>& reque
     if (!IsFittable(name)) {
       std::string known;
       for (const auto& k : FittableModels()) known += (known.empty() ? "" : ", ") + k;
-      throw InputError("unknown model '" + n + "' (known: " + known + ")");
+      throw InputError("unknown model '" + n + "'" + SuggestionAfter(n, FittableModels()) +
+                       " (known: " + known + ")");
     }
     if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
   }
@@ -256,13 +260,24 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
   if (req.on_report_written) req.on_report_written(kept.size());  // reliability hook
   const BatchHold hold = BatchHold::FromEnvironment();            // tests only (batch_hold.h)
   hold.HoldAt(0);
-  CheckKeptMaterials(kept, inputs, keys, req.report);
   BatchFitResult result;
-  const std::set<std::string> changed = ChangedSources(kept, inputs, keys, &result);
   std::set<std::tuple<std::string, std::string, std::string>> done;
-  for (const auto& e : kept) {
-    if (!e.result.Failed() && !changed.count(e.material)) {
-      done.insert({e.material, e.result.model, e.options});
+  if (req.force) {
+    // Every fit of the run is redone; entries of its keys from another table go (they would
+    // be mistaken for this run's material).
+    std::map<std::string, const std::string*> source_of;
+    for (std::size_t f = 0; f < inputs.size(); ++f) source_of[keys[f]] = &inputs[f];
+    std::erase_if(kept, [&](const FitReportEntry& e) {
+      const auto it = source_of.find(e.material);
+      return it != source_of.end() && e.source != *it->second;
+    });
+  } else {
+    CheckKeptMaterials(kept, inputs, keys, req.report);
+    const std::set<std::string> changed = ChangedSources(kept, inputs, keys, &result);
+    for (const auto& e : kept) {
+      if (!e.result.Failed() && !changed.count(e.material)) {
+        done.insert({e.material, e.result.model, e.options});
+      }
     }
   }
   // The shard's slice of the work list, before resuming: it never depends on what is done.

@@ -58,7 +58,7 @@ struct BatchFitRequest {
   SampleOptions samples;
   FitOptions fit;
   std::filesystem::path report;  // resumed from when it exists, and written
-  bool force = false;            // redo fits the report already holds
+  bool force = false;  // redo this run's fits even where the report holds them (others stay)
   bool timings = true;           // false: no timings in the report (byte-identical reruns)
   int jobs = 1;                  // fits in parallel
   // Only this shard's slice of the (input x model run) work list (pipeline/shard.h). A material

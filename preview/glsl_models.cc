@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "core/error.h"
+#include "core/suggest.h"
 #include "models/catalog.h"
 #include "models/registry.h"
 #include "preview/glsl_microfacet.h"
@@ -61,7 +62,9 @@ std::vector<GlslLobe> GlslLobes(const std::string& model_name) {
     }
   });
   if (!found) {
-    throw InputError("unknown model '" + model_name + "' (known: " + ModelNames() + ")");
+    throw InputError("unknown model '" + model_name + "'" +
+                     SuggestionAfter(model_name, AllModelNames()) + " (known: " + ModelNames() +
+                     ")");
   }
   for (const auto& lobe : *found) {
     bool embedded = false;

@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/factor_form.h"
+#include "core/suggest.h"
 #include "io/input_file.h"
 #include "io/nbrdf.h"
 #include "io/unique_keys_json.h"
@@ -123,10 +124,13 @@ class Reader {
     if (d > hi) Fail("'" + k + "' must be <= " + Fmt(hi));
     return d;
   }
+  // A unit vector along a finite non-zero one. Scaled by its largest component first: the
+  // length of (1e154, 1e154, 1e154) overflows, and normalizing by it gave a zero direction.
   Vec3 Direction(const std::string& k, const Vec3& def) {
     const Vec3 d = Vector(k, def);
-    if (!(Length(d) > 0)) Fail("'" + k + "' must be a non-zero vector");
-    return Normalize(d);
+    const double m = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+    if (!(m > 0)) Fail("'" + k + "' must be a non-zero vector");
+    return Normalize(Vec3{d.x / m, d.y / m, d.z / m});
   }
   Vec3 Colour(const std::string& k, const Vec3& def = {1, 1, 1}) {
     const Vec3 c = Vector(k, def);
@@ -257,7 +261,10 @@ MaterialSpec ParseMaterial(Reader r, const std::string& name) {
     m.kind = MaterialKind::kAnalytic;
     m.model = r.RequiredString("model");
     const ModelInfo* model = FindModel(m.model);
-    if (!model) r.Fail("unknown model '" + m.model + "' (known: " + ModelNames() + ")");
+    if (!model) {
+      r.Fail("unknown model '" + m.model + "'" + SuggestionAfter(m.model, AllModelNames()) +
+             " (known: " + ModelNames() + ")");
+    }
     m.fit_report = r.Path("fit_report");
     m.fit_material = r.String("fit_material", "");
     m.fit_table = r.Path("fit_table");

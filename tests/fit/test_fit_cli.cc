@@ -102,6 +102,18 @@ TEST_F(FitCli, SameOutputWithOneOrTwoJobsAndResumes) {
   // A new model is added next to the kept entries.
   ASSERT_EQ(RunCli("fit " + P("a.h5") + " --model ward -q --no-timings -o " + P("r1.h5")), 0);
   EXPECT_EQ(ReadFitReport(P("r1.h5")).size(), 5u);
+  // --force redoes this run's fits only: the report's other fits (b's, a's other models) stay.
+  std::string force_log;
+  ASSERT_EQ(
+      RunCli("fit " + P("a.h5") + " --model ggx --force --no-timings -o " + P("r1.h5"), &force_log),
+      0);
+  EXPECT_NE(force_log.find("1 fits, 0 skipped"), std::string::npos) << force_log;
+  EXPECT_EQ(ReadFitReport(P("r1.h5")).size(), 5u);
+  // A report that cannot be read is refused, and replaced with --force.
+  std::ofstream(P("r3.h5")) << "not a report";
+  EXPECT_EQ(RunCli("fit " + P("a.h5") + " --model ggx -q -o " + P("r3.h5")), 2);
+  ASSERT_EQ(RunCli("fit " + P("a.h5") + " --model ggx -q --force -o " + P("r3.h5")), 0);
+  EXPECT_EQ(ReadFitReport(P("r3.h5")).size(), 1u);
 }
 
 // `--json -`: the parameters JSON is the standard output (the same bytes as --json FILE); the

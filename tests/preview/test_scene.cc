@@ -97,6 +97,12 @@ TEST(Scene, EveryNumberIsInItsDocumentedRange) {
   ExpectError(scene("", "", "", R"(, "display": {"exposure": 1e-300})"), "'exposure' must be >=");
   ExpectError(scene("", "", "", R"(, "image": {"background": [1e300, 0, 0]})"),
               "'background' must be <= 1e+06");
+  // A direction is any finite non-zero vector: a huge one is still a direction.
+  const Scene huge = ParseScene(
+      R"({"materials": {"m": {"type": "analytic", "model": "ggx"}}, "objects": [{"material": "m"}],
+          "lights": [{"type": "directional", "direction": [1e154, 1e154, 1e154]}]})",
+      "huge.json");
+  EXPECT_NEAR(huge.lights[0].direction.z, 1 / std::sqrt(3.0), 1e-15);
   // In range but nothing to see: every object beyond the far plane.
   ExpectError(scene(R"("position": [0, 0, 500], "far": 100)", "", ""),
               "every object lies beyond the camera's 'far'");

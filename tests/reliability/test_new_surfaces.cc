@@ -7,6 +7,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -18,6 +19,7 @@
 #include "core/synth.h"
 #include "io/hdf5_table.h"
 #include "tests/scratch_dir.h"
+#include "tmpfs_mount.h"
 
 namespace brdfit {
 namespace {
@@ -47,8 +49,9 @@ class NewSurfaces : public ::testing::Test {
         dir_ / "factor.log");
     ASSERT_EQ(r.code, 0) << r.log;
   }
-  void EditSidecar(const fs::path& sidecar, const std::function<void(nlohmann::json&)>& edit) {
-    nlohmann::json j = nlohmann::json::parse(ReadAll(sidecar));
+  void EditSidecar(const fs::path& sidecar,
+                   const std::function<void(nlohmann::ordered_json&)>& edit) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::parse(ReadAll(sidecar));
     edit(j);
     std::ofstream(sidecar) << j.dump();
   }
@@ -107,13 +110,15 @@ TEST_F(NewSurfaces, MergeRefusesDamagedFactorFoldersNamingTheFile) {
        "t.q.exr", "not an OpenEXR file"},
       {"wrong-version",
        [&](const fs::path& d) {
-         EditSidecar(d / "t.factor.json", [](nlohmann::json& j) { j["format_version"] = 99; });
+         EditSidecar(d / "t.factor.json",
+                     [](nlohmann::ordered_json& j) { j["format_version"] = 99; });
        },
        "t.factor.json", "unsupported format_version 99"},
       {"self-reference",
        [&](const fs::path& d) {
-         EditSidecar(d / "t.factor.json",
-                     [](nlohmann::json& j) { j["textures"]["p"]["file"] = "t.factor.json"; });
+         EditSidecar(d / "t.factor.json", [](nlohmann::ordered_json& j) {
+           j["textures"]["p"]["file"] = "t.factor.json";
+         });
        },
        "t.factor.json", "not an OpenEXR file"},
       {"swapped-textures",
@@ -126,7 +131,7 @@ TEST_F(NewSurfaces, MergeRefusesDamagedFactorFoldersNamingTheFile) {
       {"oversized-texture",
        [&](const fs::path& d) {
          EditSidecar(d / "t.factor.json",
-                     [](nlohmann::json& j) { j["textures"]["q"]["width"] = 9; });
+                     [](nlohmann::ordered_json& j) { j["textures"]["q"]["width"] = 9; });
        },
        "t.q.exr", "image is 8 x 8, the sidecar t.factor.json says 9 x 8"},
   };
@@ -153,8 +158,9 @@ TEST_F(NewSurfaces, MergeRefusesDamagedFactorFoldersNamingTheFile) {
 TEST_F(NewSurfaces, ReportSaysWhenTheNamedTableIsMissingOrNotAFile) {
   Factor(dir_ / "f");
   const fs::path sidecar = dir_ / "f" / "t.factor.json";
-  EditSidecar(sidecar,
-              [&](nlohmann::json& j) { j["source"]["file"] = (dir_ / "gone.h5").string(); });
+  EditSidecar(sidecar, [&](nlohmann::ordered_json& j) {
+    j["source"]["file"] = (dir_ / "gone.h5").string();
+  });
   CliRun r = Brdfit({"report", sidecar.string(), "-o", (dir_ / "r.html").string()}, dir_ / "r.log");
   EXPECT_EQ(r.code, 0) << r.log;
   EXPECT_THAT(r.log,
@@ -164,7 +170,7 @@ TEST_F(NewSurfaces, ReportSaysWhenTheNamedTableIsMissingOrNotAFile) {
 
   for (const char* device : {"/dev/zero", "/dev/null"}) {
     SCOPED_TRACE(device);
-    EditSidecar(sidecar, [&](nlohmann::json& j) { j["source"]["file"] = device; });
+    EditSidecar(sidecar, [&](nlohmann::ordered_json& j) { j["source"]["file"] = device; });
     const fs::path html = dir_ / "d.html";
     r = Brdfit({"report", sidecar.string(), "-o", html.string()}, dir_ / "d.log");
     EXPECT_EQ(r.code, 2) << r.log;
@@ -203,6 +209,126 @@ TEST_F(NewSurfaces, RenderRefusesACameraOutsideItsRange) {
   EXPECT_EQ(r.code, 2) << r.log;
   EXPECT_THAT(r.log, HasSubstr("far.json: camera: 'position' must be within 1e+06"));
   EXPECT_FALSE(fs::exists(dir_ / "far.png"));
+}
+
+// A fits JSON whose member has another type than the reader expects is refused naming the file
+// and the fit (it was the JSON library's bare type_error); control characters in a name are
+// escaped in the message, never sent to the terminal.
+TEST_F(NewSurfaces, FitsJsonOfTheWrongTypeNamesTheFileAndMessagesEscapeControls) {
+  const fs::path json = dir_ / "fits.json";
+  CliRun r = Brdfit({"fit", table_.string(), "--model", "ggx", "-q", "--json", json.string(), "-o",
+                     (dir_ / "fits.h5").string()},
+                    dir_ / "fit.log");
+  ASSERT_EQ(r.code, 0) << r.log;
+  // ordered_json: the parameters' order is the model's.
+  nlohmann::ordered_json j = nlohmann::ordered_json::parse(ReadAll(json));
+  j["fits"][0]["chosen"] = "yes";
+  std::ofstream(dir_ / "typed.json") << j.dump();
+  r = Brdfit({"export", (dir_ / "typed.json").string(), "--format", "gltf", "-o",
+              (dir_ / "x.gltf").string()},
+             dir_ / "typed.log");
+  EXPECT_EQ(r.code, 2) << r.log;
+  EXPECT_THAT(r.log,
+              HasSubstr((dir_ / "typed.json").string() + ": fits[0]: a member of the wrong type"));
+  EXPECT_FALSE(fs::exists(dir_ / "x.gltf"));
+  // A model name with an escape sequence and a newline: one line, the bytes escaped.
+  j = nlohmann::ordered_json::parse(ReadAll(json));
+  j["fits"][0]["model"] = "\x1b]0;pwn\x07\nforged line";
+  std::ofstream(dir_ / "esc.json") << j.dump();
+  r = Brdfit({"export", (dir_ / "esc.json").string(), "--format", "gltf", "-o",
+              (dir_ / "y.gltf").string()},
+             dir_ / "esc.log");
+  EXPECT_EQ(r.code, 2) << r.log;
+  EXPECT_THAT(r.log, HasSubstr("\\x1b]0;pwn\\x07\\x0aforged line"));
+  EXPECT_EQ(r.log.find('\x1b'), std::string::npos);
+  EXPECT_EQ(std::count(r.log.begin(), r.log.end(), '\n'), 1) << r.log;
+}
+
+// The report's lock file (".<report>.lock", its pid written into it) is never written through
+// a link or onto an input: a planted symbolic link truncated the input it pointed to.
+TEST_F(NewSurfaces, TheReportLockIsNeverWrittenThroughALinkOrOntoAnInput) {
+  const std::string input = ReadAll(table_);
+  const auto fit = [&](const fs::path& report, const std::string& tag) {
+    return Brdfit({"fit", table_.string(), "--model", "ggx", "-q", "-o", report.string()},
+                  dir_ / (tag + ".log"));
+  };
+  // A symbolic link to the input under the lock's name.
+  fs::create_symlink(table_, dir_ / ".a.h5.lock");
+  CliRun r = fit(dir_ / "a.h5", "a");
+  EXPECT_EQ(r.code, 2) << r.log;
+  EXPECT_THAT(r.log, HasSubstr(".a.h5.lock"));
+  EXPECT_TRUE(ReadAll(table_) == input) << "the input was written through the lock's link";
+  // A symbolic link to another file.
+  std::ofstream(dir_ / "precious.txt") << "keep me";
+  fs::create_symlink(dir_ / "precious.txt", dir_ / ".b.h5.lock");
+  r = fit(dir_ / "b.h5", "b");
+  EXPECT_EQ(r.code, 2) << r.log;
+  EXPECT_THAT(r.log, HasSubstr("symbolic link"));
+  EXPECT_EQ(ReadAll(dir_ / "precious.txt"), "keep me");
+  // A hard link to another file.
+  fs::create_hard_link(dir_ / "precious.txt", dir_ / ".c.h5.lock");
+  r = fit(dir_ / "c.h5", "c");
+  EXPECT_EQ(r.code, 2) << r.log;
+  EXPECT_THAT(r.log, HasSubstr("not a regular file of its own"));
+  EXPECT_EQ(ReadAll(dir_ / "precious.txt"), "keep me");
+  // An input named like the report's lock.
+  const fs::path odd = dir_ / ".d.h5.lock";
+  fs::copy_file(table_, odd);
+  r = Brdfit({"fit", odd.string(), "--model", "ggx", "-q", "-o", (dir_ / "d.h5").string()},
+             dir_ / "d.log");
+  EXPECT_EQ(r.code, 2) << r.log;
+  EXPECT_THAT(r.log, HasSubstr("the report's lock"));
+  EXPECT_TRUE(ReadAll(odd) == input);
+  for (const char* report : {"a.h5", "b.h5", "c.h5", "d.h5"})
+    EXPECT_FALSE(fs::exists(dir_ / report));
+}
+
+// OpenEXR outputs on a full disk: exit 2 naming the file, nothing under the final name (the
+// library's own file stream did not check its last writes: a 0-byte .exr with exit 0), and a
+// factorization folder rewritten there keeps its previous textures whole.
+TEST_F(NewSurfaces, OpenExrOutputsOnAFullDiskFailWithNothingWritten) {
+  std::ofstream(dir_ / "s.json") << R"({"image": {"width": 16, "height": 16},
+             "materials": {"m": {"type": "analytic", "model": "lambert+ggx"}},
+             "objects": [{"material": "m"}]})";
+  testing_cli::TmpfsMount disk(dir_ / "disk", 24);
+  if (!disk.mounted()) GTEST_SKIP() << disk.why();
+  // A full disk and a small file (16 x 16, unlit: it compresses to a few hundred bytes):
+  // OpenEXR's file stream buffered all of it and lost it at close, unchecked.
+  {
+    std::ofstream fill(disk.path() / "filler", std::ios::binary);
+    const std::string block(1024, '\0');
+    for (int i = 0; i < 64 && fill; ++i) fill << block;
+  }
+  const fs::path exr = disk.path() / "r.exr";
+  CliRun r = Brdfit({"render", (dir_ / "s.json").string(), "-o", exr.string()}, dir_ / "r.log");
+  EXPECT_EQ(r.code, 2) << r.log;
+  EXPECT_THAT(r.log, HasSubstr(exr.string()));
+  EXPECT_FALSE(fs::exists(exr)) << "a cut EXR under the final name";
+  // A factorization rewritten on the full disk: its previous files stay whole and readable.
+  fs::remove(disk.path() / "filler");
+  const fs::path fac = disk.path() / "fac";
+  r = Brdfit(
+      {"factor", table_.string(), "--param", "mccool", "--res", "8", "-q", "-o", fac.string()},
+      dir_ / "f1.log");
+  ASSERT_EQ(r.code, 0) << r.log;
+  {
+    std::ofstream fill(disk.path() / "filler", std::ios::binary);
+    const std::string block(1024, '\0');
+    for (int i = 0; i < 64 && fill; ++i) fill << block;
+  }
+  r = Brdfit({"factor", table_.string(), "--param", "mccool", "--res", "8", "--lambda", "1e-3",
+              "-q", "-o", fac.string()},
+             dir_ / "f2.log");
+  EXPECT_EQ(r.code, 2) << r.log;
+  EXPECT_THAT(r.log, HasSubstr("write failed"));
+  for (const auto& e : fs::directory_iterator(fac)) {
+    EXPECT_GT(fs::file_size(e.path()), 0u) << e.path() << ": an empty file under a final name";
+  }
+  // The folder still reads as a factorization (every file whole): it exports.
+  r = Brdfit({"export", (fac / "t.factor.json").string(), "--format", "threejs", "-o",
+              (dir_ / "x.mjs").string()},
+             dir_ / "x.log");
+  EXPECT_EQ(r.code, 0) << r.log;
 }
 
 }  // namespace
