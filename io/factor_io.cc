@@ -247,7 +247,15 @@ FactorFiles ReadFactorFiles(const std::filesystem::path& json_path) {
                                                 "the rank-{} factorization",
                                                 name, rank));
       }
-      const std::filesystem::path exr = json_path.parent_path() / t["file"].get<std::string>();
+      // A name in the sidecar's own folder: a path ("../x.exr", "/etc/...") would read a file
+      // the factorization does not own.
+      const std::string file = t["file"].get<std::string>();
+      if (file.empty() || std::filesystem::path(file).filename() != file || file.starts_with(".")) {
+        throw InputError(json_path, fmt::format("textures.{}.file '{}' is not a file name in the "
+                                                "sidecar's folder",
+                                                name, file));
+      }
+      const std::filesystem::path exr = json_path.parent_path() / file;
       tex.image = ReadRgbExr(exr, &tex.attributes);
       // A NaN or Inf texel would be drawn as such; the solver never writes one.
       for (std::size_t i = 0; i < tex.image.rgb.size(); ++i) {

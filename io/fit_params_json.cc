@@ -128,6 +128,13 @@ std::vector<FitReportEntry> ReadFitParamsJson(const fs::path& path) {
   if (!j.contains("format") || j["format"] != "brdfit-fit-params") {
     throw InputError(path, "not brdfit fit parameters (\"format\" is not \"brdfit-fit-params\")");
   }
+  if (!j.contains("format_version") || !j["format_version"].is_number_integer() ||
+      j["format_version"].get<std::int64_t>() != kFitParamsJsonVersion) {
+    throw InputError(path, fmt::format("format_version {} is not supported (this brdfit reads {})",
+                                       j.contains("format_version") ? j["format_version"].dump()
+                                                                    : std::string("(missing)"),
+                                       kFitParamsJsonVersion));
+  }
   if (!j.contains("fits") || !j["fits"].is_array()) {
     throw InputError(path, "\"fits\" is missing or not an array");
   }

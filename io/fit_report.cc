@@ -528,7 +528,7 @@ std::string FitParamsJson(std::vector<FitReportEntry> entries, bool run_details)
   }
   nlohmann::ordered_json root;
   root["format"] = "brdfit-fit-params";
-  root["format_version"] = 1;
+  root["format_version"] = kFitParamsJsonVersion;
   root["fits"] = fits;
   const RunProvenance run = CurrentRunProvenance(run_details);
   nlohmann::ordered_json prov = {{"brdfit_version", run.version}};

@@ -41,6 +41,8 @@ namespace brdfit {
 
 inline constexpr const char* kFitReportFormat = "brdfit-fits";
 inline constexpr int kFitReportVersion = 1;
+// The version of the fitted parameters' JSON ("brdfit-fit-params", FitParamsJson).
+inline constexpr int kFitParamsJsonVersion = 1;
 
 // The model name of an entry that is a factorization (McCool et al. 2001; factor/factor.h)
 // scored and chosen among the fits: it has no parameters, its textures are files.

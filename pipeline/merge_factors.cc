@@ -69,6 +69,7 @@ std::vector<std::string> PartFiles(const fs::path& part) {
     }
   }
   if (ec) throw InputError(part, "cannot be listed: " + ec.message());
+  if (names.empty()) throw InputError(part, "holds no factorization (no *.factor.json)");
   std::sort(names.begin(), names.end());
   names.erase(std::unique(names.begin(), names.end()), names.end());
   return names;
@@ -78,6 +79,18 @@ std::vector<std::string> PartFiles(const fs::path& part) {
 
 MergedFactors MergeFactorFolders(const fs::path& out, const std::vector<fs::path>& parts) {
   if (parts.empty()) throw InputError("merge: no factorization folder to merge");
+  // The output may not be a part or lie inside one: the merge would write into its input.
+  std::error_code ec0;
+  const fs::path out_abs = fs::weakly_canonical(fs::absolute(out), ec0);
+  for (const fs::path& part : parts) {
+    const fs::path part_abs = fs::weakly_canonical(fs::absolute(part), ec0);
+    const auto [p_end, o_it] =
+        std::mismatch(part_abs.begin(), part_abs.end(), out_abs.begin(), out_abs.end());
+    if (p_end == part_abs.end()) {
+      throw InputError(out, "is the part " + part.string() +
+                                " or inside it: merge into a folder outside every part");
+    }
+  }
   std::map<std::string, std::size_t> from;  // file name -> part
   std::map<std::string, std::string> bytes;
   MergedFactors m;

@@ -56,24 +56,31 @@ TEST(ExportInputs, BadInputsAreRefusedNamingTheFile) {
   ExpectRefused(dir.path() / "garbage.json", "not a JSON object");
   Write(dir.path() / "other.json", R"({"format": "something-else", "fits": []})");
   ExpectRefused(dir.path() / "other.json", "brdfit-fit-params");
-  Write(dir.path() / "nofits.json", R"({"format": "brdfit-fit-params"})");
+  Write(dir.path() / "nofits.json", R"({"format": "brdfit-fit-params", "format_version": 1})");
   ExpectRefused(dir.path() / "nofits.json", "\"fits\"");
+  for (const char* version : {"", R"(, "format_version": 9)", R"(, "format_version": "1")"}) {
+    Write(dir.path() / "version.json",
+          std::string(R"({"format": "brdfit-fit-params", "fits": [])") + version + "}");
+    ExpectRefused(dir.path() / "version.json", "is not supported (this brdfit reads 1)");
+  }
   Write(dir.path() / "bounds.json",
-        R"({"format": "brdfit-fit-params", "fits": [{"model": "lambert+ggx-hc",
+        R"({"format": "brdfit-fit-params", "format_version": 1, "fits": [{"model": "lambert+ggx-hc",
             "status": "converged", "params": {"lambert.kd_r": 0.1, "lambert.kd_g": 0.1,
             "lambert.kd_b": 0.1, "ggx-hc.ks_r": 0.1, "ggx-hc.ks_g": 0.1, "ggx-hc.ks_b": 0.1,
             "ggx-hc.alpha": 7}}]})");
   ExpectRefused(dir.path() / "bounds.json", "ggx-hc.alpha");
-  Write(dir.path() / "names.json",
-        R"({"format": "brdfit-fit-params", "fits": [{"model": "ue4", "status": "converged",
+  Write(
+      dir.path() / "names.json",
+      R"({"format": "brdfit-fit-params", "format_version": 1, "fits": [{"model": "ue4", "status": "converged",
             "params": {"base_r": 0.1}}]})");
   ExpectRefused(dir.path() / "names.json", "params");
   Write(dir.path() / "model.json",
-        R"({"format": "brdfit-fit-params", "fits": [{"model": "nonsense",
+        R"({"format": "brdfit-fit-params", "format_version": 1, "fits": [{"model": "nonsense",
             "status": "converged", "params": {}}]})");
   ExpectRefused(dir.path() / "model.json", "nonsense");
-  Write(dir.path() / "type.json",
-        R"({"format": "brdfit-fit-params", "fits": [{"model": "ue4", "status": "converged",
+  Write(
+      dir.path() / "type.json",
+      R"({"format": "brdfit-fit-params", "format_version": 1, "fits": [{"model": "ue4", "status": "converged",
             "params": {"base_r": "red"}}]})");
   ExpectRefused(dir.path() / "type.json", "not a number");
 }

@@ -147,6 +147,32 @@ TEST_F(NewSurfaces, MergeRefusesDamagedFactorFoldersNamingTheFile) {
     EXPECT_THAT(r.log, HasSubstr(c.problem)) << r.log;
     EXPECT_FALSE(fs::exists(out)) << "a damaged part was merged";
   }
+  // A part that holds no factorization, and an output inside a part, are refused too.
+  fs::create_directories(dir_ / "empty");
+  CliRun e =
+      Brdfit({"merge", (dir_ / "m-empty").string(), (dir_ / "empty").string()}, dir_ / "empty.log");
+  EXPECT_EQ(e.code, 2) << e.log;
+  EXPECT_THAT(e.log, HasSubstr("holds no factorization"));
+  EXPECT_FALSE(fs::exists(dir_ / "m-empty"));
+  e = Brdfit({"merge", (good / "sub").string(), good.string()}, dir_ / "inside.log");
+  EXPECT_EQ(e.code, 2) << e.log;
+  EXPECT_THAT(e.log, HasSubstr("inside it: merge into a folder outside every part"));
+  EXPECT_FALSE(fs::exists(good / "sub"));
+  // A sidecar naming a texture outside its folder is refused by every reader (export too).
+  const fs::path outside = dir_ / "outside";
+  fs::copy(good, outside);
+  fs::create_directories(dir_ / "elsewhere");
+  fs::copy_file(good / "t.p.exr", dir_ / "elsewhere" / "t.p.exr");
+  EditSidecar(outside / "t.factor.json", [](nlohmann::ordered_json& j) {
+    j["textures"]["p"]["file"] = "../elsewhere/t.p.exr";
+  });
+  e = Brdfit({"export", (outside / "t.factor.json").string(), "--format", "threejs", "-o",
+              (dir_ / "o.mjs").string()},
+             dir_ / "outside.log");
+  EXPECT_EQ(e.code, 2) << e.log;
+  EXPECT_THAT(e.log, HasSubstr("textures.p.file '../elsewhere/t.p.exr' is not a file name in the "
+                               "sidecar's folder"));
+  EXPECT_FALSE(fs::exists(dir_ / "o.mjs"));
   // The undamaged folder merges.
   const CliRun r = Brdfit({"merge", (dir_ / "m").string(), good.string()}, dir_ / "ok.log");
   EXPECT_EQ(r.code, 0) << r.log;
