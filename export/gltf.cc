@@ -1,5 +1,6 @@
 #include "export/gltf.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
@@ -44,6 +45,25 @@ Json ProvenanceJson(const Provenance& p) {
       "Viewer and Filament evaluate glTF; Appendix B of the glTF 2.0 spec prints the separable "
       "form, under which the lobe differs towards grazing (docs/exports.md)";
   return j;
+}
+
+// A file name as a relative URI reference (glTF 2.0, section 3.3.1 "URIs"; RFC 3986, sections
+// 2.1 and 2.3): every byte but the unreserved characters percent-encoded, so '#', '?', '%' or a
+// space in the name stay part of the path instead of starting a fragment or a query.
+std::string UriPathSegment(const std::string& name) {
+  std::string out;
+  for (const char ch : name) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (std::isalnum(c) || ch == '-' || ch == '.' || ch == '_' || ch == '~') {
+      out += ch;
+    } else {
+      static const char* kHex = "0123456789ABCDEF";
+      out += '%';
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -130,7 +150,7 @@ GltfFiles BuildGltf(const GltfPbr& g, const Provenance& p, const std::string& bi
   const std::size_t pos_bytes = positions.size(), nrm_bytes = normals.size(),
                     idx_bytes = indices.size();
   j["buffers"] = Json::array({{{"byteLength", f.bin.size()}}});
-  if (!bin_uri.empty()) j["buffers"][0]["uri"] = bin_uri;
+  if (!bin_uri.empty()) j["buffers"][0]["uri"] = UriPathSegment(bin_uri);
   j["bufferViews"] = Json::array(
       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", pos_bytes}, {"target", 34962}},
        {{"buffer", 0}, {"byteOffset", pos_bytes}, {"byteLength", nrm_bytes}, {"target", 34962}},

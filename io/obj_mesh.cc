@@ -3,8 +3,12 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <map>
+#include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "io/input_file.h"
@@ -14,6 +18,83 @@ namespace {
 
 bool Finite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// A number token of an OBJ line: the whole token, finite.
+bool FiniteNumber(const std::string& t) {
+  if (t.empty()) return false;
+  char* end = nullptr;
+  const double v = std::strtod(t.c_str(), &end);
+  return end == t.c_str() + t.size() && std::isfinite(v);
+}
+
+// A face corner index: a non-zero integer that fits an int (negative: relative to the end).
+bool CornerIndex(const std::string& t, bool may_be_empty) {
+  if (t.empty()) return may_be_empty;
+  std::size_t i = t[0] == '-' ? 1 : 0;
+  if (i == t.size() || t.size() - i > 10) return false;
+  for (std::size_t k = i; k < t.size(); ++k) {
+    if (t[k] < '0' || t[k] > '9') return false;
+  }
+  const long long v = std::stoll(t);
+  return v != 0 && v >= -2147483647LL && v <= 2147483647LL;
+}
+
+// The lines tinyobjloader reads leniently, checked first (Wavefront OBJ, "B1. Object Files"):
+// it read "v a b c" as (0, 0, 0), an index past 2^31 as another vertex, and "vn 0 0 0" or NaN
+// normals as directions. Throws InputError naming the file and the line.
+void CheckObjLines(const std::string& text, const std::filesystem::path& source) {
+  std::size_t line_no = 0, pos = 0;
+  while (pos < text.size()) {
+    const std::size_t eol = std::min(text.find('\n', pos), text.size());
+    std::string line = text.substr(pos, eol - pos);
+    pos = eol + 1;
+    ++line_no;
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+    std::vector<std::string> tok;
+    std::size_t i = 0;
+    while (i < line.size()) {
+      while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+      const std::size_t start = i;
+      while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+      if (i > start) tok.push_back(line.substr(start, i - start));
+    }
+    if (tok.empty()) continue;
+    const auto fail = [&](const std::string& problem) {
+      throw InputError(source, "line " + std::to_string(line_no) + ": " + problem);
+    };
+    const std::string& key = tok[0];
+    const std::size_t n = tok.size() - 1;
+    if (key == "v" || key == "vn" || key == "vt") {
+      const std::size_t lo = key == "vt" ? 1 : 3, hi = key == "v" ? 7 : 3;
+      if (n < lo || n > hi)
+        fail("'" + key + "' takes " + std::to_string(lo) + " to " + std::to_string(hi) +
+             " numbers, not " + std::to_string(n));
+      for (std::size_t k = 1; k <= n; ++k) {
+        if (!FiniteNumber(tok[k]))
+          fail("'" + key + "' value '" + tok[k] + "' is not a finite number");
+      }
+      if (key == "vn" && std::strtod(tok[1].c_str(), nullptr) == 0 &&
+          std::strtod(tok[2].c_str(), nullptr) == 0 && std::strtod(tok[3].c_str(), nullptr) == 0) {
+        fail("'vn 0 0 0' is not a direction");
+      }
+    } else if (key == "f") {
+      if (n < 3) fail("a face needs at least 3 corners");
+      for (std::size_t k = 1; k <= n; ++k) {
+        const std::string& c = tok[k];
+        const std::size_t s1 = c.find('/'), s2 = s1 == std::string::npos ? s1 : c.find('/', s1 + 1);
+        const std::string v = c.substr(0, s1);
+        const std::string t = s1 == std::string::npos ? "" : c.substr(s1 + 1, s2 - s1 - 1);
+        const std::string nrm = s2 == std::string::npos ? "" : c.substr(s2 + 1);
+        if (!CornerIndex(v, false) || !CornerIndex(t, true) || !CornerIndex(nrm, true) ||
+            (s2 != std::string::npos && c.find('/', s2 + 1) != std::string::npos)) {
+          fail("face corner '" + c +
+               "' is not v, v/t, v//n or v/t/n with non-zero indices "
+               "within 2^31");
+        }
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -34,6 +115,7 @@ void Mesh::UpdateBounds() {
 }
 
 Mesh ParseObj(const std::string& text, const std::filesystem::path& source) {
+  CheckObjLines(text, source);
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;

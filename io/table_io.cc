@@ -52,6 +52,9 @@ Table LoadTable(const fs::path& path, LoadReport* report) {
 }
 
 void SaveTable(const Table& table, const fs::path& path, std::optional<TableFormat> format) {
+  if (path.native().find('\0') != std::string::npos) {
+    throw InputError("output path contains a NUL byte: " + PrintableExcerpt(path.native()));
+  }
   if (!format) format = TableFormatFromExtension(path);
   if (!format) {
     throw InputError(path,

@@ -3,6 +3,7 @@
 #include <cstdlib>
 
 #include "core/error.h"
+#include "io/input_file.h"
 #include "io/nbrdf.h"
 #include "io/table_io.h"
 #include "pipeline/cache_key.h"
@@ -51,6 +52,10 @@ std::vector<fs::path> InputFiles(const std::vector<std::string>& inputs) {
 }
 
 Table LoadInput(const std::string& input) {
+  // A NUL ends the path for the system: "t.h5\0x" would load t.h5 and record "t.h5\0x".
+  if (input.find('\0') != std::string::npos) {
+    throw InputError("input path contains a NUL byte: " + PrintableExcerpt(input));
+  }
   if (!IsNbrdfInput(input)) return LoadTable(input);
   const NbrdfNetwork net = ReadNbrdf(NbrdfArchive(), report::MaterialName(input));
   Table t = TabulateNbrdf(net, Grid::Merl(), 1).table;

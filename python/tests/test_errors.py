@@ -71,3 +71,14 @@ def test_fit_of_a_factorization_points_to_factor(small_table):
     with pytest.raises(brdfit.InputError) as e:
         brdfit.fit(small_table, model="factorization")
     assert "brdfit.factor" in str(e.value)
+
+
+def test_a_nul_byte_in_a_path_is_refused_not_cut(small_table_file, small_table, tmp_path):
+    # The system would read "t.h5\0evil" as t.h5 and brdfit would record the whole string.
+    with pytest.raises(brdfit.InputError) as e:
+        brdfit.load(str(small_table_file) + "\0evil")
+    assert "NUL byte" in str(e.value)
+    with pytest.raises(brdfit.InputError) as e:
+        small_table.save(str(tmp_path / "out.h5") + "\0x")
+    assert "NUL byte" in str(e.value)
+    assert not (tmp_path / "out.h5").exists()

@@ -2,11 +2,14 @@
 // told apart by content, and every bad input refused with the file named.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 #include "core/error.h"
+#include "export/gltf.h"
 #include "io/fit_params_json.h"
 #include "io/fit_report.h"
 #include "tests/scratch_dir.h"
@@ -83,6 +86,20 @@ TEST(ExportInputs, BadInputsAreRefusedNamingTheFile) {
       R"({"format": "brdfit-fit-params", "format_version": 1, "fits": [{"model": "ue4", "status": "converged",
             "params": {"base_r": "red"}}]})");
   ExpectRefused(dir.path() / "type.json", "not a number");
+}
+
+// The .gltf names its .bin by a relative URI: a file name with '#', '?', '%' or a space is
+// percent-encoded (RFC 3986), or a loader reads "a" and a fragment "b%41 c?.bin".
+TEST(ExportGltf, TheBufferUriIsPercentEncoded) {
+  exports::Provenance p;
+  p.material = "m";
+  const exports::GltfFiles f = exports::BuildGltf(exports::GltfPbr{}, p, "a#b%41 c?é.bin");
+  const auto j = nlohmann::json::parse(f.json);
+  EXPECT_EQ(j["buffers"][0]["uri"], "a%23b%2541%20c%3F%C3%A9.bin");
+  EXPECT_EQ(
+      nlohmann::json::parse(
+          exports::BuildGltf(exports::GltfPbr{}, p, "gold-paint_2.bin").json)["buffers"][0]["uri"],
+      "gold-paint_2.bin");
 }
 
 }  // namespace

@@ -100,6 +100,26 @@ TEST(MeshObj, BadFilesAreNamedWithTheProblem) {
   // Finite but so large that squared distances overflow (fuzz/regressions/mesh).
   const std::string large = ErrorOf("v 0 0 0\nv 1e300 0 0\nv 0 1 0\nf 1 2 3\n");
   EXPECT_NE(large.find("beyond 1e100"), std::string::npos) << large;
+  // Lines tinyobjloader read leniently are refused with their line number.
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  for (const auto& [obj, problem] : std::vector<std::pair<std::string, std::string>>{
+           {"v a b c\n" + tri + "f 2 3 4\n", "line 1: 'v' value 'a' is not a finite number"},
+           {tri + "f 1 2 99999999999999999999\n", "line 4: face corner '99999999999999999999'"},
+           {tri + "f 1 2 0\n", "line 4: face corner '0'"},
+           {tri + "f 1 2 3x\n", "line 4: face corner '3x'"},
+           {tri + "vn nan 0 1\nf 1//1 2//1 3//1\n", "line 4: 'vn' value 'nan'"},
+           {tri + "vn 0 0 0\nf 1//1 2//1 3//1\n", "line 4: 'vn 0 0 0' is not a direction"},
+           {tri + "vn 0 1\n", "line 4: 'vn' takes 3 to 3 numbers, not 2"},
+           {tri + "f 1 2\n", "line 4: a face needs at least 3 corners"},
+           {"v inf 0 0\n" + tri, "line 1: 'v' value 'inf' is not a finite number"}}) {
+    const std::string err = ErrorOf(obj);
+    EXPECT_NE(err.find("shape.obj: " + problem), std::string::npos) << obj << "\n -> " << err;
+  }
+  // Valid forms still read: v/t/n corners, negative indices, CRLF lines, comments.
+  const std::string ok =
+      "# c\r\nv 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nvt 0 0\r\nvn 0 0 1\r\n"
+      "f 1/1/1 2/1/1 -1/1/1\r\n";
+  EXPECT_EQ(ParseObj(ok, "ok.obj").indices.size(), 3u);
   // Placement that overflows is refused too.
   EXPECT_THROW(PlaceMesh(ParseObj(CubeObj(), "cube.obj"), {0, 0, 0}, 1e300, false), InputError);
   try {
