@@ -54,6 +54,11 @@ int RunFactorExport(const ExportOptions& o, exports::Format format) {
 
 int RunExport(const ExportOptions& o) {
   const exports::Format format = exports::FormatFromString(o.format);
+  if (o.out == "-") {
+    throw InputError(
+        "-o -: export writes files (a .gltf has its .bin beside it); give a file "
+        "name");
+  }
   if (IsFactorSidecar(o.fits)) return RunFactorExport(o, format);
   std::vector<PlannedOutput> outs = {{o.out, "-o"}};
   if (format == exports::Format::kGltf) {

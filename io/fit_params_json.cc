@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "io/input_file.h"
 #include "io/model_params.h"
+#include "io/unique_keys_json.h"
 #include "models/registry.h"
 
 namespace brdfit {
@@ -24,6 +25,22 @@ double Number(const fs::path& p, const nlohmann::json& j, const char* key,
   if (!j.contains(key)) return 0;
   if (!j[key].is_number()) throw InputError(p, where + "." + key + " is not a number");
   return j[key].get<double>();
+}
+
+// An error measure: a number >= 0 (0 when absent, as the writer leaves out what it lacks).
+double NonNegative(const fs::path& p, const nlohmann::json& j, const char* key,
+                   const std::string& where) {
+  const double v = Number(p, j, key, where);
+  if (!(v >= 0)) throw InputError(p, where + "." + key + " is negative");
+  return v;
+}
+
+// A member the writer always makes of `type`, when present.
+void CheckType(const fs::path& p, const nlohmann::json& j, const char* key,
+               nlohmann::json::value_t type, const char* type_name, const std::string& where) {
+  if (j.contains(key) && j[key].type() != type) {
+    throw InputError(p, where + "." + key + " is not " + type_name);
+  }
 }
 
 std::string String(const fs::path& p, const nlohmann::json& j, const char* key,
@@ -55,9 +72,16 @@ FitReportEntry Entry(const fs::path& p, const nlohmann::ordered_json& f, const s
       r.params.push_back(value.get<double>());
     }
   }
+  using T = nlohmann::json::value_t;
+  CheckType(p, fj, "at_bound", T::array, "an array of parameter names", where);
+  CheckType(p, fj, "metrics", T::object, "an object", where);
+  CheckType(p, fj, "chosen", T::boolean, "true or false", where);
+  CheckType(p, fj, "choice", T::string, "a string", where);
+  CheckType(p, fj, "options", T::object, "an object", where);
   r.at_bound.assign(r.params.size(), false);
-  if (fj.contains("at_bound") && fj["at_bound"].is_array()) {
+  if (fj.contains("at_bound")) {
     for (const auto& n : fj["at_bound"]) {
+      if (!n.is_string()) throw InputError(p, where + ".at_bound holds a non-name");
       for (std::size_t i = 0; i < r.param_names.size(); ++i) {
         if (n.is_string() && n.get<std::string>() == r.param_names[i]) r.at_bound[i] = true;
       }
@@ -96,20 +120,22 @@ FitReportEntry Entry(const fs::path& p, const nlohmann::ordered_json& f, const s
     const nlohmann::json& m = fj["metrics"];
     const std::string w = where + ".metrics";
     r.metrics.ok = !r.Failed();
-    r.metrics.log_rmse = Number(p, m, "log_rmse", w);
-    r.metrics.cbrt_rmse = Number(p, m, "cbrt_rmse", w);
-    r.metrics.rel_l2 = Number(p, m, "rel_l2", w);
+    r.metrics.log_rmse = NonNegative(p, m, "log_rmse", w);
+    r.metrics.cbrt_rmse = NonNegative(p, m, "cbrt_rmse", w);
+    r.metrics.rel_l2 = NonNegative(p, m, "rel_l2", w);
     r.metrics.weighting = String(p, m, "weighting", w);
     r.metrics.cutoff_deg = Number(p, m, "cutoff_deg", w);
-    if (m.contains("rendered") && m["rendered"].is_object()) {
+    CheckType(p, m, "rendered", T::object, "an object", w);
+    if (m.contains("rendered")) {
       const nlohmann::json& re = m["rendered"];
       RenderedError& out = r.metrics.rendered;
+      CheckType(p, re, "ok", T::boolean, "true or false", w + ".rendered");
       out.ok = re.value("ok", false);
       out.problem = String(p, re, "problem", w + ".rendered");
       out.psnr_db = Number(p, re, "psnr_db", w + ".rendered");
       out.psnr_srgb_db = Number(p, re, "psnr_srgb_db", w + ".rendered");
-      out.median_rel_error = Number(p, re, "median_rel_error", w + ".rendered");
-      out.p95_rel_error = Number(p, re, "p95_rel_error", w + ".rendered");
+      out.median_rel_error = NonNegative(p, re, "median_rel_error", w + ".rendered");
+      out.p95_rel_error = NonNegative(p, re, "p95_rel_error", w + ".rendered");
       out.num_lights = 1;  // computed (io/metrics_json.h RenderedErrorComputed)
     }
   }
@@ -123,6 +149,11 @@ FitReportEntry Entry(const fs::path& p, const nlohmann::ordered_json& f, const s
 
 std::vector<FitReportEntry> ReadFitParamsJson(const fs::path& path) {
   const std::vector<char> bytes = ReadWholeFile(path);
+  // A key twice (nlohmann keeps the last) is refused; malformed text is reported below.
+  try {
+    (void)ParseJsonUniqueKeys(std::string(bytes.begin(), bytes.end()), path);
+  } catch (const nlohmann::json::exception&) {
+  }
   const auto j = nlohmann::ordered_json::parse(bytes.begin(), bytes.end(), nullptr, false);
   if (j.is_discarded() || !j.is_object()) throw InputError(path, "not a JSON object");
   if (!j.contains("format") || j["format"] != "brdfit-fit-params") {

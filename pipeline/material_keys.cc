@@ -1,5 +1,7 @@
 #include "pipeline/material_keys.h"
 
+#include <sys/stat.h>
+
 #include <fmt/core.h>
 
 #include <cstddef>
@@ -57,6 +59,19 @@ std::vector<std::string> MaterialKeys(const std::vector<std::string>& inputs) {
   for (const std::string& k : keys) ++count[k];
   for (std::size_t k = 0; k < files.size(); ++k) {
     if (count[keys[index[k]]] > 1) keys[index[k]] = relative[k].generic_string();
+  }
+  // The same file under two names (a symbolic or hard link): one table, not two materials.
+  std::map<std::pair<dev_t, ino_t>, std::size_t> identity;
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    struct stat st {};
+    if (::stat(files[k].c_str(), &st) != 0) continue;  // a missing file is its reader's error
+    if (auto [it, fresh] = identity.emplace(std::make_pair(st.st_dev, st.st_ino), index[k]);
+        !fresh) {
+      throw InputError(
+          fmt::format("inputs {} and {} are the same file (a link?); give each "
+                      "table once",
+                      inputs[it->second], inputs[index[k]]));
+    }
   }
   std::map<std::string, std::size_t> seen;
   for (std::size_t i = 0; i < inputs.size(); ++i) {

@@ -114,12 +114,16 @@ Table FromArrays(const py::array_t<double, py::array::c_style | py::array::force
   for (std::size_t i = 0; i < g.NumCells(); ++i) {
     if (!t.valid[i]) continue;
     for (int c = 0; c < 3; ++c) {
-      if (!std::isfinite(t.rgb[3 * i + c])) {
+      // A valid cell holds a BRDF value: finite and >= 0 (the readers of MERL and HDF5 tables
+      // hold them to the same); a measurement that is not one is marked invalid, never kept.
+      const double v = t.rgb[3 * i + c];
+      if (!std::isfinite(v) || v < 0) {
         int ih, id, ip;
         g.Unindex(i, &ih, &id, &ip);
         throw InputError("values[" + std::to_string(ih) + ", " + std::to_string(id) + ", " +
-                         std::to_string(ip) + ", " + std::to_string(c) +
-                         "] is not finite in a valid cell");
+                         std::to_string(ip) + ", " + std::to_string(c) + "] is " +
+                         (v < 0 ? "negative" : "not finite") +
+                         " in a valid cell (mark the cell invalid)");
       }
     }
   }

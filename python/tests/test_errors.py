@@ -82,3 +82,15 @@ def test_a_nul_byte_in_a_path_is_refused_not_cut(small_table_file, small_table, 
         small_table.save(str(tmp_path / "out.h5") + "\0x")
     assert "NUL byte" in str(e.value)
     assert not (tmp_path / "out.h5").exists()
+
+
+def test_a_negative_value_in_a_valid_cell_is_refused(small_table):
+    values = np.array(small_table.values, copy=True)
+    valid = np.array(small_table.valid, copy=True)
+    i = tuple(int(k) for k in np.argwhere(valid)[0])
+    values[i + (1,)] = -0.5
+    with pytest.raises(brdfit.InputError) as e:
+        brdfit.Table.from_arrays(values, valid)
+    assert "is negative in a valid cell" in str(e.value)
+    valid[i] = False  # marked invalid, the same value is no longer a measurement
+    assert brdfit.Table.from_arrays(values, valid).valid.sum() == small_table.valid.sum() - 1

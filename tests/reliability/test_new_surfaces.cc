@@ -255,7 +255,7 @@ TEST_F(NewSurfaces, FitsJsonOfTheWrongTypeNamesTheFileAndMessagesEscapeControls)
              dir_ / "typed.log");
   EXPECT_EQ(r.code, 2) << r.log;
   EXPECT_THAT(r.log,
-              HasSubstr((dir_ / "typed.json").string() + ": fits[0]: a member of the wrong type"));
+              HasSubstr((dir_ / "typed.json").string() + ": fits[0].chosen is not true or false"));
   EXPECT_FALSE(fs::exists(dir_ / "x.gltf"));
   // A model name with an escape sequence and a newline: one line, the bytes escaped.
   j = nlohmann::ordered_json::parse(ReadAll(json));
@@ -268,6 +268,58 @@ TEST_F(NewSurfaces, FitsJsonOfTheWrongTypeNamesTheFileAndMessagesEscapeControls)
   EXPECT_THAT(r.log, HasSubstr("\\x1b]0;pwn\\x07\\x0aforged line"));
   EXPECT_EQ(r.log.find('\x1b'), std::string::npos);
   EXPECT_EQ(std::count(r.log.begin(), r.log.end(), '\n'), 1) << r.log;
+}
+
+// The fits JSON reader holds every member to what the writer makes: a key twice, a negative
+// error measure, an at_bound, metrics or choice of another type, are refused naming the member.
+// export -o - is refused (it writes files); one table under two names (a link) is one table.
+TEST_F(NewSurfaces, FitsJsonMembersAndInputIdentityAreChecked) {
+  const fs::path json = dir_ / "fits.json";
+  CliRun r = Brdfit({"fit", table_.string(), "--model", "ggx", "-q", "--json", json.string(), "-o",
+                     (dir_ / "fits.h5").string()},
+                    dir_ / "fit.log");
+  ASSERT_EQ(r.code, 0) << r.log;
+  const std::string text = ReadAll(json);
+  const auto edited = [&](const std::function<void(nlohmann::ordered_json&)>& edit) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::parse(text);
+    edit(j["fits"][0]);
+    return j.dump();
+  };
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {edited([](auto& f) { f["metrics"]["log_rmse"] = -1; }),
+       "fits[0].metrics.log_rmse is negative"},
+      {edited([](auto& f) { f["at_bound"] = "ggx.alpha"; }), "fits[0].at_bound is not an array"},
+      {edited([](auto& f) { f["at_bound"] = nlohmann::ordered_json::array({1}); }),
+       "fits[0].at_bound holds a non-name"},
+      {edited([](auto& f) { f["metrics"] = "good"; }), "fits[0].metrics is not an object"},
+      {edited([](auto& f) { f["choice"] = 3; }), "fits[0].choice is not a string"},
+      {edited([](auto& f) { f["metrics"]["rendered"]["ok"] = "yes"; }),
+       "fits[0].metrics.rendered.ok is not true or false"},
+      // A key twice: the text itself, nlohmann would keep the last.
+      {std::string(text).insert(text.find("\"model\""), "\"model\": \"ward\", "),
+       "duplicate key 'model' in fits[0]"},
+  };
+  for (const auto& [bad, problem] : cases) {
+    SCOPED_TRACE(problem);
+    std::ofstream(dir_ / "bad.json") << bad;
+    r = Brdfit({"export", (dir_ / "bad.json").string(), "--format", "gltf", "-o",
+                (dir_ / "x.gltf").string()},
+               dir_ / "bad.log");
+    EXPECT_EQ(r.code, 2) << r.log;
+    EXPECT_THAT(r.log, HasSubstr((dir_ / "bad.json").string() + ": " + problem));
+    EXPECT_FALSE(fs::exists(dir_ / "x.gltf"));
+  }
+  r = Brdfit({"export", json.string(), "--format", "gltf", "-o", "-"}, dir_ / "dash.log");
+  EXPECT_EQ(r.code, 2) << r.log;
+  EXPECT_THAT(r.log, HasSubstr("-o -: export writes files"));
+  // The same table under two names.
+  fs::create_symlink(table_, dir_ / "alias.h5");
+  r = Brdfit({"fit", table_.string(), (dir_ / "alias.h5").string(), "--model", "ggx", "-q", "-o",
+              (dir_ / "two.h5").string()},
+             dir_ / "alias.log");
+  EXPECT_EQ(r.code, 2) << r.log;
+  EXPECT_THAT(r.log, HasSubstr("are the same file (a link?)"));
+  EXPECT_FALSE(fs::exists(dir_ / "two.h5"));
 }
 
 // The report's lock file (".<report>.lock", its pid written into it) is never written through
