@@ -12,6 +12,7 @@
 #include "cli/command.h"
 #include "cli/demo.h"
 #include "cli/progress.h"
+#include "cli/terminal_text.h"
 #include "core/error.h"
 #include "core/metrics.h"
 #include "core/result.h"
@@ -143,11 +144,12 @@ int RunBench(BenchCliOptions o, std::vector<fs::path>* written = nullptr) {
     bar.Clear();
     if (!o.quiet) {
       const RenderedError& re = b.metrics.rendered;
-      fmt::print("{:<24} {:<16} {:<5} {:<11} {:<14} {:>10.1f} {:>10.4g} {:>10.4g} {:>9} {:>8} {:>8}\n",
-                 b.material, b.model, b.loss, b.budget, b.status, b.time_ms, b.metrics.log_rmse,
-                 b.metrics.cbrt_rmse, b.fit_cells,
-                 re.ok ? fmt::format("{:.2f}", re.psnr_db) : "-",
-                 re.ok ? fmt::format("{:.1f}%", 100 * re.median_rel_error) : "-");
+      fmt::print(
+          "{:<24} {:<16} {:<5} {:<11} {:<14} {:>10.1f} {:>10.4g} {:>10.4g} {:>9} {:>8} {:>8}\n",
+          TerminalSafe(b.material), b.model, b.loss, b.budget, b.status, b.time_ms,
+          b.metrics.log_rmse, b.metrics.cbrt_rmse, b.fit_cells,
+          re.ok ? fmt::format("{:.2f}", re.psnr_db) : "-",
+          re.ok ? fmt::format("{:.1f}%", 100 * re.median_rel_error) : "-");
     }
   };
   for (const BenchInput& in : inputs) {

@@ -77,14 +77,14 @@ void PrintTable(std::FILE* out, const std::vector<FitReportEntry>& entries) {
     const std::string lum = re.ok ? fmt::format("{:.1f}%", 100 * re.median_rel_error) : "-";
     any_chosen = any_chosen || e.chosen;
     fmt::print(out, "{} {:<28} {:<26} {:<8} {:>7} {:>7} {:>9.5f} {:>5} {:>9.1f} {}\n",
-               e.chosen ? "*" : " ", e.material, r.model, LossOf(e), psnr, lum, r.metrics.log_rmse,
-               r.iterations, r.times.init + r.times.solve, ToString(r.status));
-    if (!r.message.empty()) fmt::print(out, "    {}\n", r.message);
+               e.chosen ? "*" : " ", TerminalSafe(e.material), r.model, LossOf(e), psnr, lum,
+               r.metrics.log_rmse, r.iterations, r.times.init + r.times.solve, ToString(r.status));
+    if (!r.message.empty()) fmt::print(out, "    {}\n", TerminalSafe(r.message));
     if (e.factorization) {
-      fmt::print(out, "    textures: {} ({:.1f} KiB)\n", e.factorization->sidecar,
+      fmt::print(out, "    textures: {} ({:.1f} KiB)\n", TerminalSafe(e.factorization->sidecar),
                  e.factorization->texture_bytes / 1024.0);
     }
-    if (e.chosen) fmt::print(out, "    chosen: {}\n", e.choice);
+    if (e.chosen) fmt::print(out, "    chosen: {}\n", TerminalSafe(e.choice));
   }
   if (any_chosen) {
     fmt::print(out, "* the fit chosen for its table by rendered error (docs/accuracy.md)\n");

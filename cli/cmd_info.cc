@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cli/command.h"
+#include "cli/terminal_text.h"
 #include "core/table_stats.h"
 #include "io/nbrdf.h"
 #include "io/table_io.h"
@@ -61,7 +62,7 @@ void PrintText(const InfoOptions& o, const Table& t, InfoFormat format, const Lo
                const TableStats& s) {
   const Grid& g = t.grid;
   const std::size_t above = s.cells - s.below_horizon;
-  fmt::print("file        {}\n", o.path);
+  fmt::print("file        {}\n", TerminalSafe(o.path));
   fmt::print("format      {}\n", FormatName(format));
   fmt::print("grid        {} x {} x {} (theta_h x theta_d x phi_d), theta_h mapping {}\n",
              g.n_theta_h, g.n_theta_d, g.n_phi_d, ToString(g.theta_h_mapping));
@@ -80,10 +81,13 @@ void PrintText(const InfoOptions& o, const Table& t, InfoFormat format, const Lo
   }
   const Provenance& p = t.provenance;
   if (format != InfoFormat::kMerl) {
-    fmt::print("provenance  source {}, generator {}\n", p.source.empty() ? "-" : p.source,
-               p.generator.empty() ? "-" : p.generator);
-    if (!p.model.empty()) fmt::print("  model       {}\n", p.model);
-    if (!p.parameters_json.empty()) fmt::print("  parameters  {}\n", p.parameters_json);
+    fmt::print("provenance  source {}, generator {}\n",
+               TerminalSafe(p.source.empty() ? "-" : p.source),
+               TerminalSafe(p.generator.empty() ? "-" : p.generator));
+    if (!p.model.empty()) fmt::print("  model       {}\n", TerminalSafe(p.model));
+    if (!p.parameters_json.empty()) {
+      fmt::print("  parameters  {}\n", TerminalSafe(p.parameters_json));
+    }
     fmt::print("  noise sigma {}, missing fraction {}, seed {}\n", p.noise, p.missing_fraction,
                p.seed);
   }

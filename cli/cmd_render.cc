@@ -11,16 +11,17 @@
 
 #include "cli/command.h"
 #include "cli/demo.h"
+#include "cli/terminal_text.h"
 #include "core/error.h"
 #include "io/image_io.h"
+#include "io/output_policy.h"
 #include "pipeline/comparison_scene.h"
+#include "pipeline/inputs.h"
 #include "pipeline/material_loader.h"
 #include "preview/comparison.h"
 #include "preview/gl_context.h"
 #include "preview/renderer.h"
 #include "preview/scene.h"
-#include "io/output_policy.h"
-#include "pipeline/inputs.h"
 #include "preview/window.h"
 
 // LeakSanitizer (make test-asan): Mesa/LLVM and HDF5 keep process-lifetime allocations that
@@ -47,6 +48,14 @@ struct RenderOptions {
   bool window = false;
   int frames = 0;
 };
+
+// --explain: one line per entry; names from the scene (materials, objects, lights, files) with
+// control characters escaped.
+void PrintExplain(const preview::ExplainLog& log) {
+  for (const auto& e : log.entries()) {
+    fmt::print("explain: {}: {}\n", e.category, TerminalSafe(e.message));
+  }
+}
 
 void ParseSize(const std::string& s, int* w, int* h) {
   const auto x = s.find('x');
@@ -94,7 +103,7 @@ int RunWindow(const RenderOptions& o, const preview::Scene& scene,
     WriteImageByExtension(o.out, r.last_linear,
                           r.last_screen.width > 0 ? r.last_screen : r.last_display);
   }
-  if (o.explain) fmt::print("{}", log->Format());
+  if (o.explain) PrintExplain(*log);
   if (!o.out.empty() && r.renders > 0) fmt::print("wrote {}\n", o.out);
   return kExitOk;
 }
@@ -146,7 +155,7 @@ int RunRender(RenderOptions o) {
   auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
   log.Add("note", fmt::format("materials {:.1f} ms, render {:.1f} ms ({}x{})", ms(t0, t1),
                               ms(t1, t2), scene.width, scene.height));
-  if (o.explain) fmt::print("{}", log.Format());
+  if (o.explain) PrintExplain(log);
   fmt::print("wrote {}\n", o.out);
   return kExitOk;
 }

@@ -1,4 +1,5 @@
 #include "cli/progress.h"
+#include "cli/terminal_text.h"
 
 #include <fmt/core.h>
 #include <unistd.h>
@@ -82,7 +83,7 @@ void Progress::Step(const std::string& label) {
   if (mode_ == Mode::kLog && pending_ && !explicit_finish_) Finished(label_, "");
   if (started_ < total_) ++started_;
   if (mode_ == Mode::kBar && !explicit_finish_ && started_ > 1) finished_ = started_ - 1;
-  label_ = label;
+  label_ = TerminalSafe(label);  // names from files: never raw control bytes
   pending_ = true;
   if (mode_ == Mode::kBar) Draw();
 }
@@ -100,8 +101,8 @@ void Progress::Finish(const std::string& label, const std::string& note) {
 void Progress::Finished(const std::string& label, const std::string& note) {
   if (finished_ < total_) ++finished_;
   pending_ = false;
-  fmt::print(stderr, "{} {} {}/{} done: {}{}\n", UtcTimestamp(), what_, finished_, total_, label,
-             note.empty() ? "" : " (" + note + ")");
+  fmt::print(stderr, "{} {} {}/{} done: {}{}\n", UtcTimestamp(), what_, finished_, total_,
+             TerminalSafe(label), note.empty() ? "" : " (" + TerminalSafe(note) + ")");
   const double now = Elapsed();
   if (now - last_summary_s_ >= interval_s_ && finished_ < total_) {
     Summary();

@@ -1,6 +1,7 @@
 // brdfit.Table (NumPy views of a core::Table), brdfit.load (pipeline/inputs.h: files and
 // nbrdf:NAME) and Table.save (io/table_io.h).
 #include <pybind11/stl.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <string>
@@ -72,8 +73,14 @@ Provenance ProvenanceOf(const py::dict& d) {
       if (k == "source") p.source = value.cast<std::string>();
       else if (k == "generator") p.generator = value.cast<std::string>();
       else if (k == "model") p.model = value.cast<std::string>();
-      else if (k == "parameters_json") p.parameters_json = value.cast<std::string>();
-      else if (k == "seed") p.seed = value.cast<std::uint64_t>();
+      else if (k == "parameters_json") {
+        p.parameters_json = value.cast<std::string>();
+        // The HDF5 reader refuses a table whose parameters are not JSON: never write one.
+        if (!p.parameters_json.empty() && !nlohmann::json::accept(p.parameters_json)) {
+          throw InputError("provenance['parameters_json'] is not JSON");
+        }
+      } else if (k == "seed")
+        p.seed = value.cast<std::uint64_t>();
       else if (k == "noise") p.noise = value.cast<double>();
       else if (k == "missing_fraction") p.missing_fraction = value.cast<double>();
       else throw InputError("provenance: unknown key '" + k + "'");

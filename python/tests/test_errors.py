@@ -94,3 +94,11 @@ def test_a_negative_value_in_a_valid_cell_is_refused(small_table):
     assert "is negative in a valid cell" in str(e.value)
     valid[i] = False  # marked invalid, the same value is no longer a measurement
     assert brdfit.Table.from_arrays(values, valid).valid.sum() == small_table.valid.sum() - 1
+
+
+def test_provenance_parameters_must_be_json(small_table):
+    p = dict(small_table.provenance)
+    p["parameters_json"] = "not json"
+    with pytest.raises(brdfit.InputError) as e:
+        brdfit.Table.from_arrays(small_table.values, small_table.valid, provenance=p)
+    assert "is not JSON" in str(e.value)

@@ -322,6 +322,30 @@ TEST_F(NewSurfaces, FitsJsonMembersAndInputIdentityAreChecked) {
   EXPECT_FALSE(fs::exists(dir_ / "two.h5"));
 }
 
+// Names with control characters (a file name, a scene's material) never reach the terminal
+// raw: not in errors, the fit's table and progress lines, info, or render --explain.
+TEST_F(NewSurfaces, ControlCharactersInNamesAreEscapedInEveryOutput) {
+  const fs::path odd = dir_ / "x\x1b[31mRED.h5";
+  fs::copy_file(table_, odd);
+  CliRun r = Brdfit({"fit", odd.string(), "--model", "ggx", "-o", (dir_ / "f.h5").string()},
+                    dir_ / "fit.log");
+  EXPECT_EQ(r.code, 0) << r.log;
+  EXPECT_THAT(r.log, HasSubstr("x\\x1b[31mRED"));
+  EXPECT_EQ(r.log.find('\x1b'), std::string::npos) << r.log;
+  r = Brdfit({"info", odd.string()}, dir_ / "info.log");
+  EXPECT_EQ(r.code, 0) << r.log;
+  EXPECT_EQ(r.log.find('\x1b'), std::string::npos) << r.log;
+  std::ofstream(dir_ / "esc.json")
+      << "{\"materials\": {\"m\\u001b]0;pwn\\u0007\\nX\": {\"type\": \"analytic\", "
+         "\"model\": \"ggx\"}}, \"objects\": [{\"material\": \"m\\u001b]0;pwn\\u0007\\nX\"}]}";
+  r = Brdfit({"render", (dir_ / "esc.json").string(), "-o", (dir_ / "e.png").string(), "--explain"},
+             dir_ / "render.log");
+  EXPECT_EQ(r.code, 0) << r.log;
+  EXPECT_THAT(r.log, HasSubstr("m\\x1b]0;pwn\\x07\\x0aX"));
+  EXPECT_EQ(r.log.find('\x1b'), std::string::npos) << r.log;
+  EXPECT_EQ(r.log.find('\x07'), std::string::npos) << r.log;
+}
+
 // The report's lock file (".<report>.lock", its pid written into it) is never written through
 // a link or onto an input: a planted symbolic link truncated the input it pointed to.
 TEST_F(NewSurfaces, TheReportLockIsNeverWrittenThroughALinkOrOntoAnInput) {
