@@ -110,19 +110,32 @@ void MarkShardChosenFits(std::vector<FitReportEntry>& entries,
   }
 }
 
+// The run's input of each material key, and the input a kept entry of one of these keys but of
+// another source would be mistaken for (nullptr when the entry is of no key or of its source).
+using SourceOfKey = std::map<std::string, const std::string*>;
+SourceOfKey SourcesOfKeys(const std::vector<std::string>& inputs,
+                          const std::vector<std::string>& keys) {
+  SourceOfKey source_of;
+  for (std::size_t f = 0; f < inputs.size(); ++f) source_of[keys[f]] = &inputs[f];
+  return source_of;
+}
+const std::string* OfAnotherSource(const FitReportEntry& e, const SourceOfKey& source_of) {
+  const auto it = source_of.find(e.material);
+  return it == source_of.end() || e.source == *it->second ? nullptr : it->second;
+}
+
 // A report holds one source per material key: a kept entry of one of this run's keys but of
 // another source (b/x.binary fitted into a report of a/x.binary, both "x") would be mistaken for
 // it. InputError naming both.
 void CheckKeptMaterials(const std::vector<FitReportEntry>& kept,
                         const std::vector<std::string>& inputs,
                         const std::vector<std::string>& keys, const fs::path& report) {
-  std::map<std::string, const std::string*> source_of;
-  for (std::size_t f = 0; f < inputs.size(); ++f) source_of[keys[f]] = &inputs[f];
+  const SourceOfKey source_of = SourcesOfKeys(inputs, keys);
   for (const FitReportEntry& e : kept) {
-    const auto it = source_of.find(e.material);
-    if (it == source_of.end() || e.source == *it->second) continue;
+    const std::string* input = OfAnotherSource(e, source_of);
+    if (!input) continue;
     throw InputError(report, "holds material '" + e.material + "' fitted from " + e.source +
-                                 ", and this run's " + *it->second +
+                                 ", and this run's " + *input +
                                  " has the same material key (docs/scale.md, \"Material "
                                  "identity\"): write another report (-o), give both tables in one "
                                  "run, or --force");
@@ -265,12 +278,9 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
   if (req.force) {
     // Every fit of the run is redone; entries of its keys from another table go (they would
     // be mistaken for this run's material).
-    std::map<std::string, const std::string*> source_of;
-    for (std::size_t f = 0; f < inputs.size(); ++f) source_of[keys[f]] = &inputs[f];
-    std::erase_if(kept, [&](const FitReportEntry& e) {
-      const auto it = source_of.find(e.material);
-      return it != source_of.end() && e.source != *it->second;
-    });
+    const SourceOfKey source_of = SourcesOfKeys(inputs, keys);
+    std::erase_if(
+        kept, [&](const FitReportEntry& e) { return OfAnotherSource(e, source_of) != nullptr; });
   } else {
     CheckKeptMaterials(kept, inputs, keys, req.report);
     const std::set<std::string> changed = ChangedSources(kept, inputs, keys, &result);

@@ -115,12 +115,10 @@ class Reader {
     }
     return p;
   }
-  // A number in [lo, hi] (lo excluded when lo_open).
-  double InRange(const std::string& k, double def, double lo, double hi, bool lo_open = false) {
+  // A number in [lo, hi].
+  double InRange(const std::string& k, double def, double lo, double hi) {
     const double d = Number(k, def);
-    if (lo_open ? !(d > lo) : !(d >= lo)) {
-      Fail("'" + k + "' must be " + (lo_open ? "> " : ">= ") + Fmt(lo));
-    }
+    if (!(d >= lo)) Fail("'" + k + "' must be >= " + Fmt(lo));
     if (d > hi) Fail("'" + k + "' must be <= " + Fmt(hi));
     return d;
   }

@@ -49,6 +49,15 @@ class NewSurfaces : public ::testing::Test {
         dir_ / "factor.log");
     ASSERT_EQ(r.code, 0) << r.log;
   }
+  // The fitted parameters of the table as `brdfit fit --json` writes them (ggx on the table).
+  fs::path FitParamsJson() {
+    const fs::path json = dir_ / "fits.json";
+    const CliRun r = Brdfit({"fit", table_.string(), "--model", "ggx", "-q", "--json",
+                             json.string(), "-o", (dir_ / "fits.h5").string()},
+                            dir_ / "fit.log");
+    EXPECT_EQ(r.code, 0) << r.log;
+    return json;
+  }
   void EditSidecar(const fs::path& sidecar,
                    const std::function<void(nlohmann::ordered_json&)>& edit) {
     nlohmann::ordered_json j = nlohmann::ordered_json::parse(ReadAll(sidecar));
@@ -241,18 +250,14 @@ TEST_F(NewSurfaces, RenderRefusesACameraOutsideItsRange) {
 // and the fit (it was the JSON library's bare type_error); control characters in a name are
 // escaped in the message, never sent to the terminal.
 TEST_F(NewSurfaces, FitsJsonOfTheWrongTypeNamesTheFileAndMessagesEscapeControls) {
-  const fs::path json = dir_ / "fits.json";
-  CliRun r = Brdfit({"fit", table_.string(), "--model", "ggx", "-q", "--json", json.string(), "-o",
-                     (dir_ / "fits.h5").string()},
-                    dir_ / "fit.log");
-  ASSERT_EQ(r.code, 0) << r.log;
+  const fs::path json = FitParamsJson();
   // ordered_json: the parameters' order is the model's.
   nlohmann::ordered_json j = nlohmann::ordered_json::parse(ReadAll(json));
   j["fits"][0]["chosen"] = "yes";
   std::ofstream(dir_ / "typed.json") << j.dump();
-  r = Brdfit({"export", (dir_ / "typed.json").string(), "--format", "gltf", "-o",
-              (dir_ / "x.gltf").string()},
-             dir_ / "typed.log");
+  CliRun r = Brdfit({"export", (dir_ / "typed.json").string(), "--format", "gltf", "-o",
+                     (dir_ / "x.gltf").string()},
+                    dir_ / "typed.log");
   EXPECT_EQ(r.code, 2) << r.log;
   EXPECT_THAT(r.log,
               HasSubstr((dir_ / "typed.json").string() + ": fits[0].chosen is not true or false"));
@@ -274,11 +279,7 @@ TEST_F(NewSurfaces, FitsJsonOfTheWrongTypeNamesTheFileAndMessagesEscapeControls)
 // error measure, an at_bound, metrics or choice of another type, are refused naming the member.
 // export -o - is refused (it writes files); one table under two names (a link) is one table.
 TEST_F(NewSurfaces, FitsJsonMembersAndInputIdentityAreChecked) {
-  const fs::path json = dir_ / "fits.json";
-  CliRun r = Brdfit({"fit", table_.string(), "--model", "ggx", "-q", "--json", json.string(), "-o",
-                     (dir_ / "fits.h5").string()},
-                    dir_ / "fit.log");
-  ASSERT_EQ(r.code, 0) << r.log;
+  const fs::path json = FitParamsJson();
   const std::string text = ReadAll(json);
   const auto edited = [&](const std::function<void(nlohmann::ordered_json&)>& edit) {
     nlohmann::ordered_json j = nlohmann::ordered_json::parse(text);
@@ -302,14 +303,14 @@ TEST_F(NewSurfaces, FitsJsonMembersAndInputIdentityAreChecked) {
   for (const auto& [bad, problem] : cases) {
     SCOPED_TRACE(problem);
     std::ofstream(dir_ / "bad.json") << bad;
-    r = Brdfit({"export", (dir_ / "bad.json").string(), "--format", "gltf", "-o",
-                (dir_ / "x.gltf").string()},
-               dir_ / "bad.log");
+    CliRun r = Brdfit({"export", (dir_ / "bad.json").string(), "--format", "gltf", "-o",
+                       (dir_ / "x.gltf").string()},
+                      dir_ / "bad.log");
     EXPECT_EQ(r.code, 2) << r.log;
     EXPECT_THAT(r.log, HasSubstr((dir_ / "bad.json").string() + ": " + problem));
     EXPECT_FALSE(fs::exists(dir_ / "x.gltf"));
   }
-  r = Brdfit({"export", json.string(), "--format", "gltf", "-o", "-"}, dir_ / "dash.log");
+  CliRun r = Brdfit({"export", json.string(), "--format", "gltf", "-o", "-"}, dir_ / "dash.log");
   EXPECT_EQ(r.code, 2) << r.log;
   EXPECT_THAT(r.log, HasSubstr("-o -: export writes files"));
   // The same table under two names.
