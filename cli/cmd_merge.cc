@@ -5,6 +5,7 @@
 // pipeline/merge_factors.h). The parts are only read.
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -45,8 +46,17 @@ PartKind KindOf(const std::vector<fs::path>& parts) {
   if (folders == parts.size()) return PartKind::kFactorFolders;
   if (csvs == parts.size()) return PartKind::kBenchCsvs;
   if (folders + csvs > 0) {
-    throw InputError(
-        "merge: the parts mix kinds (factor folders, bench CSVs, fit reports): give one kind");
+    const auto kind = [](const fs::path& p) -> std::string {
+      return fs::is_directory(p)       ? "a factor folder"
+             : p.extension() == ".csv" ? "a bench CSV"
+                                       : "a fit report";
+    };
+    const auto other = std::find_if(parts.begin(), parts.end(),
+                                    [&](const fs::path& p) { return kind(p) != kind(parts[0]); });
+    throw InputError(fmt::format(
+        "merge: the parts mix kinds: {} is {} but {} is {}; give one kind (factor folders, bench "
+        "CSVs or fit reports)",
+        parts[0].string(), kind(parts[0]), other->string(), kind(*other)));
   }
   return PartKind::kFitReports;
 }

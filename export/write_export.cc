@@ -130,8 +130,7 @@ ExportOutcome WriteExport(const FitReportEntry& entry, const std::string& fits_p
           throw OutputError(out, "a .gltf output named .bin would be its own buffer (-o x.gltf)");
         }
         const GltfFiles f = BuildGltf(g, p, bin.filename().string());
-        WriteBytesAtomically(bin, f.bin.data(), f.bin.size());
-        WriteTextAtomically(out, f.json);
+        WriteTwoFilesAtomically(out, f.json, bin, f.bin.data(), f.bin.size());
         o.written = {out, bin};
       }
       break;

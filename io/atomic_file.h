@@ -21,4 +21,11 @@ void WriteFileAtomically(const std::filesystem::path& dest,
 void WriteBytesAtomically(const std::filesystem::path& dest, const void* data, std::size_t size);
 void WriteTextAtomically(const std::filesystem::path& dest, const std::string& contents);
 
+// Two files that belong together (a .gltf and the .bin it names): both are written to
+// temporaries before either is renamed, second first, so a failed or refused write leaves both
+// destinations as they were.
+void WriteTwoFilesAtomically(const std::filesystem::path& first, const std::string& first_bytes,
+                             const std::filesystem::path& second, const void* second_data,
+                             std::size_t second_size);
+
 }  // namespace brdfit

@@ -1,5 +1,6 @@
 #include "io/exr_texture.h"
 
+#include <OpenEXR/ImfAttribute.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
@@ -13,6 +14,7 @@
 #include <cstdint>
 #include <cstring>
 #include <exception>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -30,42 +32,110 @@ constexpr int kMaxSide = 1 << 15;  // refuse absurd headers before allocating
 // storing nothing made the reader allocate 12 GB (fuzz/regressions/exr/crafted-*).
 constexpr long long kMaxPixels = 1LL << 24;
 
-// OpenEXR 3.1 allocates each header attribute's declared size before reading it, so a few
-// bytes declaring a 2 GB attribute cost a 2 GB allocation (fuzz_exr: 75 inputs in 10 min).
-// Walks the header(s) (OpenEXR file layout: magic, version, then per attribute name\0 type\0
+// How many value bytes OpenEXR 3.1 reads for an attribute of a known type whose reader ignores
+// the declared size (ImfStandardAttributes / ImfTypedAttribute readValueFrom: fixed-size
+// values); 0 when the type is not one of them.
+std::size_t FixedValueSize(const std::string& type) {
+  static const std::map<std::string, std::size_t> kSizes = {{"box2i", 16},
+                                                            {"box2f", 16},
+                                                            {"chromaticities", 32},
+                                                            {"compression", 1},
+                                                            {"deepImageState", 1},
+                                                            {"double", 8},
+                                                            {"envmap", 1},
+                                                            {"float", 4},
+                                                            {"int", 4},
+                                                            {"keycode", 28},
+                                                            {"lineOrder", 1},
+                                                            {"m33f", 36},
+                                                            {"m33d", 72},
+                                                            {"m44f", 64},
+                                                            {"m44d", 128},
+                                                            {"rational", 8},
+                                                            {"tiledesc", 9},
+                                                            {"timecode", 8},
+                                                            {"v2i", 8},
+                                                            {"v2f", 8},
+                                                            {"v2d", 16},
+                                                            {"v3i", 12},
+                                                            {"v3f", 12},
+                                                            {"v3d", 24}};
+  const auto it = kSizes.find(type);
+  return it == kSizes.end() ? 0 : it->second;
+}
+
+// OpenEXR 3.1 allocates what a header declares before reading it: an attribute's declared size
+// (a few bytes declaring a 2 GB string cost a 2 GB allocation), and for some types what their
+// value declares, while it parses other types without looking at the declared size (a channel
+// list ends at its empty name, a box2i is 16 bytes), so a declared size that disagrees with the
+// value makes OpenEXR read the next attribute from inside this one. Walks the header(s) as
+// OpenEXR parses them (OpenEXR file layout: magic, version, then per attribute name\0 type\0
 // int32 size, value; an empty name ends a header; multi-part files end with an empty header)
-// and rejects a declared size larger than the rest of the file. Only reads the first 1 MiB.
+// and refuses a size larger than the rest of the file, a size that disagrees with what OpenEXR
+// will read, and types whose reader allocates from the value. Only reads the first 1 MiB.
 void CheckAttributeSizes(const std::filesystem::path& path, std::uintmax_t file_size) {
   const std::vector<char> b = ReadFilePrefix(path, std::size_t{1} << 20);
   std::size_t pos = 8;
   if (b.size() < pos) return;  // OpenEXR reports the truncation itself
   const bool multipart = (static_cast<unsigned char>(b[5]) & 0x10) != 0;  // version bit 12
-  auto read_name = [&](std::string* out) {
-    const auto end = std::find(b.begin() + static_cast<std::ptrdiff_t>(pos), b.end(), '\0');
+  auto read_name = [&](std::size_t* at, std::string* out) {
+    const auto end = std::find(b.begin() + static_cast<std::ptrdiff_t>(*at), b.end(), '\0');
     if (end == b.end()) return false;
-    out->assign(b.begin() + static_cast<std::ptrdiff_t>(pos), end);
-    pos = static_cast<std::size_t>(end - b.begin()) + 1;
+    out->assign(b.begin() + static_cast<std::ptrdiff_t>(*at), end);
+    *at = static_cast<std::size_t>(end - b.begin()) + 1;
     return true;
+  };
+  auto damaged = [&](const std::string& name, const std::string& type, const std::string& what) {
+    return InputError(path, fmt::format("damaged OpenEXR header: attribute '{}' of type '{}' {}",
+                                        PrintableExcerpt(name), PrintableExcerpt(type), what));
   };
   std::string name, type;
   for (bool header_empty = true;;) {
-    if (!read_name(&name)) return;
+    if (!read_name(&pos, &name)) return;
     if (name.empty()) {  // end of a header
       if (!multipart || header_empty) return;
       header_empty = true;
       continue;
     }
     header_empty = false;
-    if (!read_name(&type) || pos + 4 > b.size()) return;
+    if (!read_name(&pos, &type) || pos + 4 > b.size()) return;
     std::int32_t size = 0;
     std::memcpy(&size, &b[pos], 4);  // little-endian, as this platform (static_assert in merl.cc)
     pos += 4;
     if (size < 0 || static_cast<std::uintmax_t>(size) > file_size - pos) {
-      throw InputError(path, fmt::format("damaged OpenEXR header: attribute '{}' declares {} bytes, "
-                                         "the file has {} left",
-                                         PrintableExcerpt(name), size, file_size - pos));
+      throw damaged(name, type,
+                    fmt::format("declares {} bytes, the file has {} left", size, file_size - pos));
     }
-    pos += static_cast<std::size_t>(size);
+    const std::size_t declared = static_cast<std::size_t>(size);
+    if (const std::size_t fixed = FixedValueSize(type); fixed != 0) {
+      if (declared != fixed) {
+        throw damaged(name, type,
+                      fmt::format("declares {} bytes, the type has {}", declared, fixed));
+      }
+    } else if (type == "chlist") {
+      // ImfChannelListAttribute: per channel name\0, int32 pixel type, uint8 pLinear, 3 reserved
+      // bytes, int32 xSampling, int32 ySampling; an empty name ends the list.
+      std::size_t at = pos;
+      std::string channel;
+      for (;;) {
+        if (!read_name(&at, &channel)) return;  // beyond the prefix read: OpenEXR checks it
+        if (channel.empty()) break;
+        at += 16;
+        if (at > b.size()) return;
+      }
+      if (at - pos != declared) {
+        throw damaged(name, type,
+                      fmt::format("declares {} bytes, its channel list is not that "
+                                  "long",
+                                  declared));
+      }
+    } else if (Imf::Attribute::knownType(type.c_str()) && type != "string" &&
+               type != "stringvector" && type != "floatvector") {
+      // Known types whose reader allocates what the value declares (preview, idmanifest): a
+      // texture has no use for them.
+      throw damaged(name, type, "is not read by brdfit (re-save the image without it)");
+    }
+    pos += declared;
   }
 }
 
@@ -118,6 +188,16 @@ RgbImage ReadRgbExr(const std::filesystem::path& path, ExrAttributes* attributes
     const long long h = static_cast<long long>(dw.max.y) - dw.min.y + 1;
     if (w <= 0 || h <= 0 || w > kMaxSide || h > kMaxSide || w * h > kMaxPixels) {
       throw InputError(path, fmt::format("unsupported data window {} x {}", w, h));
+    }
+    // The pixels must fit in the file: zlib's largest compression factor is 1032:1 (zlib
+    // technical details, "Maximum compression factor") and RLE's is smaller, so a small file
+    // declaring a large window is refused before OpenEXR allocates and decodes it. A codec that
+    // can store more (a constant image in PIZ or DWA) is refused too: re-save with ZIP, as
+    // brdfit writes.
+    if (static_cast<double>(w) * h * sizeof(float) * 3 > 1032.0 * static_cast<double>(file_size)) {
+      throw InputError(path, fmt::format("data window {} x {} needs more pixel data than {} bytes "
+                                         "can hold (at most 1032:1 compressed; re-save with ZIP)",
+                                         w, h, file_size));
     }
     for (const char* c : kChannels) {
       if (!header.channels().findChannel(c)) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <map>
 
 #include <nlohmann/json.hpp>
 #include <string>
@@ -154,8 +155,14 @@ std::vector<FitReportEntry> ReadFitParamsJson(const fs::path& path) {
     (void)ParseJsonUniqueKeys(std::string(bytes.begin(), bytes.end()), path);
   } catch (const nlohmann::json::exception&) {
   }
-  const auto j = nlohmann::ordered_json::parse(bytes.begin(), bytes.end(), nullptr, false);
-  if (j.is_discarded() || !j.is_object()) throw InputError(path, "not a JSON object");
+  nlohmann::ordered_json j;
+  try {
+    j = nlohmann::ordered_json::parse(bytes.begin(), bytes.end());
+  } catch (const nlohmann::json::exception& e) {
+    // nlohmann's message names the byte and what it found (NaN, invalid UTF-8, 1e999, ...).
+    throw InputError(path, std::string("not valid JSON: ") + PrintableExcerpt(e.what(), 200));
+  }
+  if (!j.is_object()) throw InputError(path, "not a JSON object");
   if (!j.contains("format") || j["format"] != "brdfit-fit-params") {
     throw InputError(path, "not brdfit fit parameters (\"format\" is not \"brdfit-fit-params\")");
   }
@@ -177,6 +184,18 @@ std::vector<FitReportEntry> ReadFitParamsJson(const fs::path& path) {
     } catch (const nlohmann::json::exception& e) {
       // A member of another type than the reader expects: named with the file and the fit.
       throw InputError(path, where + ": a member of the wrong type (" + e.what() + ")");
+    }
+  }
+  // A report chooses at most one fit per material (pipeline::MarkChosenFits); with two, which
+  // one an export takes would depend on their order.
+  std::map<std::string, std::size_t> chosen_at;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (!out[i].chosen) continue;
+    const auto [it, first] = chosen_at.emplace(out[i].material, i);
+    if (!first) {
+      throw InputError(path, fmt::format("fits[{}] and fits[{}] are both chosen for material '{}' "
+                                         "(a report chooses one fit per material)",
+                                         it->second, i, PrintableExcerpt(out[i].material, 64)));
     }
   }
   return out;

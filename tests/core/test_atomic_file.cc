@@ -51,6 +51,26 @@ TEST_F(AtomicFileTest, FailedWriteLeavesOldContentAndNoTemporary) {
   EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator{}), 1);
 }
 
+TEST_F(AtomicFileTest, TwoFilesAreReplacedTogetherOrNotAtAll) {
+  const fs::path a = dir_ / "m.gltf", b = dir_ / "m.bin";
+  WriteTwoFilesAtomically(a, "json 1", b, "bin 1", 5);
+  EXPECT_EQ(ReadAll(a), "json 1");
+  EXPECT_EQ(ReadAll(b), "bin 1");
+  // The first cannot be renamed into place (a folder took its name): the second stays old.
+  fs::remove(a);
+  fs::create_directory(a);
+  EXPECT_THROW(WriteTwoFilesAtomically(a, "json 2", b, "bin 2", 5), OutputError);
+  EXPECT_EQ(ReadAll(b), "bin 1");
+  // The second cannot be written: the first stays old.
+  fs::remove(a);
+  WriteTextAtomically(a, "json 1");
+  fs::remove(b);
+  fs::create_directory(b);
+  EXPECT_THROW(WriteTwoFilesAtomically(a, "json 2", b, "bin 2", 5), OutputError);
+  EXPECT_EQ(ReadAll(a), "json 1");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator{}), 2);
+}
+
 TEST_F(AtomicFileTest, DirectoryDestinationIsAnError) {
   EXPECT_THROW(WriteTextAtomically(dir_, "x"), OutputError);
 }

@@ -2,14 +2,16 @@
 // tiny files declaring huge or overflowing shapes must be rejected with a message naming the
 // problem, before anything is allocated; a damaged file that libhdf5 fails to open must not
 // leave HDF5 objects or file descriptors behind (a long batch over bad files would run out).
+#include <fmt/core.h>
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <iterator>
+#include <limits>
 #include <string>
 
 #include "fuzz/harness_util.h"
@@ -111,6 +113,43 @@ TEST(HostileExr, HugeDeclaredImageIsRejectedBeforeAllocating) {
   const std::string msg =
       MessageOf([] { ReadRgbExr(Regression("exr", "crafted-32768x32768-no-pixels.exr")); });
   EXPECT_NE(msg.find("unsupported data window 32768 x 32768"), std::string::npos) << msg;
+}
+
+TEST(HostileExr, AttributeSizeThatDisagreesWithItsValueIsRejected) {
+  // A channel list declaring 311 bytes that ends after 1: OpenEXR reads the next attribute from
+  // inside it, a string declaring 1.8 GB, and allocates that (found by the factor_files fuzzer).
+  const std::string msg =
+      MessageOf([] { ReadRgbExr(Regression("exr", "crafted-chlist-size-hides-huge-string.exr")); });
+  EXPECT_NE(msg.find("attribute 'channels' of type 'chlist' declares 311 bytes, its channel list "
+                     "is not that long"),
+            std::string::npos)
+      << msg;
+}
+
+TEST(HostileExr, LargeWindowInAFewBytesIsRejectedBeforeDecoding) {
+  // A valid 2 x 2 image whose data window is rewritten to 4096 x 4096: 201 MB of float RGB from
+  // a file of a few kilobytes, more than zlib's largest compression factor (1032:1) can hold.
+  const fs::path dir = fs::path(::testing::TempDir()) / "hostile-exr-window";
+  fs::create_directories(dir);
+  const fs::path file = dir / "window.exr";
+  RgbImage image;
+  image.width = image.height = 2;
+  image.rgb.assign(12, 0.5f);
+  WriteRgbExr(file, image, {});
+  std::string bytes = fuzz::ReadAllBytes(file);
+  const std::string key = std::string("dataWindow") + '\0' + "box2i" + '\0';
+  const std::size_t at = bytes.find(key);
+  ASSERT_NE(at, std::string::npos);
+  const std::int32_t box[4] = {0, 0, 4095, 4095};
+  std::memcpy(&bytes[at + key.size() + 4], box, sizeof(box));
+  bytes.append(4096, '\0');  // room for the line-offset table OpenEXR reads (256 ZIP chunks)
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+  const std::string msg = MessageOf([&] { ReadRgbExr(file); });
+  EXPECT_NE(msg.find(fmt::format("data window 4096 x 4096 needs more pixel data than {} bytes can "
+                                 "hold",
+                                 bytes.size())),
+            std::string::npos)
+      << msg;
 }
 
 TEST(HostileFactorSidecar, NonStringFormatIsAnInputError) {

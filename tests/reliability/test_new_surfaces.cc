@@ -102,6 +102,15 @@ TEST_F(NewSurfaces, FactorResolutionIsCheckedBeforeAnySolve) {
 TEST_F(NewSurfaces, MergeRefusesDamagedFactorFoldersNamingTheFile) {
   const fs::path good = dir_ / "good";
   Factor(good);
+  {  // A factor folder and a fit report: both parts named with their kinds.
+    const CliRun r =
+        Brdfit({"merge", (dir_ / "mixed").string(), good.string(), table_.string()},
+               dir_ / "mixed.log");
+    EXPECT_EQ(r.code, 2) << r.log;
+    EXPECT_THAT(r.log, HasSubstr(good.string() + " is a factor folder but " + table_.string() +
+                                 " is a fit report"));
+    EXPECT_FALSE(fs::exists(dir_ / "mixed"));
+  }
   struct Case {
     const char* name;
     std::function<void(const fs::path&)> damage;
@@ -310,7 +319,39 @@ TEST_F(NewSurfaces, FitsJsonMembersAndInputIdentityAreChecked) {
     EXPECT_THAT(r.log, HasSubstr((dir_ / "bad.json").string() + ": " + problem));
     EXPECT_FALSE(fs::exists(dir_ / "x.gltf"));
   }
-  CliRun r = Brdfit({"export", json.string(), "--format", "gltf", "-o", "-"}, dir_ / "dash.log");
+  // Whole-file damage: numbers JSON cannot hold, invalid UTF-8, two chosen fits of a material.
+  nlohmann::ordered_json two = nlohmann::ordered_json::parse(text);
+  two["fits"][0]["chosen"] = true;
+  two["fits"].push_back(two["fits"][0]);
+  two["fits"][1]["params"]["ggx.alpha"] = 0.5;
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {std::string(text).insert(text.find("\"log_rmse\""), "\"huge\": 1e999, "),
+       "not valid JSON: "},
+      {std::string(text).insert(text.find("\"log_rmse\""), "\"nan\": NaN, "), "not valid JSON: "},
+      {std::string(text).insert(text.find("\"material\": \"") + 13, "\xff\xfe"),
+       "not valid JSON: "},
+      {two.dump(), "fits[0] and fits[1] are both chosen for material"},
+  };
+  for (const auto& [bad, problem] : files) {
+    SCOPED_TRACE(problem);
+    std::ofstream(dir_ / "bad.json") << bad;
+    CliRun r = Brdfit({"export", (dir_ / "bad.json").string(), "--format", "gltf", "-o",
+                       (dir_ / "x.gltf").string()},
+                      dir_ / "bad.log");
+    EXPECT_EQ(r.code, 2) << r.log;
+    EXPECT_THAT(r.log, HasSubstr((dir_ / "bad.json").string() + ": " + problem));
+    EXPECT_FALSE(fs::exists(dir_ / "x.gltf"));
+  }
+  // A .gltf and its .bin are written together or not at all: a .bin that cannot be written
+  // leaves the .gltf it would have replaced as it was.
+  fs::create_directory(dir_ / "d.bin");
+  std::ofstream(dir_ / "d.gltf") << "old";
+  CliRun r = Brdfit({"export", json.string(), "--format", "gltf", "-o", (dir_ / "d.gltf").string()},
+                    dir_ / "dir.log");
+  EXPECT_NE(r.code, 0) << r.log;
+  EXPECT_THAT(r.log, HasSubstr("d.bin"));
+  EXPECT_EQ(ReadAll(dir_ / "d.gltf"), "old");
+  r = Brdfit({"export", json.string(), "--format", "gltf", "-o", "-"}, dir_ / "dash.log");
   EXPECT_EQ(r.code, 2) << r.log;
   EXPECT_THAT(r.log, HasSubstr("-o -: export writes files"));
   // The same table under two names.
