@@ -24,6 +24,8 @@
 #include "cli/progress.h"
 #include "cli/terminal_text.h"
 #include "core/error.h"
+#include "core/model_choice.h"
+#include "core/rendered_regions.h"
 #include "export/fit_targets.h"
 #include "io/atomic_file.h"
 #include "io/file_lock.h"
@@ -67,18 +69,26 @@ std::string LossOf(const FitReportEntry& e) {
 }
 
 void PrintTable(std::FILE* out, const std::vector<FitReportEntry>& entries) {
-  fmt::print(out, "  {:<28} {:<26} {:<8} {:>7} {:>7} {:>9} {:>5} {:>9} {}\n", "material", "model",
-             "loss", "psnr_dB", "med_lum", "log_rmse", "iter", "solve_ms", "status");
+  fmt::print(out, "  {:<28} {:<26} {:<8} {:>6} {:>7} {:>7} {:>17} {:>9} {:>5} {:>9} {}\n",
+             "material", "model", "loss", "S_dB", "psnr_dB", "med_lum", "front/side/rim_dB",
+             "log_rmse", "iter", "solve_ms", "status");
   bool any_chosen = false;
   for (const FitReportEntry& e : entries) {
     const FitResult& r = e.result;
     const RenderedError& re = r.metrics.rendered;
+    const std::string score = re.ok ? fmt::format("{:.1f}", RenderedScoreDb(re)) : "-";
     const std::string psnr = re.ok ? fmt::format("{:.1f}", re.psnr_db) : "-";
     const std::string lum = re.ok ? fmt::format("{:.1f}%", 100 * re.median_rel_error) : "-";
+    std::string regions;
+    for (const RegionError& g : RenderedRegions(re)) {
+      regions += (regions.empty() ? "" : "/") +
+                 (g.lights > 0 ? fmt::format("{:.1f}", g.psnr_db) : std::string("-"));
+    }
     any_chosen = any_chosen || e.chosen;
-    fmt::print(out, "{} {:<28} {:<26} {:<8} {:>7} {:>7} {:>9.5f} {:>5} {:>9.1f} {}\n",
-               e.chosen ? "*" : " ", TerminalSafe(e.material), r.model, LossOf(e), psnr, lum,
-               r.metrics.log_rmse, r.iterations, r.times.init + r.times.solve, ToString(r.status));
+    fmt::print(out, "{} {:<28} {:<26} {:<8} {:>6} {:>7} {:>7} {:>17} {:>9.5f} {:>5} {:>9.1f} {}\n",
+               e.chosen ? "*" : " ", TerminalSafe(e.material), r.model, LossOf(e), score, psnr,
+               lum, re.ok ? regions : "-", r.metrics.log_rmse, r.iterations,
+               r.times.init + r.times.solve, ToString(r.status));
     if (!r.message.empty()) fmt::print(out, "    {}\n", TerminalSafe(r.message));
     if (e.factorization) {
       fmt::print(out, "    textures: {} ({:.1f} KiB)\n", TerminalSafe(e.factorization->sidecar),
@@ -87,7 +97,8 @@ void PrintTable(std::FILE* out, const std::vector<FitReportEntry>& entries) {
     if (e.chosen) fmt::print(out, "    chosen: {}\n", TerminalSafe(e.choice));
   }
   if (any_chosen) {
-    fmt::print(out, "* the fit chosen for its table by rendered error (docs/accuracy.md)\n");
+    fmt::print(out, "* the fit chosen for its table by rendered error S over front, side and rim "
+                    "light (docs/accuracy.md)\n");
   }
 }
 

@@ -39,7 +39,7 @@ struct WorstCell {
 // metric"): a unit sphere seen orthographically along +z under one directional light per image,
 // the measured table against an approximation. Plain data, every number finite (when the
 // metric cannot be computed: ok = false, a problem, zeros).
-inline constexpr int kRenderedMaxLights = 8;
+inline constexpr int kRenderedMaxLights = 16;
 // PSNR of identical images (MSE = 0) and any PSNR above it are reported as this cap (dB).
 inline constexpr double kRenderedPsnrCapDb = 200.0;
 
@@ -51,6 +51,16 @@ struct RenderedLightError {
   std::size_t lit_pixels = 0;       // n.l and n.v above the cut-off, measured lookup valid
   std::size_t masked_pixels = 0;    // n.l and n.v above the cut-off, measured lookup invalid
   std::size_t compared_pixels = 0;  // lit, and Y_m above the floor
+};
+
+// The metric over one region of the domain (core/rendered_regions.h): its lights' images
+// pooled, as the whole metric pools every image.
+inline constexpr int kRenderedRegions = 3;
+inline constexpr const char* kRenderedRegionNames[kRenderedRegions] = {"front", "side", "rim"};
+struct RenderedRegionError {
+  int lights = 0;               // 0: no light of the metric in this region
+  double psnr_db = 0;           // linear PSNR over the region's lit pixels, peak over its images
+  double median_rel_error = 0;  // over the region's compared pixels
 };
 
 struct RenderedError {
@@ -70,6 +80,9 @@ struct RenderedError {
   std::size_t compared_pixels = 0;     // lit and Y_m above the floor
   std::size_t below_floor_pixels = 0;  // lit but Y_m at or below the floor: no relative error
   std::array<RenderedLightError, kRenderedMaxLights> lights{};
+  // Per region, pooled; lights == 0 everywhere in results read from files that predate them
+  // (core/rendered_regions.h RenderedRegions then derives them from the lights).
+  std::array<RenderedRegionError, kRenderedRegions> regions{};
 };
 
 struct FitMetrics {

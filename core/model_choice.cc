@@ -5,11 +5,59 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/rendered_regions.h"
+
 namespace brdfit {
 
-double RenderedScoreDb(const RenderedError& rendered) {
-  return std::min(rendered.psnr_db, kScorePsnrCapDb) - 20.0 * rendered.median_rel_error;
+namespace {
+
+struct Combination {
+  std::array<double, kLightRegions> region_weight{};  // d S / d S_r
+  double score = 0;
+  bool any = false;
+};
+
+Combination Combine(const std::array<RegionError, kLightRegions>& regions) {
+  Combination c;
+  double total = 0;
+  int worst = -1;
+  for (int r = 0; r < kLightRegions; ++r) {
+    if (regions[r].lights == 0) continue;
+    total += kRegionWeights[r];
+    if (worst < 0 || regions[r].score_db < regions[worst].score_db) worst = r;
+  }
+  if (worst < 0 || !(total > 0)) return c;
+  c.any = true;
+  for (int r = 0; r < kLightRegions; ++r) {
+    if (regions[r].lights == 0) continue;
+    c.region_weight[r] = (1 - kWorstRegionWeight) * kRegionWeights[r] / total +
+                         (r == worst ? kWorstRegionWeight : 0.0);
+    c.score += c.region_weight[r] * regions[r].score_db;
+  }
+  return c;
 }
+
+std::array<RegionError, kLightRegions> RegionsOf(const RenderedError& rendered) {
+  RenderedError ok = rendered;
+  ok.ok = true;  // the score of the numbers held, whatever the flag (callers check it)
+  return RenderedRegions(ok);
+}
+
+}  // namespace
+
+double RenderedScoreDb(const RenderedError& rendered) {
+  if (rendered.num_lights == 0) {
+    return std::min(rendered.psnr_db, kScorePsnrCapDb) - 20.0 * rendered.median_rel_error;
+  }
+  const Combination c = Combine(RegionsOf(rendered));
+  return c.any ? c.score : std::nan("");
+}
+
+std::array<double, kRenderedRegions> RegionScoreWeights(const RenderedError& rendered) {
+  return Combine(RegionsOf(rendered)).region_weight;
+}
+
+
 
 std::optional<double> RenderedScoreDb(const FitResult& fit) {
   const RenderedError& re = fit.metrics.rendered;

@@ -3,8 +3,10 @@
 //
 // Every fit is judged by its rendered-image error (fit/rendered_error.h) through one score,
 //
-//   S = min(psnr_db, 60) - 20 * median_rel_error        (dB; 1 point of median error = 0.2 dB)
+//   S_k = min(psnr_db, 60) - 20 * median_rel_error      (dB; 1 point of median error = 0.2 dB)
 //
+// per light image k, combined over the regions of the domain the lights show (RenderedScoreDb
+// below: the mean and the worst region's).
 // A PSNR beyond 60 dB (an RMS error below 1/1000 of the peak, under the RMS error of 8-bit
 // quantization, 58.9 dB) counts as 60: nothing a display shows tells such fits apart, and on a
 // coarse table a fit can pass the measured images' own interpolation floor only by fitting that
@@ -23,11 +25,13 @@
 // rendered error take no part; if none has one, nothing is chosen.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/metrics.h"
 #include "core/result.h"
 
 namespace brdfit {
@@ -44,8 +48,28 @@ struct ModelChoice {
   std::string reason;     // one sentence: why it won, against the best-scoring fit
 };
 
-// S of a rendered error (not finite if the numbers are not).
+// S of a rendered error over the whole domain (docs/accuracy.md, "Every light"): the regions'
+// scores S_r (core/rendered_regions.h) weighted by the share of what a camera sees lit from
+// each region under light from every direction (kRegionWeights), and a share for the worst
+// region (kWorstRegionWeight), so that no region can be given away for another:
+//   S = (1 - m) sum_r a_r S_r / sum_r a_r + m min_r S_r        (over the judged regions)
+// With the front region alone (a report of the front-light metric) S is its S_r, the score of
+// that metric. Not finite if the numbers are not.
 double RenderedScoreDb(const RenderedError& rendered);
+// a_r: the share of a region in what a camera sees of a sphere lit by one directional light
+// from a uniformly random direction. A light at angle a from the view lights the fraction
+// (1 + cos a) / 2 of the sphere's orthographic image (half the disc, plus or minus half the
+// ellipse its terminator projects to), and a is distributed as sin a da / 2, so a_r = integral over r of sin a (1 + cos a) / 4 da, which
+// with u = cos a is [(u + u^2 / 2) / 2] over [cos a_hi, cos a_lo]: front (0 - 80 deg) 0.6557,
+// side (80 - 125) 0.2989, rim (125 - 180) 0.0455; they sum to 1. An environment map weighs
+// the regions as this does on average; a studio key light sees the front alone.
+inline constexpr double kRegionWeights[kRenderedRegions] = {0.6557, 0.2989, 0.0455};
+// m: the worst region's extra share. 0.1 over the 25-proxy study of docs/accuracy.md ("Every
+// light"): 0.25 gave up 2.8 dB of front PSNR for 1.3 dB of rim; 0 let the rim drift.
+inline constexpr double kWorstRegionWeight = 0.1;
+// d S / d S_r for each region at this rendered error (the weights the rendered polish gives each
+// region's terms, fit/rendered_polish.h); the worst region's includes m.
+std::array<double, kRenderedRegions> RegionScoreWeights(const RenderedError& rendered);
 // S of one fit, or nullopt when it failed or has no rendered error.
 std::optional<double> RenderedScoreDb(const FitResult& fit);
 

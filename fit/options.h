@@ -96,6 +96,9 @@ std::string OptionsJson(const SampleOptions& samples, const FitOptions& fit);
 // a fit returns (an internal default such as the rendered polish's rounds). The on-disk cache of
 // fits keys on it (pipeline/material_loader.cc), so a newer brdfit never reuses an older one's
 // fit. 1: until 2026-12-03; 2: the polish's rounds go on while S rises (fit/rendered_polish.h).
-inline constexpr int kFitEngineRevision = 2;
+// 3: the rendered judge lights the whole domain (front, side, rim; core/rendered_regions.h).
+inline constexpr int kFitEngineRevision = 3;
+// The rendered judge's name in OptionsJson: "front+side+rim" since revision 3.
+inline constexpr const char* kRenderedJudge = "front+side+rim";
 
 }  // namespace brdfit

@@ -27,6 +27,10 @@ std::string OptionsJson(const SampleOptions& s, const FitOptions& f) {
   j["gradient_tolerance"] = f.gradient_tolerance;
   // Written only when on, so that reports made before the polish existed keep their keys.
   if (f.polish != PolishKind::kNone) j["polish"] = ToString(f.polish);
+  // The rendered metric that scores, polishes and chooses every fit: its lights all around
+  // (core/rendered_regions.h). Fits scored by the front-light judge before it (no key) are not
+  // comparable, so a report of them is refitted on resume and refused by merge.
+  j["judge"] = kRenderedJudge;
   return j.dump();
 }
 

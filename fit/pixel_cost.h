@@ -3,7 +3,7 @@
 // table's blocks are (fit/block_cost.h: same normal equations, gradient and cost).
 //
 // Per lit pixel i, with L = f(wi, wo) n.l the approximation's radiance and L_m the measured one:
-//   linear, per channel c:  r = lin_w (L_c - L_m,c)                       (the PSNR's error)
+//   linear, per channel c:  r = lin_w_i (L_c - L_m,c)                     (the PSNR's error)
 //   luminance:              r = rel_w_i ln((Y + delta_i) / (Y_m + delta_i))   (the relative error)
 // Y: Rec. 709 luminance (ITU-R BT.709-6), as the metric. The weights are set per round by the
 // polish, which makes sum r^2 a local model of the rendered score (fit/rendered_polish.cc).
@@ -29,7 +29,7 @@ struct PolishPixels {
   std::vector<Geometry> geometry;              // of (wi, wo) in the pixel's local frame
   std::vector<double> cos_l;                   // n.l
   std::vector<std::array<double, 3>> measured; // L_m
-  double lin_w = 0;
+  std::vector<double> lin_w;  // per pixel: the weight of its light's PSNR term
   std::vector<double> rel_w;  // 0: below the metric's luminance floor (no relative term)
   std::vector<double> delta;  // the luminance offset of the log ratio (> 0)
   std::size_t size() const { return geometry.size(); }
@@ -49,7 +49,7 @@ void PixelResiduals(const PolishPixels& px, std::size_t i, const T* f, T r[4]) {
   T L[3];
   for (int c = 0; c < 3; ++c) {
     L[c] = f[c] * px.cos_l[i];
-    r[c] = px.lin_w * (L[c] - px.measured[i][c]);
+    r[c] = px.lin_w[i] * (L[c] - px.measured[i][c]);
   }
   const double ym = PolishLuminance(px.measured[i].data());
   if (px.rel_w[i] > 0) {

@@ -7,6 +7,8 @@
 #include <string>
 #include <utility>
 
+#include "core/rendered_regions.h"
+
 namespace brdfit {
 namespace {
 
@@ -110,7 +112,7 @@ void CheckOptions(const RenderedErrorOptions& o) {
     bad("1 to " + std::to_string(kRenderedMaxLights) + " lights");
   }
   for (double a : o.light_angles_deg) {
-    if (!(a >= 0 && a < 90)) bad("light angles must be in [0, 90) degrees");
+    if (!(a >= 0 && a < 180)) bad("light angles must be in [0, 180) degrees");
   }
   if (!(o.min_cos >= 0 && o.min_cos < 1)) bad("min_cos must be in [0, 1)");
   if (!(o.luminance_floor >= 0 && o.luminance_floor < 1)) bad("luminance_floor must be in [0, 1)");
@@ -233,6 +235,12 @@ RenderedError ScoreRadiances(const RenderedReference& ref, const std::vector<dou
   const double* L = radiance.data();
   double sq_sum = 0;
   std::vector<double> all_errors, all_lum;
+  struct RegionSums {
+    double sq = 0, peak = 0;
+    std::size_t lit = 0;
+    std::vector<double> errors;
+  };
+  std::array<RegionSums, kRenderedRegions> region_sums;
   all_lum.reserve(r.lit_pixels);
   for (int k = 0; k < r.num_lights; ++k) {
     RenderedLightError& le = r.lights[static_cast<std::size_t>(k)];
@@ -263,9 +271,22 @@ RenderedError ScoreRadiances(const RenderedReference& ref, const std::vector<dou
     }
     le.compared_pixels = errors.size();
     r.compared_pixels += errors.size();
+    const auto g = static_cast<std::size_t>(RegionOfLight(le.light_deg));
+    RegionSums& rs = region_sums[g];
+    ++r.regions[g].lights;
+    rs.sq += sq;
+    rs.peak = std::max(rs.peak, peak);
+    rs.lit += le.lit_pixels;
+    rs.errors.insert(rs.errors.end(), errors.begin(), errors.end());
     all_errors.insert(all_errors.end(), errors.begin(), errors.end());
     le.median_rel_error = Percentile(errors, 50);
     le.p95_rel_error = Percentile(errors, 95);
+  }
+  for (std::size_t g = 0; g < region_sums.size(); ++g) {
+    if (r.regions[g].lights == 0) continue;
+    RegionSums& rs = region_sums[g];
+    r.regions[g].psnr_db = Psnr(rs.peak, rs.sq / (3.0 * static_cast<double>(rs.lit)));
+    r.regions[g].median_rel_error = Percentile(rs.errors, 50);
   }
   r.below_floor_pixels = r.lit_pixels - r.compared_pixels;
   r.psnr_db = Psnr(r.peak, sq_sum / (3.0 * static_cast<double>(r.lit_pixels)));
@@ -298,6 +319,9 @@ RenderedError ScoreRadiances(const RenderedReference& ref, const std::vector<dou
     const RenderedLightError& le = r.lights[static_cast<std::size_t>(k)];
     finite = finite && std::isfinite(le.psnr_db) && std::isfinite(le.median_rel_error) &&
              std::isfinite(le.p95_rel_error);
+  }
+  for (const RenderedRegionError& g : r.regions) {
+    finite = finite && std::isfinite(g.psnr_db) && std::isfinite(g.median_rel_error);
   }
   if (!finite) return Fail(r, "an error overflows (the approximation is too large)");
   r.ok = true;

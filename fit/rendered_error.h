@@ -28,9 +28,12 @@ using BrdfFunction = std::function<std::array<double, 3>(const Vec3& wi, const V
 
 struct RenderedErrorOptions {
   int resolution = 64;  // N, in [1, 4096]
-  // Angles between each light and the view direction, degrees in [0, 90); 1 to
+  // Angles between each light and the view direction, degrees in [0, 180) (beyond 90 the light
+  // is behind the sphere and lights a crescent at its rim); 1 to
   // kRenderedMaxLights lights, one image each.
-  std::vector<double> light_angles_deg = {0, 30, 45, 60, 70, 80};
+  // The defaults light the three regions of the domain (core/rendered_regions.h): front
+  // (theta_d <= 40 deg), side (47.5 - 62.5) and rim (70 - 82.5, the light behind the sphere).
+  std::vector<double> light_angles_deg = {0, 30, 45, 60, 70, 80, 95, 110, 125, 140, 152, 165};
   // A pixel is lit when n.l > min_cos and n.v > min_cos: the cos guard of fit/samples.h (its
   // 80-degree cut-off is not applied: the rendered sphere shows every angle).
   double min_cos = 1e-3;

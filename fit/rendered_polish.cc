@@ -4,9 +4,11 @@
 #include <ceres/solver.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/model_choice.h"
+#include "core/rendered_regions.h"
 #include "fit/bounded_lm.h"
 #include "fit/pixel_cost.h"
 
@@ -38,16 +40,20 @@ double ScoreOf(const RenderedError& e) {
   return e.ok ? RenderedScoreDb(e) : std::nan("");
 }
 
-// The pixels of the reference with this round's weights, at parameters x (header comment).
+// The pixels of the reference with this round's weights at parameters x (header comment): each
+// region's terms weighted by weight[r], d S / d S_r of the score the stage climbs.
 bool Reweight(const ModelOps& ops, const RenderedReference& ref,
               const std::vector<std::size_t>& begin, const RenderedPolishOptions& o,
-              const std::vector<double>& x, PolishPixels& px) {
+              const std::vector<double>& x, const std::array<double, kRenderedRegions>& weight,
+              PolishPixels& px) {
   const std::vector<double> p = FromOpt(ops.layout, x);
-  const std::size_t n = px.size();
-  std::vector<double> err(n, -1.0);
-  double sse = 0;
-  std::size_t compared = 0;
+  std::vector<double> err(px.size(), -1.0);
+  std::array<double, kRenderedRegions> sse{};
+  std::array<std::size_t, kRenderedRegions> compared{};
+  std::vector<std::size_t> region_of(static_cast<std::size_t>(ref.counts.num_lights));
   for (int k = 0; k < ref.counts.num_lights; ++k) {
+    const auto g = static_cast<std::size_t>(RegionOfLight(ref.counts.lights[k].light_deg));
+    region_of[static_cast<std::size_t>(k)] = g;
     double peak_y = 0;
     // The light's peak over all its pixels, as the metric's floor.
     for (std::size_t i = ref.begin[k]; i < ref.begin[k + 1]; ++i) {
@@ -58,25 +64,34 @@ bool Reweight(const ModelOps& ops, const RenderedReference& ref,
       ops.eval(p.data(), px.geometry[i], f);
       for (int c = 0; c < 3; ++c) {
         L[c] = f[c] * px.cos_l[i];
-        sse += (L[c] - px.measured[i][c]) * (L[c] - px.measured[i][c]);
+        sse[g] += (L[c] - px.measured[i][c]) * (L[c] - px.measured[i][c]);
       }
       px.delta[i] = o.delta_fraction * peak_y;
+      if (!(px.delta[i] > 0)) return false;
       const double ym = PolishLuminance(px.measured[i].data());
       // The metric's compared pixels (fit/rendered_error.h, luminance_floor).
       if (ym > ref.luminance_floor * peak_y) {
         err[i] = std::abs(PolishLuminance(L) - ym) / ym;
-        ++compared;
+        ++compared[g];
       }
     }
   }
-  if (!(sse > 0) || !std::isfinite(sse) || !(px.delta.front() > 0)) return false;
-  px.lin_w = std::sqrt(10.0 / std::log(10.0) / sse);
-  for (std::size_t i = 0; i < n; ++i) {
-    px.rel_w[i] = err[i] < 0 ? 0.0
-                             : std::sqrt(o.median_weight / (static_cast<double>(compared) *
-                                                            std::max(err[i], o.min_error)));
+  bool any = false;
+  for (int k = 0; k < ref.counts.num_lights; ++k) {
+    const std::size_t g = region_of[static_cast<std::size_t>(k)];
+    const double w = weight[g];
+    if (!std::isfinite(sse[g])) return false;
+    const double lin_w = sse[g] > 0 && w > 0 ? std::sqrt(w * 10.0 / std::log(10.0) / sse[g]) : 0.0;
+    for (std::size_t i = begin[k]; i < begin[k + 1]; ++i) {
+      px.lin_w[i] = lin_w;
+      px.rel_w[i] = err[i] < 0 || !(w > 0)
+                        ? 0.0
+                        : std::sqrt(w * o.median_weight / (static_cast<double>(compared[g]) *
+                                                           std::max(err[i], o.min_error)));
+      any = any || lin_w > 0 || px.rel_w[i] > 0;
+    }
   }
-  return true;
+  return any;
 }
 
 }  // namespace
@@ -105,6 +120,7 @@ RenderedPolishOutcome PolishOnRendered(const ModelOps& ops, const RenderedRefere
     begin.push_back(px.size());
   }
   const std::size_t n = px.size();
+  px.lin_w.assign(n, 0.0);
   px.rel_w.assign(n, 0.0);
   px.delta.assign(n, 0.0);
 
@@ -117,36 +133,68 @@ RenderedPolishOutcome PolishOnRendered(const ModelOps& ops, const RenderedRefere
   so.function_tolerance = o.function_tolerance;
   so.line_search_interpolation_type = ceres::QUADRATIC;
 
-  std::vector<double> cur = x;
-  for (int round = 0; round < o.rounds; ++round) {
-    if (!Reweight(ops, ref, begin, o, cur, px)) break;
-    // Blocks of 2048 pixels: Ceres' threads share them; accumulation stays short. LM with an
-    // active set (fit/bounded_lm.h), as the table fit: a parameter the fit left on a bound (a
-    // metal's zero diffuse) is held there instead of projected after every step.
-    const std::size_t nb = std::max<std::size_t>(n / 2048, 1);
-    const BoundedLmRun run = RunBoundedLm(
-        layout,
-        [&](double* xb, ceres::Problem* problem) {
-          for (std::size_t b = 0; b < nb; ++b) {
-            problem->AddResidualBlock(
-                ops.make_pixel_block(px, layout, n * b / nb, n * (b + 1) / nb), nullptr, xb);
-          }
-        },
-        so, o.max_iterations, cur.data());
-    out.iterations += run.iterations;
-    if (!run.finite) break;
-    const RenderedError e = RenderedAt(ops, ref, cur);
-    const double s = ScoreOf(e);
-    out.round_scores.push_back(s);
-    const double gain = std::isfinite(s) ? s - out.score_after : 0.0;
-    if (std::isfinite(s) && s > out.score_after) {
-      out.score_after = s;
-      out.rendered = e;
-      out.improved = true;
-      x = cur;
+  // Two stages when the metric has lights beyond the front: the front region's S alone (the
+  // highlight seen head-on, where a fit's parameters are best determined), then the whole S
+  // from there. IRLS on the whole S from the table fit's parameters stalls where one region's
+  // surrogate forbids what another needs; from the front's optimum it trades only what S
+  // gains. The parameters returned are the best by the whole S of all visited.
+  bool beyond_front = false;
+  for (int r = 1; r < kRenderedRegions; ++r) beyond_front |= out.rendered.regions[r].lights > 0;
+  std::vector<double> stage_start = x;
+  for (int stage = beyond_front ? 0 : 1; stage < 2; ++stage) {
+    const bool front_only = stage == 0;
+    const auto stage_score = [&](const RenderedError& e) {
+      if (!e.ok) return std::nan("");
+      return front_only ? RenderedRegions(e)[0].score_db : RenderedScoreDb(e);
+    };
+    std::vector<double> cur = stage_start;
+    RenderedError cur_rendered = RenderedAt(ops, ref, cur);
+    double stage_best = stage_score(cur_rendered);
+    if (!std::isfinite(stage_best)) break;
+    // The rounds are shared between the stages: the polish costs what one stage did.
+    const int rounds = beyond_front ? (o.rounds + 1) / 2 : o.rounds;
+    for (int round = 0; round < rounds; ++round) {
+      std::array<double, kRenderedRegions> weight{};
+      if (front_only) {
+        weight[0] = 1;
+      } else {
+        weight = RegionScoreWeights(cur_rendered);
+      }
+      if (!cur_rendered.ok || !Reweight(ops, ref, begin, o, cur, weight, px)) break;
+      // Blocks of 2048 pixels: Ceres' threads share them; accumulation stays short. LM with an
+      // active set (fit/bounded_lm.h), as the table fit: a parameter the fit left on a bound (a
+      // metal's zero diffuse) is held there instead of projected after every step.
+      const std::size_t nb = std::max<std::size_t>(n / 2048, 1);
+      const BoundedLmRun run = RunBoundedLm(
+          layout,
+          [&](double* xb, ceres::Problem* problem) {
+            for (std::size_t b = 0; b < nb; ++b) {
+              problem->AddResidualBlock(
+                  ops.make_pixel_block(px, layout, n * b / nb, n * (b + 1) / nb), nullptr, xb);
+            }
+          },
+          so, o.max_iterations, cur.data());
+      out.iterations += run.iterations;
+      if (!run.finite) break;
+      const RenderedError e = RenderedAt(ops, ref, cur);
+      cur_rendered = e;
+      const double s = ScoreOf(e);
+      out.round_scores.push_back(s);
+      if (std::isfinite(s) && s > out.score_after) {
+        out.score_after = s;
+        out.rendered = e;
+        out.improved = true;
+        x = cur;
+      }
+      const double ss = stage_score(e);
+      const double gain = std::isfinite(ss) ? ss - stage_best : 0.0;
+      if (std::isfinite(ss) && ss > stage_best) {
+        stage_best = ss;
+        stage_start = cur;
+      }
+      // IRLS until the stage's score stops rising (options' comment): two rounds at least.
+      if (round >= 1 && !(gain >= o.min_round_gain_db)) break;
     }
-    // IRLS until S stops rising (options' comment): the second round always runs.
-    if (round >= 1 && !(gain >= o.min_round_gain_db)) break;
   }
   return out;
 }

@@ -3,12 +3,15 @@
 // every cell alike; the metric judges what a render shows — the highlight's absolute error (PSNR)
 // and the body's relative error (median) — and the polish moves the parameters to what it judges.
 //
-// The score S = PSNR - 20 median (core/model_choice.h) is not a sum of squares; each round makes
-// one that agrees with it to first order at the current parameters p0 (iteratively reweighted
-// least squares, Holland & Welsch 1977):
-//   linear terms: (10 / ln 10) SSE(p) / SSE(p0)   -- d PSNR = -(10 / ln 10) d SSE / SSE
-//   luminance terms: sum_i W / (n max(|e_i(p0)|, e_min)) ln^2((Y_i + delta_i) / (Y_m,i + delta_i))
-//                    ~ W mean |e_i|, an L1 surrogate of W times the median relative error e
+// The score S (core/model_choice.h) weighs the regions' scores S_r = PSNR_r - 20 median_r
+// (core/rendered_regions.h); it is not a sum of squares. Each round makes one that agrees with
+// it to first order at the current parameters p0 (iteratively reweighted least squares, Holland
+// & Welsch 1977), with w_r = d S / d S_r at p0 (RegionScoreWeights):
+//   linear terms, per region r: w_r (10 / ln 10) SSE_r(p) / SSE_r(p0)
+//                                             -- d PSNR_r = -(10 / ln 10) d SSE_r / SSE_r
+//   luminance terms: sum_{i in r} w_r W / (n_r max(|e_i(p0)|, e_min))
+//                    ln^2((Y_i + delta_i) / (Y_m,i + delta_i))
+//                    ~ w_r W mean |e_i|, an L1 surrogate of W times region r's median error
 // and runs a few LM iterations on it. The parameters kept are the best by S itself, the
 // starting point included: the polish never lowers the score it is judged by.
 #pragma once

@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "io/input_file.h"
+#include "io/metrics_json.h"
 #include "io/model_params.h"
 #include "io/unique_keys_json.h"
 #include "models/registry.h"
@@ -137,7 +138,9 @@ FitReportEntry Entry(const fs::path& p, const nlohmann::ordered_json& f, const s
       out.psnr_srgb_db = Number(p, re, "psnr_srgb_db", w + ".rendered");
       out.median_rel_error = NonNegative(p, re, "median_rel_error", w + ".rendered");
       out.p95_rel_error = NonNegative(p, re, "p95_rel_error", w + ".rendered");
-      out.num_lights = 1;  // computed (io/metrics_json.h RenderedErrorComputed)
+      if (const std::string bad = RenderedLightsFromJson(re, &out); !bad.empty()) {
+        throw InputError(p, w + ".rendered." + bad);
+      }
     }
   }
   e.chosen = fj.value("chosen", false);

@@ -83,6 +83,16 @@ void WriteRendered(const H5::Group& mg, const RenderedError& e) {
   DoubleArray(rg, "light_deg", deg);
   DoubleArray(rg, "light_psnr_db", psnr);
   DoubleArray(rg, "light_median_rel_error", median);
+  // Per region (core/rendered_regions.h: front, side, rim), pooled; lights 0 where none.
+  std::vector<double> region_lights, region_psnr, region_median;
+  for (const RenderedRegionError& g : e.regions) {
+    region_lights.push_back(g.lights);
+    region_psnr.push_back(g.psnr_db);
+    region_median.push_back(g.median_rel_error);
+  }
+  DoubleArray(rg, "region_lights", region_lights);
+  DoubleArray(rg, "region_psnr_db", region_psnr);
+  DoubleArray(rg, "region_median_rel_error", region_median);
 }
 
 void WriteEntry(const H5::Group& g, const FitReportEntry& e, bool timings) {
@@ -228,6 +238,26 @@ class Reader : public hdf5::Reader {
       e->lights[k].light_deg = deg[k];
       e->lights[k].psnr_db = psnr[k];
       e->lights[k].median_rel_error = med[k];
+    }
+    // Reports written before the metric had regions have none (core/rendered_regions.h then
+    // derives them from the lights).
+    if (H5Lexists(rg.getId(), "region_lights", H5P_DEFAULT) > 0) {
+      const std::vector<double> lights = Doubles(rg, rw, "region_lights", kRenderedRegions);
+      const std::vector<double> rpsnr = Doubles(rg, rw, "region_psnr_db", kRenderedRegions);
+      const std::vector<double> rmed = Doubles(rg, rw, "region_median_rel_error", kRenderedRegions);
+      if (lights.size() != kRenderedRegions || rpsnr.size() != kRenderedRegions ||
+          rmed.size() != kRenderedRegions) {
+        Fail(fmt::format("{}: region_lights, region_psnr_db and region_median_rel_error must hold "
+                         "{} values",
+                         rw, kRenderedRegions));
+      }
+      for (int g = 0; g < kRenderedRegions; ++g) {
+        if (!(lights[g] >= 0 && lights[g] <= kRenderedMaxLights) || lights[g] != std::floor(lights[g]) ||
+            rmed[g] < 0) {
+          Fail(fmt::format("{}: region {} holds {} lights and median {}", rw, g, lights[g], rmed[g]));
+        }
+        e->regions[g] = {static_cast<int>(lights[g]), rpsnr[g], rmed[g]};
+      }
     }
     if (e->psnr_db < 0 || e->median_rel_error < 0 || e->p95_rel_error < 0) {
       Fail(rw + ": negative error");

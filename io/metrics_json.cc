@@ -1,5 +1,8 @@
 #include "io/metrics_json.h"
 
+#include "core/model_choice.h"
+#include "core/rendered_regions.h"
+
 namespace brdfit {
 
 nlohmann::ordered_json RenderedErrorJson(const RenderedError& e) {
@@ -8,7 +11,30 @@ nlohmann::ordered_json RenderedErrorJson(const RenderedError& e) {
                               {"median_rel_error", e.median_rel_error},
                               {"p95_rel_error", e.p95_rel_error},
                               {"ok", e.ok}};
-  if (!e.ok) j["problem"] = e.problem;
+  if (!e.ok) {
+    j["problem"] = e.problem;
+    return j;
+  }
+  j["score_db"] = RenderedScoreDb(e);
+  nlohmann::ordered_json regions = nlohmann::ordered_json::object();
+  const auto by_region = RenderedRegions(e);
+  for (int r = 0; r < kLightRegions; ++r) {
+    const RegionError& g = by_region[static_cast<std::size_t>(r)];
+    if (g.lights == 0) continue;
+    regions[RegionName(static_cast<LightRegion>(r))] = {{"lights", g.lights},
+                                                        {"psnr_db", g.psnr_db},
+                                                        {"median_rel_error", g.median_rel_error},
+                                                        {"score_db", g.score_db}};
+  }
+  j["regions"] = regions;
+  nlohmann::ordered_json lights = nlohmann::ordered_json::array();
+  for (int k = 0; k < e.num_lights && k < kRenderedMaxLights; ++k) {
+    const RenderedLightError& l = e.lights[static_cast<std::size_t>(k)];
+    lights.push_back({{"light_deg", l.light_deg},
+                      {"psnr_db", l.psnr_db},
+                      {"median_rel_error", l.median_rel_error}});
+  }
+  j["lights"] = lights;
   return j;
 }
 

@@ -62,7 +62,7 @@ std::string ErrorPng(const RenderedImage& r) {
 
 }  // namespace
 
-std::vector<double> DefaultViewLights() { return {45, 80}; }
+std::vector<double> DefaultViewLights() { return {45, 110, 152}; }
 
 void CheckViewLights(const std::vector<double>& light_deg) {
   const std::vector<double> all = RenderedErrorOptions{}.light_angles_deg;

@@ -71,7 +71,15 @@ std::string HtmlEscape(std::string_view text) {
       case '>': out += "&gt;"; break;
       case '"': out += "&quot;"; break;
       case '\'': out += "&#39;"; break;
-      default: out += c;
+      default:
+        // C0 controls other than tab, LF and CR, and DEL, are parse errors in HTML text (HTML
+        // Living Standard, 13.2.5 "control-character-in-input-stream"): shown as U+FFFD.
+        if ((static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') ||
+            c == '\x7f') {
+          out += "&#xFFFD;";
+        } else {
+          out += c;
+        }
     }
   }
   return out;

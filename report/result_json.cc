@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "io/metrics_json.h"
 
 namespace brdfit::report {
 
@@ -77,6 +78,10 @@ void RenderedFromJson(const json& parent, const JsonFields& f, FitMetrics* m) {
     e.psnr_srgb_db = rf.Required(r, "psnr_srgb_db");
     e.median_rel_error = rf.Required(r, "median_rel_error", 0);
     e.p95_rel_error = rf.Required(r, "p95_rel_error", 0);
+    if (const std::string bad = RenderedLightsFromJson(r, &e); !bad.empty()) {
+      const std::size_t space = bad.find(' ');  // "member problem"
+      rf.Fail(bad.substr(0, space), bad.substr(space + 1));
+    }
   }
 }
 

@@ -56,7 +56,7 @@ TEST(ExportInputs, BadInputsAreRefusedNamingTheFile) {
   ScratchDir dir;
   ExpectRefused(dir.path() / "missing.json", "no such file");
   Write(dir.path() / "garbage.json", "not json at all");
-  ExpectRefused(dir.path() / "garbage.json", "not a JSON object");
+  ExpectRefused(dir.path() / "garbage.json", "not valid JSON: ");
   Write(dir.path() / "other.json", R"({"format": "something-else", "fits": []})");
   ExpectRefused(dir.path() / "other.json", "brdfit-fit-params");
   Write(dir.path() / "nofits.json", R"({"format": "brdfit-fit-params", "format_version": 1})");

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <fstream>
 #include <vector>
 
 #include <filesystem>
@@ -19,6 +20,8 @@
 
 #include "fit/fitter.h"
 #include "fit/rendered_error.h"
+#include "io/fit_params_json.h"
+#include "core/model_choice.h"
 #include "io/fit_report.h"
 #include "io/metrics_json.h"
 #include "tests/scratch_dir.h"
@@ -40,10 +43,17 @@ struct RefLight {
   std::size_t lit = 0, masked = 0, compared = 0;
   std::vector<double> lm, la;  // lit pixels' radiances, RGB
 };
+struct RefRegion {  // docs/accuracy.md "Every light": its lights' images pooled
+  int lights = 0;
+  double psnr = 0, median = 0, peak = 0, se = 0;
+  std::size_t values = 0;
+  std::vector<double> errors;
+};
 struct Ref {
   double psnr = 0, psnr_srgb = 0, median = 0, p95 = 0, peak = 0;
   std::size_t lit = 0, masked = 0, compared = 0;
   std::vector<RefLight> lights;
+  std::array<RefRegion, 3> regions;  // front (<= 80 deg), side (<= 125), rim
 };
 
 double Y(const double* c) {
@@ -112,6 +122,12 @@ Ref Reference(const Table& t, const LocalBrdf& approx, int n,
       all_y.push_back(ym);
       if (ym > 1e-4 * peak_y) e.push_back(std::abs(Y(&rl.la[3 * p]) - ym) / ym);
     }
+    RefRegion& g = r.regions[deg <= 80 ? 0 : deg <= 125 ? 1 : 2];
+    ++g.lights;
+    g.peak = std::max(g.peak, peak);
+    g.se += se;
+    g.values += rl.lm.size();
+    g.errors.insert(g.errors.end(), e.begin(), e.end());
     rl.psnr = PsnrDb(peak, se / static_cast<double>(rl.lm.size()));
     rl.median = SortedAt(e, 50);
     rl.p95 = SortedAt(e, 95);
@@ -124,6 +140,11 @@ Ref Reference(const Table& t, const LocalBrdf& approx, int n,
     all_m.insert(all_m.end(), rl.lm.begin(), rl.lm.end());
     all_a.insert(all_a.end(), rl.la.begin(), rl.la.end());
     r.lights.push_back(std::move(rl));
+  }
+  for (RefRegion& g : r.regions) {
+    if (g.lights == 0) continue;
+    g.psnr = PsnrDb(g.peak, g.se / static_cast<double>(g.values));
+    g.median = SortedAt(g.errors, 50);
   }
   double se = 0;
   for (std::size_t i = 0; i < all_m.size(); ++i) se += std::pow(all_a[i] - all_m[i], 2);
@@ -150,7 +171,8 @@ LocalBrdf Model(const std::string& name, const std::vector<double>& p) {
   };
 }
 
-const std::vector<double> kAngles = {0, 30, 45, 60, 70, 80};
+// The metric's own lights: front, side and rim (light behind the sphere).
+const std::vector<double> kAngles = RenderedErrorOptions{}.light_angles_deg;
 
 void ExpectMatches(const RenderedError& got, const Ref& ref) {
   ASSERT_TRUE(got.ok) << got.problem;
@@ -173,6 +195,13 @@ void ExpectMatches(const RenderedError& got, const Ref& ref) {
     EXPECT_EQ(g.lit_pixels, ref.lights[k].lit);
     EXPECT_EQ(g.masked_pixels, ref.lights[k].masked);
     EXPECT_EQ(g.compared_pixels, ref.lights[k].compared);
+  }
+  for (std::size_t r = 0; r < ref.regions.size(); ++r) {
+    SCOPED_TRACE("region " + std::to_string(r));
+    EXPECT_EQ(got.regions[r].lights, ref.regions[r].lights);
+    if (ref.regions[r].lights == 0) continue;
+    EXPECT_NEAR(got.regions[r].psnr_db, ref.regions[r].psnr, 1e-9);
+    EXPECT_NEAR(got.regions[r].median_rel_error, ref.regions[r].median, 1e-9);
   }
 }
 
@@ -236,7 +265,11 @@ TEST(RenderedError, IdenticalImagesGiveThePsnrCapAndZeroError) {
     EXPECT_EQ(r.lights[k].psnr_db, kRenderedPsnrCapDb);
     EXPECT_EQ(r.lights[k].median_rel_error, 0.0);
   }
-  EXPECT_EQ(r.num_lights, 6);
+  EXPECT_EQ(r.num_lights, static_cast<int>(RenderedErrorOptions{}.light_angles_deg.size()));
+  for (const RenderedRegionError& g : r.regions) {
+    EXPECT_EQ(g.psnr_db, kRenderedPsnrCapDb);
+    EXPECT_EQ(g.median_rel_error, 0.0);
+  }
   EXPECT_EQ(r.resolution, 64);
   EXPECT_EQ(r.masked_pixels, 0u);
   EXPECT_GT(r.lit_pixels, 6u * 64 * 64 / 4);
@@ -348,7 +381,7 @@ TEST(RenderedError, FailuresAreReportedWithFiniteNumbers) {
   o.light_angles_deg = std::vector<double>(kRenderedMaxLights + 1, 10.0);
   EXPECT_THROW(ComputeRenderedError(t, lambert, o), std::invalid_argument);
   o = {};
-  o.light_angles_deg = {90};
+  o.light_angles_deg = {180};
   EXPECT_THROW(ComputeRenderedError(t, lambert, o), std::invalid_argument);
 }
 
@@ -374,7 +407,8 @@ TEST(RenderedError, EveryFitCarriesItThroughReportAndJson) {
   ASSERT_FALSE(r.Failed()) << r.message;
   const RenderedError& e = r.metrics.rendered;
   ASSERT_TRUE(e.ok) << e.problem;
-  EXPECT_EQ(e.num_lights, 6);
+  EXPECT_EQ(e.num_lights, static_cast<int>(RenderedErrorOptions{}.light_angles_deg.size()));
+  for (const RenderedRegionError& g : e.regions) EXPECT_GT(g.lights, 0);
   // 5 % noise on the table: the fit is close to the truth, far better than a 2x error.
   EXPECT_LT(e.median_rel_error, 0.05);
   EXPECT_GT(e.psnr_db, 25);
@@ -402,6 +436,27 @@ TEST(RenderedError, EveryFitCarriesItThroughReportAndJson) {
             e.median_rel_error);
   EXPECT_TRUE(j["fits"][0]["metrics"]["rendered"]["ok"].get<bool>());
   EXPECT_FALSE(j["fits"][0]["metrics"]["rendered"].contains("problem"));
+  // The regions and S: in the HDF5 report, the JSON, and read back from the JSON.
+  for (int g = 0; g < kRenderedRegions; ++g) {
+    EXPECT_EQ(b.regions[g].lights, e.regions[g].lights);
+    EXPECT_EQ(b.regions[g].psnr_db, e.regions[g].psnr_db);
+    EXPECT_EQ(b.regions[g].median_rel_error, e.regions[g].median_rel_error);
+    const auto& jr = j["fits"][0]["metrics"]["rendered"]["regions"][kRenderedRegionNames[g]];
+    EXPECT_EQ(jr["psnr_db"].get<double>(), e.regions[g].psnr_db);
+    EXPECT_EQ(jr["lights"].get<int>(), e.regions[g].lights);
+  }
+  EXPECT_EQ(j["fits"][0]["metrics"]["rendered"]["score_db"].get<double>(), RenderedScoreDb(e));
+  const std::filesystem::path json = dir / "fits.json";
+  std::ofstream(json) << FitParamsJson(back);
+  const auto again = ReadFitParamsJson(json);
+  ASSERT_EQ(again.size(), 1u);
+  const RenderedError& a = again[0].result.metrics.rendered;
+  EXPECT_EQ(a.num_lights, e.num_lights);
+  for (int g = 0; g < kRenderedRegions; ++g) {
+    EXPECT_EQ(a.regions[g].lights, e.regions[g].lights);
+    EXPECT_EQ(a.regions[g].psnr_db, e.regions[g].psnr_db);
+  }
+  EXPECT_EQ(RenderedScoreDb(a), RenderedScoreDb(e));
 }
 
 // The JSON layout shared by fit parameters and factorization sidecars (io/metrics_json.h): a

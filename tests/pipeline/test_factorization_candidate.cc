@@ -61,6 +61,8 @@ TEST(FactorizationCandidate, ChosenOnlyWhenItRendersVisiblyBetter) {
     r.metrics.rendered.num_lights = 1;
     r.metrics.rendered.psnr_db = psnr;
     r.metrics.rendered.median_rel_error = 0.05;
+    r.metrics.rendered.lights[0].psnr_db = psnr;  // one front light: S is its S
+    r.metrics.rendered.lights[0].median_rel_error = 0.05;
     return r;
   };
   const FitResult lobe = fit(40.0);
