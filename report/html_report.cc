@@ -12,9 +12,10 @@
 #include <set>
 #include <sstream>
 
-#include "io/atomic_file.h"
 #include "core/error.h"
 #include "core/provenance.h"
+#include "core/rendered_regions.h"
+#include "io/atomic_file.h"
 #include "report/report_charts.h"
 #include "report/rendered_colors.h"
 
@@ -161,6 +162,17 @@ std::string Psnr(const Entry& e) {
 }
 std::string LumPct(const Entry& e) {
   return HasRendered(e) ? fmt::format("{:.1f} %", 100 * e.metrics.rendered.median_rel_error) : "–";
+}
+
+// The rendered metric's PSNR per region of the domain ("48.9 · 36.0 · 23.7", "–" for a
+// region without lights; core/rendered_regions.h), or "–" without a rendered error.
+std::string RegionsText(const Entry& e) {
+  if (!HasRendered(e)) return "–";
+  std::string out;
+  for (const RegionError& g : RenderedRegions(e.metrics.rendered)) {
+    out += (out.empty() ? "" : " · ") + (g.lights > 0 ? fmt::format("{:.1f}", g.psnr_db) : "–");
+  }
+  return out;
 }
 
 // The cost columns of an entry: a factorization's texture memory and fetches per light and per
@@ -569,6 +581,7 @@ class Page {
     body_ +=
         "<div class=\"scroll\"><table><tr><th class=\"l\">approximation</th>"
         "<th>PSNR (dB)</th><th class=\"wrap\">median lum. err.</th>"
+        "<th class=\"wrap\">front · side · rim (dB)</th>"
         "<th class=\"l\">loss</th><th class=\"l\">budget</th><th class=\"l\">status</th>"
         "<th>log_rmse</th><th>cbrt_rmse</th><th>rel_l2</th><th>cells</th>"
         "<th class=\"wrap\">memory · params</th><th class=\"wrap\">fetches / light</th>"
@@ -590,14 +603,14 @@ class Page {
       const double psnr = rendered ? e.metrics.rendered.psnr_db : NAN;
       const double lum = rendered ? 100 * e.metrics.rendered.median_rel_error : NAN;
       body_ += fmt::format(
-          "<tr{}><td class=\"l\">{}{}</td>{}{}<td class=\"l\">{}</td><td class=\"l\">{}</td>"
+          "<tr{}><td class=\"l\">{}{}</td>{}{}<td>{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td>"
           "<td class=\"l\">{}</td>{}{}{}<td>{}</td>{}{}<td class=\"stages\">{}</td><td>{}</td>"
           "<td>{}</td></tr>\n",
           cls, static_cast<int>(i) == best ? "★ " : "", HtmlEscape(e.name),
           cell(psnr, best_psnr, "{:.2f}"),
           fmt::format("<td{}>{}</td>", rendered && lum == 100 * best_lum ? " class=\"bestv\"" : "",
                       rendered ? fmt::format("{:.1f} %", lum) : "–"),
-          HtmlEscape(e.loss), HtmlEscape(e.budget), status,
+          RegionsText(e), HtmlEscape(e.loss), HtmlEscape(e.budget), status,
           cell(ok ? e.metrics.log_rmse : NAN, best_log),
           cell(ok ? e.metrics.cbrt_rmse : NAN, best_cbrt),
           cell(ok ? e.metrics.rel_l2 : NAN, best_rel), e.metrics.cells, CostCells(e),
@@ -611,7 +624,9 @@ class Page {
     }
     body_ += "</table></div>\n<p class=\"muted\">★ " + HtmlEscape(BestRule(pick.by)) + why +
              "; bold: best of each column; ◆ on the Pareto front of time against log_rmse. "
-             "PSNR and lum. err.: the rendered-image metric (– : not computed). Time: from the "
+             "PSNR and lum. err.: the rendered-image metric (– : not computed); front, side, rim: "
+             "its PSNR under light near the camera, from the side and from behind "
+             "(docs/accuracy.md, \"Every light\"). Time: from the "
              "loaded table to the result (fits: preparation, initializer and solve; "
              "factorizations: the whole solve). Memory: a factorization's float32 RGB textures "
              "and diffuse value; fetches: its texture reads per light, and per shaded fragment "
