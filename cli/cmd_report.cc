@@ -201,11 +201,17 @@ int RunReport(const ReportCliOptions& o) {
   const std::string html = report::RenderHtml(r, js);
   WriteTextAtomically(o.out, html);
   if (!o.quiet) {
-    std::size_t entries = 0;
-    for (const auto& m : r.materials) entries += m.entries.size();
-    fmt::print("wrote {} ({} materials, {} results, {} bench points, {} renders)\n",
-               fs::absolute(o.out).string(), r.materials.size(), entries, r.bench.size(),
-               r.renders.size());
+    std::size_t entries = 0, views = 0;
+    for (const auto& m : r.materials) {
+      entries += m.entries.size();
+      views += m.views.lights.size();
+    }
+    // The sphere renders of the metric's scene, and the PNG renders given as inputs.
+    fmt::print(
+        "wrote {} ({} materials, {} results, {} bench points, {} sphere renders, {} "
+        "renders given)\n",
+        fs::absolute(o.out).string(), r.materials.size(), entries, r.bench.size(), views,
+        r.renders.size());
   }
   if (!problems.All().empty()) {
     for (const std::string& p : problems.All()) {

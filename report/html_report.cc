@@ -378,15 +378,19 @@ class Page {
                "</p>\n";
     }
     if (!report_.materials.empty()) {
-      body_ += "<p class=\"muted\"><b>Rendered error.</b> PSNR: linear PSNR of a sphere rendered "
-               "under 6 directional lights, the fit against the measured table; lum. err.: median "
-               "relative luminance error over its pixels (docs/accuracy.md). <b>Best</b> (★) per "
-               "material: " +
-               (AnyChosen(report_) ? HtmlEscape(BestRule(BestBy::kChosen)) + "; for a material "
-                                         "without a chosen fit, "
-                                   : std::string()) +
-               HtmlEscape(BestRule(AnyRendered(report_) ? BestBy::kRendered : BestBy::kLogRmse)) +
-               ".</p>\n";
+      body_ +=
+          "<p class=\"muted\"><b>Rendered error.</b> PSNR: linear PSNR of a sphere rendered "
+          "under directional lights all around it (front: up to 80° from the view; side: "
+          "up to 125°; rim: behind it), the fit against the measured table; lum. err.: "
+          "median relative luminance error over its pixels (docs/accuracy.md). <b>Best</b> "
+          "(★) per "
+          "material: " +
+          (AnyChosen(report_) ? HtmlEscape(BestRule(BestBy::kChosen)) +
+                                    "; for a material "
+                                    "without a chosen fit, "
+                              : std::string()) +
+          HtmlEscape(BestRule(AnyRendered(report_) ? BestBy::kRendered : BestBy::kLogRmse)) +
+          ".</p>\n";
     }
     for (const auto& n : report_.notes) body_ += "<p class=\"note\">" + HtmlEscape(n) + "</p>\n";
     if (report_.materials.size() > 1) {

@@ -105,11 +105,13 @@ BestPick PickBest(const std::vector<Entry>& entries) {
 std::string BestRule(BestBy by) {
   switch (by) {
     case BestBy::kChosen:
-      return "best = the fit brdfit fit chose (highest min(PSNR, 60 dB) − 20 × median luminance error, the "
+      return "best = the fit brdfit fit chose (highest rendered score S: per region min(PSNR, "
+             "60 dB) − 20 × median luminance error, weighted over front, side and rim light; the "
              "fewest parameters within 0.5 dB of it; core/model_choice.h)";
     case BestBy::kRendered:
-      return "best = highest min(PSNR, 60 dB) − 20 × median luminance error (rendered-image metric, "
-             "docs/accuracy.md) among the results that have it";
+      return "best = highest rendered score S (per region min(PSNR, 60 dB) − 20 × median "
+             "luminance error, weighted over front, side and rim light; docs/accuracy.md) among "
+             "the results that have it";
     case BestBy::kLogRmse:
       return "best = lowest log_rmse: no result has a rendered-image error (a report written "
              "before the metric)";

@@ -127,7 +127,8 @@ TEST(RenderedHtml, PsnrAndLuminanceErrorLeadTheTablesAndPickTheStar) {
   EXPECT_NE(html.find("<tr class=\"best\"><td class=\"l\">★ lambert+ward</td><td>30.55</td>"),
             std::string::npos)
       << html.substr(html.find("<section id=\"m-gold\""), 3000);
-  EXPECT_NE(html.find("highest min(PSNR, 60 dB) − 20 × median luminance error"), std::string::npos);
+  EXPECT_NE(html.find("highest rendered score S (per region min(PSNR, 60 dB) − 20 × median"),
+            std::string::npos);
   EXPECT_NE(html.find("30.55 · 56.3 %"), std::string::npos);
   EXPECT_EQ(html.find("no result has a rendered-image error"), std::string::npos);
 
