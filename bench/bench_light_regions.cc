@@ -36,9 +36,9 @@ using namespace brdfit;
 namespace {
 
 constexpr const char* kRegionNames[3] = {"front", "side", "rim"};
-const std::array<std::vector<double>, 3> kHeldOut = {
-    std::vector<double>{10, 40, 55, 75}, std::vector<double>{88, 100, 112, 122},
-    std::vector<double>{130, 142, 155, 168}};
+const std::array<std::vector<double>, 3> kHeldOut = {std::vector<double>{10, 40, 55, 75},
+                                                     std::vector<double>{88, 100, 112, 122},
+                                                     std::vector<double>{130, 142, 155, 168}};
 
 double Median(std::vector<double> v) {
   if (v.empty()) return 0;
@@ -150,11 +150,13 @@ int main(int argc, char** argv) {
       le15 += row.median[r] <= 0.15;
       med.push_back(row.median[r]);
     }
-    fmt::print("REGION {:<5} n {} | mean PSNR {:.2f} dB | >= 30 dB {} | median lum <= 15 % {} | "
-               "median of medians {:.1f} %\n",
-               kRegionNames[r], rows.size(), sum / n, ge30, le15, 100 * Median(med));
+    fmt::print(
+        "REGION {:<5} n {} | mean PSNR {:.2f} dB | >= 30 dB {} | median lum <= 15 % {} | "
+        "median of medians {:.1f} %\n",
+        kRegionNames[r], rows.size(), sum / n, ge30, le15, 100 * Median(med));
   }
-  fmt::print("ALL n {} | >= 30 dB and <= 15 % in every region {} | solve CPU per table median "
-             "{:.0f} ms\n",
-             rows.size(), all_ok, Median(solve));
+  fmt::print(
+      "ALL n {} | >= 30 dB and <= 15 % in every region {} | solve CPU per table median "
+      "{:.0f} ms\n",
+      rows.size(), all_ok, Median(solve));
 }

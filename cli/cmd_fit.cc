@@ -86,8 +86,8 @@ void PrintTable(std::FILE* out, const std::vector<FitReportEntry>& entries) {
     }
     any_chosen = any_chosen || e.chosen;
     fmt::print(out, "{} {:<28} {:<26} {:<8} {:>6} {:>7} {:>7} {:>17} {:>9.5f} {:>5} {:>9.1f} {}\n",
-               e.chosen ? "*" : " ", TerminalSafe(e.material), r.model, LossOf(e), score, psnr,
-               lum, re.ok ? regions : "-", r.metrics.log_rmse, r.iterations,
+               e.chosen ? "*" : " ", TerminalSafe(e.material), r.model, LossOf(e), score, psnr, lum,
+               re.ok ? regions : "-", r.metrics.log_rmse, r.iterations,
                r.times.init + r.times.solve, ToString(r.status));
     if (!r.message.empty()) fmt::print(out, "    {}\n", TerminalSafe(r.message));
     if (e.factorization) {
@@ -97,8 +97,9 @@ void PrintTable(std::FILE* out, const std::vector<FitReportEntry>& entries) {
     if (e.chosen) fmt::print(out, "    chosen: {}\n", TerminalSafe(e.choice));
   }
   if (any_chosen) {
-    fmt::print(out, "* the fit chosen for its table by rendered error S over front, side and rim "
-                    "light (docs/accuracy.md)\n");
+    fmt::print(out,
+               "* the fit chosen for its table by rendered error S over front, side and rim "
+               "light (docs/accuracy.md)\n");
   }
 }
 

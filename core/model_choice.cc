@@ -57,8 +57,6 @@ std::array<double, kRenderedRegions> RegionScoreWeights(const RenderedError& ren
   return Combine(RegionsOf(rendered)).region_weight;
 }
 
-
-
 std::optional<double> RenderedScoreDb(const FitResult& fit) {
   const RenderedError& re = fit.metrics.rendered;
   if (fit.Failed() || !re.ok) return std::nullopt;

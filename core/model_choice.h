@@ -59,10 +59,11 @@ double RenderedScoreDb(const RenderedError& rendered);
 // a_r: the share of a region in what a camera sees of a sphere lit by one directional light
 // from a uniformly random direction. A light at angle a from the view lights the fraction
 // (1 + cos a) / 2 of the sphere's orthographic image (half the disc, plus or minus half the
-// ellipse its terminator projects to), and a is distributed as sin a da / 2, so a_r = integral over r of sin a (1 + cos a) / 4 da, which
-// with u = cos a is [(u + u^2 / 2) / 2] over [cos a_hi, cos a_lo]: front (0 - 80 deg) 0.6557,
-// side (80 - 125) 0.2989, rim (125 - 180) 0.0455; they sum to 1. An environment map weighs
-// the regions as this does on average; a studio key light sees the front alone.
+// ellipse its terminator projects to), and a is distributed as sin a da / 2, so a_r = integral over
+// r of sin a (1 + cos a) / 4 da, which with u = cos a is [(u + u^2 / 2) / 2] over [cos a_hi, cos
+// a_lo]: front (0 - 80 deg) 0.6557, side (80 - 125) 0.2989, rim (125 - 180) 0.0455; they sum to 1.
+// An environment map weighs the regions as this does on average; a studio key light sees the front
+// alone.
 inline constexpr double kRegionWeights[kRenderedRegions] = {0.6557, 0.2989, 0.0455};
 // m: the worst region's extra share. 0.1 over the 25-proxy study of docs/accuracy.md ("Every
 // light"): 0.25 gave up 2.8 dB of front PSNR for 1.3 dB of rim; 0 let the rim drift.

@@ -29,7 +29,7 @@ struct PolishPixels {
   std::vector<Geometry> geometry;              // of (wi, wo) in the pixel's local frame
   std::vector<double> cos_l;                   // n.l
   std::vector<std::array<double, 3>> measured; // L_m
-  std::vector<double> lin_w;  // per pixel: the weight of its light's PSNR term
+  std::vector<double> lin_w;                   // per pixel: the weight of its light's PSNR term
   std::vector<double> rel_w;  // 0: below the metric's luminance floor (no relative term)
   std::vector<double> delta;  // the luminance offset of the log ratio (> 0)
   std::size_t size() const { return geometry.size(); }

@@ -84,10 +84,11 @@ bool Reweight(const ModelOps& ops, const RenderedReference& ref,
     const double lin_w = sse[g] > 0 && w > 0 ? std::sqrt(w * 10.0 / std::log(10.0) / sse[g]) : 0.0;
     for (std::size_t i = begin[k]; i < begin[k + 1]; ++i) {
       px.lin_w[i] = lin_w;
-      px.rel_w[i] = err[i] < 0 || !(w > 0)
-                        ? 0.0
-                        : std::sqrt(w * o.median_weight / (static_cast<double>(compared[g]) *
-                                                           std::max(err[i], o.min_error)));
+      px.rel_w[i] =
+          err[i] < 0 || !(w > 0)
+              ? 0.0
+              : std::sqrt(w * o.median_weight /
+                          (static_cast<double>(compared[g]) * std::max(err[i], o.min_error)));
       any = any || lin_w > 0 || px.rel_w[i] > 0;
     }
   }

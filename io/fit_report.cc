@@ -247,14 +247,16 @@ class Reader : public hdf5::Reader {
       const std::vector<double> rmed = Doubles(rg, rw, "region_median_rel_error", kRenderedRegions);
       if (lights.size() != kRenderedRegions || rpsnr.size() != kRenderedRegions ||
           rmed.size() != kRenderedRegions) {
-        Fail(fmt::format("{}: region_lights, region_psnr_db and region_median_rel_error must hold "
-                         "{} values",
-                         rw, kRenderedRegions));
+        Fail(
+            fmt::format("{}: region_lights, region_psnr_db and region_median_rel_error must hold "
+                        "{} values",
+                        rw, kRenderedRegions));
       }
       for (int g = 0; g < kRenderedRegions; ++g) {
-        if (!(lights[g] >= 0 && lights[g] <= kRenderedMaxLights) || lights[g] != std::floor(lights[g]) ||
-            rmed[g] < 0) {
-          Fail(fmt::format("{}: region {} holds {} lights and median {}", rw, g, lights[g], rmed[g]));
+        if (!(lights[g] >= 0 && lights[g] <= kRenderedMaxLights) ||
+            lights[g] != std::floor(lights[g]) || rmed[g] < 0) {
+          Fail(fmt::format("{}: region {} holds {} lights and median {}", rw, g, lights[g],
+                           rmed[g]));
         }
         e->regions[g] = {static_cast<int>(lights[g]), rpsnr[g], rmed[g]};
       }

@@ -62,7 +62,9 @@ std::string ErrorPng(const RenderedImage& r) {
 
 }  // namespace
 
-std::vector<double> DefaultViewLights() { return {45, 110, 152}; }
+std::vector<double> DefaultViewLights() {
+  return {45, 110, 152};
+}
 
 void CheckViewLights(const std::vector<double>& light_deg) {
   const std::vector<double> all = RenderedErrorOptions{}.light_angles_deg;

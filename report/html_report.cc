@@ -16,8 +16,8 @@
 #include "core/provenance.h"
 #include "core/rendered_regions.h"
 #include "io/atomic_file.h"
-#include "report/report_charts.h"
 #include "report/rendered_colors.h"
+#include "report/report_charts.h"
 
 namespace brdfit::report {
 
@@ -607,7 +607,8 @@ class Page {
       const double psnr = rendered ? e.metrics.rendered.psnr_db : NAN;
       const double lum = rendered ? 100 * e.metrics.rendered.median_rel_error : NAN;
       body_ += fmt::format(
-          "<tr{}><td class=\"l\">{}{}</td>{}{}<td>{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td>"
+          "<tr{}><td class=\"l\">{}{}</td>{}{}<td>{}</td><td class=\"l\">{}</td><td "
+          "class=\"l\">{}</td>"
           "<td class=\"l\">{}</td>{}{}{}<td>{}</td>{}{}<td class=\"stages\">{}</td><td>{}</td>"
           "<td>{}</td></tr>\n",
           cls, static_cast<int>(i) == best ? "★ " : "", HtmlEscape(e.name),

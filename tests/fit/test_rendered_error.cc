@@ -10,23 +10,23 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <limits>
 #include <string>
-#include <fstream>
 #include <vector>
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "core/model_choice.h"
 #include "fit/fitter.h"
 #include "fit/rendered_error.h"
+#include "fit_test_util.h"
 #include "io/fit_params_json.h"
-#include "core/model_choice.h"
 #include "io/fit_report.h"
 #include "io/metrics_json.h"
-#include "tests/scratch_dir.h"
-#include "fit_test_util.h"
 #include "models/registry.h"
+#include "tests/scratch_dir.h"
 
 namespace brdfit {
 namespace {

@@ -51,7 +51,8 @@ TEST(Encoders, Base64MatchesRfc4648TestVectors) {
 TEST(Encoders, HtmlEscapeNeutralizesMarkup) {
   EXPECT_EQ(HtmlEscape("<a href=\"x\">&'</a>"), "&lt;a href=&quot;x&quot;&gt;&amp;&#39;&lt;/a&gt;");
   EXPECT_EQ(HtmlEscape("θh plain"), "θh plain");
-  EXPECT_EQ(HtmlEscape(std::string("a\x1b[31mb\x7f\0c\td", 12)), "a&#xFFFD;[31mb&#xFFFD;&#xFFFD;c\td");
+  EXPECT_EQ(HtmlEscape(std::string("a\x1b[31mb\x7f\0c\td", 12)),
+            "a&#xFFFD;[31mb&#xFFFD;&#xFFFD;c\td");
 }
 
 TEST(Encoders, ScriptSafeJsonKeepsTheValueAndHasNoAngleBracket) {
