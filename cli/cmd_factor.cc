@@ -286,7 +286,7 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
       code = kExitBadInput;
     } catch (const OutputError& e) {
       // A read-only or full output folder is an output error (exit 2), not a failed solve, and
-      // the next table would meet it too (issue 14 item 15).
+      // the next table would meet it too.
       fmt::print(stderr, "brdfit: error: {}\n", e.what());
       code = kExitBadInput;
       break;

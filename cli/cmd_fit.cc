@@ -222,7 +222,7 @@ int RunFit(const FitCliOptions& o) {
   const std::size_t num_inputs = req.inputs.size();
 
   // Before any work: every input file is there (a missing one is exit 2 with no report
-  // written, issue 14 item 15), the outputs pass the output policy, and the report is ours.
+  // written), the outputs pass the output policy, and the report is ours.
   for (const std::string& f : req.inputs) {
     if (!IsNbrdfInput(f)) CheckInputFile(f);
   }

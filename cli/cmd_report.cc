@@ -67,7 +67,7 @@ class Problems {
 
 // Slices of one material: its table against its best results (the pick, then by
 // report::RankEntries), at most kMaxSliceResults of them: a material with thousands of fits
-// would otherwise draw thousands of lines per slice (issue 14 item 8).
+// would otherwise draw thousands of lines per slice.
 constexpr std::size_t kMaxSliceResults = 8;
 
 void AddSlices(const report::ReportSources& src, const ReportCliOptions& o, const Table& table,
@@ -172,7 +172,7 @@ int RunReport(const ReportCliOptions& o) {
         if (!o.no_renders) m.views.missing = fmt::format("No renders: {}.", why);
         continue;
       }
-      // A table that is there but cannot be read is an error, not a note (issue 14 item 10).
+      // A table that is there but cannot be read is an error, not a note.
       Table table;
       try {
         table = pipeline::LoadInput(t->second);

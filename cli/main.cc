@@ -38,7 +38,7 @@ using brdfit::cli::kExitOk;
 namespace {
 
 // A command's output that never reached standard output (a full disk, a closed pipe) is an
-// output error: exit 2, not the command's 0 (issue 14 item 13).
+// output error: exit 2, not the command's 0.
 int CheckStdout(int code) {
   errno = 0;
   if (std::fflush(stdout) == 0 && !std::ferror(stdout)) return code;
@@ -117,7 +117,7 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     // --help and --version print as CLI11 does; a usage error gets brdfit's prefix like every
-    // other error (issue 14 item 16).
+    // other error.
     if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
     bool replaces = false;
     const std::string hint = UsageHint(app, argc, argv, &replaces);

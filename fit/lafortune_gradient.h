@@ -1,4 +1,4 @@
-// Analytic Jacobian of Lambert + N Lafortune lobes (issue 18 item 4): the 3 + 5 N parameter
+// Analytic Jacobian of Lambert + N Lafortune lobes: the 3 + 5 N parameter
 // autodiff (Jets of 20 lanes for three lobes) dominated those fits' solves. BlockCost uses this
 // where it exists (AnalyticGradient<M>::kAvailable); every other model keeps its Jets.
 //

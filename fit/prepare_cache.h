@@ -1,5 +1,5 @@
 // The per-grid work of PrepareTable (fit/fitter.h), done once for all the tables of a batch
-// (issue 18, "per-grid work once"): the sample plan (fit/sample_plan.h) and the rendered
+// (the per-grid work once): the sample plan (fit/sample_plan.h) and the rendered
 // metric's plan (fit/rendered_error.h RenderedPlan), keyed by the grid and the options they
 // depend on. Every MERL table has one grid, so `brdfit fit nbrdf:all` makes each plan once.
 //

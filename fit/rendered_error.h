@@ -68,7 +68,7 @@ struct RenderedReference {
   bool Empty() const { return pixels.empty() && counts.num_lights == 0; }
 };
 
-// What a reference needs of the measured table's grid, not of its values (issue 18): every
+// What a reference needs of the measured table's grid, not of its values: every
 // lit pixel's directions and its measured lookup's taps (Grid::TrilinearTapsAt), light after
 // light; made once for all tables of a grid (fit/prepare_cache.h). ~2 MB at the defaults.
 struct RenderedPlan {

@@ -1,4 +1,4 @@
-// The per-grid part of sample preparation (fit/samples.h; issue 18, "per-grid work once"):
+// The per-grid part of sample preparation (fit/samples.h), done once per grid:
 // everything a table's samples need that depends only on its grid and on the sample options'
 // cut-off, weighting and mirror pairing, not on the table's mask or values. Every MERL table
 // shares one grid, so a batch computes this once (fit/prepare_cache.h) and PrepareSamples

@@ -26,8 +26,8 @@ std::string Describe(const H5::Exception& e);
 // Writes the HDF5 file that fill() builds to dest atomically. The file is built in memory (the
 // core driver, no backing store), then its image is written with every write and the close
 // checked (io/atomic_file.h): libhdf5 writing to a full disk fails in H5Fclose, which the C++
-// API only prints, and a damaged file was renamed into place and the process crashed at exit
-// (issue 14 item 4). Throws OutputError naming dest (H5::Exception from fill() too).
+// API only prints, and a damaged file was renamed into place and the process crashed at exit.
+// Throws OutputError naming dest (H5::Exception from fill() too).
 void WriteFileImageAtomically(const std::filesystem::path& dest,
                               const std::function<void(H5::H5File& f)>& fill,
                               const H5::FileCreatPropList& fcpl = H5::FileCreatPropList::DEFAULT);

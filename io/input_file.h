@@ -19,7 +19,7 @@ std::vector<char> ReadFilePrefix(const std::filesystem::path& path, std::size_t 
 
 // Text taken from inside a file (a library's message quoting a damaged header, a name) made
 // safe for a one-line message: bytes outside printable ASCII as \xNN, at most max_bytes of it
-// (then "..."). A garbage EXR printed its raw bytes to the terminal (issue 14 item 16).
+// (then "..."). A garbage EXR printed its raw bytes to the terminal.
 std::string PrintableExcerpt(std::string_view text, std::size_t max_bytes = 160);
 
 // Reads a whole file into memory (after CheckInputFile).

@@ -26,7 +26,7 @@ std::string ParamsToJson(const ModelInfo& model, const std::vector<double>& para
 // Why `params` cannot be the parameters of `model` ("" if they can): the model is registered,
 // there is one value per parameter, each finite and inside its bounds. Readers of files that
 // hold parameters (fit reports, fit parameters JSON, render caches) refuse what this refuses:
-// a value of 1e300 crashed the renderer (issue 14 item 5).
+// a value of 1e300 crashed the renderer.
 std::string CheckModelParams(const std::string& model, const std::vector<double>& params);
 
 // Why `names` are not `model`'s qualified parameter names in order ("" if they are). The

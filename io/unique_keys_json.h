@@ -1,6 +1,6 @@
 // JSON parsing that refuses an object holding a key twice. RFC 8259 leaves the meaning open and
 // nlohmann keeps the last one, so {"model": "lambert", "model": "ggx"} read as ggx without a
-// word (issue 14 item 14): a hand-edited file with a key twice is refused instead.
+// word: a hand-edited file with a key twice is refused instead.
 #pragma once
 
 #include <filesystem>

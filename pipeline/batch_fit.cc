@@ -199,7 +199,7 @@ std::vector<std::string> ResolveModelNames(const std::vector<std::string>& reque
       for (int k = 1; k < lobes; ++k) name += "+" + base;
     }
     // Every bare specular name gets the diffuse lobe, or is refused: fitting it alone would
-    // silently drop the diffuse part of the material (issue 15 item 5).
+    // silently drop the diffuse part of the material.
     if (diffuse != "none" && IsBareSpecular(name)) {
       if (IsFittable(diffuse + "+" + name)) {
         name = diffuse + "+" + name;

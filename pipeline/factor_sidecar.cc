@@ -32,7 +32,7 @@ nlohmann::json SourceJson(const fs::path& file, const Table& t) {
   const Provenance& p = t.provenance;
   const std::string name = file.string();
   // As given, as fit reports record their sources: relative to the working directory of the
-  // run, never made absolute (an output names no path the user did not give; issue 16).
+  // run, never made absolute (an output names no path the user did not give).
   return {{"file", name},
           {"hash", TableContentHash(t)},
           {"grid",

@@ -1,4 +1,4 @@
-// The material key of each input of a batch (issue 17 item 5, docs/scale.md "Material
+// The material key of each input of a batch (docs/scale.md "Material
 // identity"): a readable name, unique within the batch and the same on every machine and in
 // every shard given the same tables, never the file stem alone.
 //

@@ -40,8 +40,8 @@ Vec3 Scaled(const Light& l) {
 }
 
 // The lights reaching an object are uniform arrays of its fragment shader: beyond the GL's
-// uniform space the program fails to link, and Mesa says no more than that (5,000 lights,
-// issue 14 item 16). Refused first, with the limit: vec4 slots per light at worst (a vec3 or
+// uniform space the program fails to link, and Mesa says no more than that (5,000 lights).
+// Refused first, with the limit: vec4 slots per light at worst (a vec3 or
 // a float takes a whole slot), 64 slots kept for the material's and camera's uniforms.
 void CheckLightUniforms(const std::string& object, std::size_t dir, std::size_t point,
                         std::size_t spot) {

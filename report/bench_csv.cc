@@ -114,7 +114,7 @@ std::vector<std::string> SplitCsvRecord(const std::string& text, std::size_t* po
 namespace {
 
 // A number, or NaN for an empty field (not computed). brdfit never writes a non-finite number,
-// so "nan" or "inf" is refused, not read as "no value" (issue 14 item 11).
+// so "nan" or "inf" is refused, not read as "no value".
 double ParseDouble(const std::string& s, const std::filesystem::path& path, int line,
                    const std::string& column) {
   if (s.empty()) return NAN;

@@ -156,7 +156,7 @@ Comparison Compare(const Report& old_report, const Report& new_report,
   }
   Comparison c;
   c.options = options;
-  // Lookups by name and key: linear in the entries, not quadratic (issue 14 item 8).
+  // Lookups by name and key: linear in the entries, not quadratic.
   const auto old_materials = MaterialsByName(old_report);
   const auto new_materials = MaterialsByName(new_report);
   for (const Material& ma : old_report.materials) {

@@ -198,7 +198,7 @@ std::string LossLabel(const json& options) {
 
 // Materials by name and the keys their entries use, so that adding n entries costs O(n log n)
 // however many share a key (each duplicate scanned all entries for every suffix it tried:
-// cubic in the fits of one material, issue 14 item 8).
+// cubic in the fits of one material).
 class EntryIndex {
  public:
   explicit EntryIndex(Report* r) : report_(r) {

@@ -2,7 +2,7 @@
 // files) for `brdfit report` and `compare`: a member that is absent takes its documented
 // default, one that is present must have its type and range, else InputError names the file
 // and the member ("metrics.fit_metrics.log_rmse is null, not a number"). A null or negative
-// error read as 0 made a broken result look perfect (issue 14 item 11).
+// error read as 0 made a broken result look perfect.
 #pragma once
 
 #include <cmath>
