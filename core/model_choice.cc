@@ -46,7 +46,9 @@ std::array<RegionError, kLightRegions> RegionsOf(const RenderedError& rendered) 
 }  // namespace
 
 double RenderedScoreDb(const RenderedError& rendered) {
-  if (rendered.num_lights == 0) {
+  bool regions = false;
+  for (const RenderedRegionError& g : rendered.regions) regions = regions || g.lights > 0;
+  if (rendered.num_lights == 0 && !regions) {  // the pooled numbers alone (a bench CSV's)
     return std::min(rendered.psnr_db, kScorePsnrCapDb) - 20.0 * rendered.median_rel_error;
   }
   const Combination c = Combine(RegionsOf(rendered));

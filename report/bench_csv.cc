@@ -23,7 +23,11 @@ const std::vector<std::string>& BenchCsvColumns() {
       "rel_l2",   "metric_ok",  "metric_cells", "weighting", "cutoff_deg", "fit_cells",
       "iterations", "message",
       // Appended with the rendered-image metric (docs/accuracy.md); empty when not computed.
-      "psnr_db", "psnr_srgb_db", "median_rel_error", "p95_rel_error"};
+      "psnr_db", "psnr_srgb_db", "median_rel_error", "p95_rel_error",
+      // Appended with the metric's regions (core/rendered_regions.h); empty for a region
+      // without lights and when the metric was not computed.
+      "front_psnr_db", "front_median_rel_error", "side_psnr_db", "side_median_rel_error",
+      "rim_psnr_db", "rim_median_rel_error"};
   return columns;
 }
 
@@ -63,7 +67,13 @@ std::string BenchCsvText(const std::vector<BenchPoint>& points) {
         Rendered(b.metrics.rendered, b.metrics.rendered.psnr_srgb_db),
         Rendered(b.metrics.rendered, b.metrics.rendered.median_rel_error),
         Rendered(b.metrics.rendered, b.metrics.rendered.p95_rel_error)};
-    for (std::size_t i = 0; i < f.size(); ++i) out += (i ? "," : "") + f[i];
+    std::vector<std::string> fields = f;
+    for (const RenderedRegionError& g : b.metrics.rendered.regions) {
+      const bool judged = b.metrics.rendered.ok && g.lights > 0;
+      fields.push_back(judged ? Num(g.psnr_db) : std::string());
+      fields.push_back(judged ? Num(g.median_rel_error) : std::string());
+    }
+    for (std::size_t i = 0; i < fields.size(); ++i) out += (i ? "," : "") + fields[i];
     out += "\n";
   }
   return out;
@@ -272,6 +282,20 @@ std::vector<BenchPoint> ReadBenchCsv(const std::filesystem::path& path) {
       throw InputError(path, fmt::format("line {}: a negative rendered luminance error", line));
     }
     if (!re.ok) re.psnr_db = re.psnr_srgb_db = re.median_rel_error = re.p95_rel_error = 0;
+    // The regions (files written before them have none): both numbers or neither, and only
+    // with the metric. The CSV does not record how many lights a region had: 1 marks it judged.
+    for (int g = 0; g < kRenderedRegions; ++g) {
+      const std::string name = kRenderedRegionNames[g];
+      const std::string psnr_col = name + "_psnr_db", median_col = name + "_median_rel_error";
+      const double psnr = num(psnr_col.c_str()), median = num(median_col.c_str());
+      if (std::isnan(psnr) && std::isnan(median)) continue;
+      if (!re.ok || !std::isfinite(psnr) || !(median >= 0) || !std::isfinite(median)) {
+        throw InputError(path, fmt::format("line {}: {} and {} must both be given, with the "
+                                           "rendered-error columns, and the median >= 0",
+                                           line, psnr_col, median_col));
+      }
+      re.regions[static_cast<std::size_t>(g)] = {1, psnr, median};
+    }
     points.push_back(std::move(b));
   }
   return points;

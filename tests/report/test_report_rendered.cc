@@ -289,12 +289,16 @@ TEST(RenderedCompare, PsnrDropOrLuminanceRiseBeyondThresholdIsARegression) {
 TEST(RenderedBenchCsv, ColumnsAppendedAndReadBack) {
   const ScratchDir scratch("csvr");
   const auto& cols = BenchCsvColumns();
-  ASSERT_GE(cols.size(), 24u);
-  // The columns before the metric keep their places; the four are the last.
+  ASSERT_EQ(cols.size(), 30u);
+  // The columns before the metric keep their places; its four follow, then the regions'.
   EXPECT_EQ(cols[19], "message");
-  EXPECT_EQ(std::vector<std::string>(cols.end() - 4, cols.end()),
+  EXPECT_EQ(std::vector<std::string>(cols.begin() + 20, cols.begin() + 24),
             (std::vector<std::string>{"psnr_db", "psnr_srgb_db", "median_rel_error",
                                       "p95_rel_error"}));
+  EXPECT_EQ(std::vector<std::string>(cols.end() - 6, cols.end()),
+            (std::vector<std::string>{"front_psnr_db", "front_median_rel_error", "side_psnr_db",
+                                      "side_median_rel_error", "rim_psnr_db",
+                                      "rim_median_rel_error"}));
   BenchPoint b;
   b.material = "gold";
   b.model = "lambert+ggx";
@@ -302,6 +306,8 @@ TEST(RenderedBenchCsv, ColumnsAppendedAndReadBack) {
   b.status = "converged";
   b.metrics = testing::Scored(0.01, 0.02, 0.1, 10);
   b.metrics.rendered = Rendered(33.41, 0.788);
+  b.metrics.rendered.regions[0] = {6, 35.5, 0.5};
+  b.metrics.rendered.regions[2] = {3, 21.25, 1.5};  // no side lights: its columns stay empty
   BenchPoint none = b;
   none.metrics.rendered = {};
   WriteBenchCsv(scratch.path() / "b.csv", {b, none});
@@ -312,7 +318,25 @@ TEST(RenderedBenchCsv, ColumnsAppendedAndReadBack) {
   EXPECT_EQ(back[0].metrics.rendered.psnr_srgb_db, b.metrics.rendered.psnr_srgb_db);
   EXPECT_EQ(back[0].metrics.rendered.median_rel_error, 0.788);
   EXPECT_EQ(back[0].metrics.rendered.p95_rel_error, b.metrics.rendered.p95_rel_error);
+  EXPECT_EQ(back[0].metrics.rendered.regions[0].psnr_db, 35.5);
+  EXPECT_EQ(back[0].metrics.rendered.regions[0].median_rel_error, 0.5);
+  EXPECT_EQ(back[0].metrics.rendered.regions[1].lights, 0);
+  EXPECT_EQ(back[0].metrics.rendered.regions[2].psnr_db, 21.25);
+  EXPECT_EQ(back[0].metrics.rendered.regions[2].lights, 1);  // judged; the CSV has no count
   EXPECT_FALSE(back[1].metrics.rendered.ok);
+  for (const RenderedRegionError& g : back[1].metrics.rendered.regions) EXPECT_EQ(g.lights, 0);
+  // A region's PSNR without its median is refused.
+  std::string text = BenchCsvText({b});
+  text.replace(text.rfind("1.5"), 3, "");
+  std::ofstream(scratch.path() / "half.csv") << text;
+  try {
+    ReadBenchCsv(scratch.path() / "half.csv");
+    ADD_FAILURE() << "a region's PSNR without its median was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("rim_psnr_db and rim_median_rel_error must both"),
+              std::string::npos)
+        << e.what();
+  }
   // A file written before the columns existed reads without them.
   std::ofstream(scratch.path() / "old.csv") << "material,model,budget,time_ms,log_rmse\na,b,full,1,0.1\n";
   const auto old = ReadBenchCsv(scratch.path() / "old.csv");
