@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "core/error.h"
+#include "core/rendered_regions.h"
 
 namespace brdfit::report {
 
@@ -68,8 +69,21 @@ EntryDelta Judge(const std::string& material, const Entry* a, const Entry* b,
   if (HasRendered(a) && HasRendered(b)) {
     d.psnr_change_db = d.new_psnr_db - d.old_psnr_db;
     d.lum_change_points = 100 * (d.new_lum - d.old_lum);
-    d.rendered_regression = o.judge_rendered && (-d.psnr_change_db > o.psnr_drop_db ||
-                                                 d.lum_change_points > o.lum_rise_points);
+    // A region that got worse counts on its own (docs/accuracy.md, "Every light"): the pooled
+    // PSNR follows the brightest images and can hide a side or rim light that fell.
+    const auto ra = RenderedRegions(a->metrics.rendered), rb = RenderedRegions(b->metrics.rendered);
+    for (int g = 0; g < kLightRegions; ++g) {
+      if (ra[g].lights == 0 || rb[g].lights == 0) continue;
+      const double drop = ra[g].psnr_db - rb[g].psnr_db;
+      if (d.worst_region.empty() || drop > d.region_drop_db) {
+        d.worst_region = RegionName(static_cast<LightRegion>(g));
+        d.region_drop_db = drop;
+      }
+    }
+    d.rendered_regression =
+        o.judge_rendered && (-d.psnr_change_db > o.psnr_drop_db ||
+                             d.lum_change_points > o.lum_rise_points ||
+                             (!d.worst_region.empty() && d.region_drop_db > o.psnr_drop_db));
   }
   d.factor = any.kind == Entry::Kind::kFactor;
   if (a && a->has_cost) {
@@ -200,6 +214,15 @@ nlohmann::ordered_json MetricsJson(const FitMetrics& m) {
                      {"psnr_srgb_db", Num(r.psnr_srgb_db)},
                      {"median_rel_error", Num(r.median_rel_error)},
                      {"p95_rel_error", Num(r.p95_rel_error)}};
+    nlohmann::ordered_json regions = nlohmann::ordered_json::object();
+    const auto by_region = RenderedRegions(r);
+    for (int g = 0; g < kLightRegions; ++g) {
+      if (by_region[g].lights == 0) continue;
+      regions[RegionName(static_cast<LightRegion>(g))] = {
+          {"psnr_db", Num(by_region[g].psnr_db)},
+          {"median_rel_error", Num(by_region[g].median_rel_error)}};
+    }
+    j["rendered"]["regions"] = regions;
   }
   return j;
 }
@@ -304,6 +327,9 @@ std::string FormatComparison(const Comparison& c, bool all) {
                             "({:+.1f} pt)",
                             d.old_psnr_db, d.new_psnr_db, d.psnr_change_db, 100 * d.old_lum,
                             100 * d.new_lum, d.lum_change_points);
+      if (!d.worst_region.empty() && d.region_drop_db > 0) {
+        detail += fmt::format("; {} light PSNR {:+.2f} dB", d.worst_region, -d.region_drop_db);
+      }
     } else if (std::isfinite(d.old_psnr_db) != std::isfinite(d.new_psnr_db) &&
                d.change != Change::kMissing && d.change != Change::kAdded) {
       detail += std::isfinite(d.old_psnr_db) ? "; rendered error only in the old report"

@@ -84,7 +84,12 @@ struct EntryDelta {
   // relative luminance error.
   double old_psnr_db = 0, new_psnr_db = 0, old_lum = 0, new_lum = 0;
   double psnr_change_db = 0, lum_change_points = 0;
-  bool rendered_regression = false;  // beyond psnr_drop_db or lum_rise_points
+  // The region of the domain whose PSNR fell most (core/rendered_regions.h; empty when no
+  // region is judged on both sides) and by how much, dB (positive: worse).
+  std::string worst_region;
+  double region_drop_db = 0;
+  // Beyond psnr_drop_db (pooled, or in any region) or lum_rise_points.
+  bool rendered_regression = false;
   // Factorizations: what each side costs to draw (Entry::cost; has_cost false where unknown or
   // absent). Never a regression: a cost is a choice, shown beside the metrics.
   bool factor = false;

@@ -276,6 +276,26 @@ TEST(RenderedCompare, PsnrDropOrLuminanceRiseBeyondThresholdIsARegression) {
   const std::string text = FormatComparison(c);
   EXPECT_NE(text.find("PSNR 33.43 -> 32.83 dB (-0.60)"), std::string::npos) << text;
   EXPECT_NE(text.find("(+3.0 pt)"), std::string::npos) << text;
+  // A region that fell counts though the pooled numbers hold: the rim 1 dB worse.
+  Report ra = TwoFits(), rb = TwoFits();
+  for (Report* r : {&ra, &rb}) {
+    for (Entry& e : r->materials[0].entries) {
+      e.metrics.rendered.regions[0] = {6, 40.0, 0.05};
+      e.metrics.rendered.regions[2] = {3, 30.0, 0.2};
+    }
+  }
+  EXPECT_FALSE(Compare(ra, rb).Regressed());
+  rb.materials[0].entries[0].metrics.rendered.regions[2].psnr_db = 29.0;
+  const Comparison rc = Compare(ra, rb);
+  EXPECT_TRUE(rc.deltas[0].rendered_regression);
+  EXPECT_EQ(rc.deltas[0].worst_region, "rim");
+  EXPECT_NEAR(rc.deltas[0].region_drop_db, 1.0, 1e-12);
+  EXPECT_NE(FormatComparison(rc).find("rim light PSNR -1.00 dB"), std::string::npos)
+      << FormatComparison(rc);
+  EXPECT_EQ(ComparisonToJson(rc)["deltas"][0]["new_metrics"]["rendered"]["regions"]["rim"]
+                                ["psnr_db"]
+                                    .get<double>(),
+            29.0);
   // Without the metric on one side (an old report) nothing is judged on it.
   Report old = TwoFits();
   for (Entry& e : old.materials[0].entries) e.metrics.rendered = {};
