@@ -120,7 +120,11 @@ int main(int argc, char** argv) {
                      100 * g.median_rel_error, g.score_db);
         }
         std::string ps;
-        for (double v : f.params) ps += fmt::format(" {:.4g}", v);
+        for (std::size_t k = 0; k < f.params.size(); ++k) {
+          const bool bound = k < f.at_bound.size() && f.at_bound[k];
+          ps += fmt::format(" {}={:.4g}{}", k < f.param_names.size() ? f.param_names[k] : "?",
+                            f.params[k], bound ? "(bound)" : "");
+        }
         fmt::print("   params{}\n", ps);
       }
       std::fflush(stdout);
