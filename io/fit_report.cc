@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -16,6 +17,7 @@
 #include "core/metrics.h"
 #include "core/provenance.h"
 #include "io/hdf5_util.h"
+#include "io/input_file.h"
 #include "io/metrics_json.h"
 #include "io/model_params.h"
 #include "models/registry.h"
@@ -453,6 +455,21 @@ class Reader : public hdf5::Reader {
     for (hsize_t i = 0; i < n; ++i) {
       const std::string name = entries.getObjnameByIdx(i);
       out.push_back(Entry(Group(entries, "/entries", name), "/entries/" + name));
+    }
+    // A report chooses at most one fit per material (pipeline::MarkChosenFits); with two, which
+    // one an export takes would depend on their order.
+    std::map<std::string, std::string> chosen;
+    for (hsize_t i = 0; i < n; ++i) {
+      if (!out[i].chosen) continue;
+      const std::string name = entries.getObjnameByIdx(i);
+      const auto [it, first] = chosen.emplace(out[i].material, name);
+      if (!first) {
+        Fail(
+            fmt::format("/entries/{} and /entries/{} are both chosen for material '{}' (a report "
+                        "chooses one fit per material)",
+                        PrintableExcerpt(it->second, 64), PrintableExcerpt(name, 64),
+                        PrintableExcerpt(out[i].material, 64)));
+      }
     }
     return out;
   }

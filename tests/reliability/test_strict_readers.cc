@@ -174,6 +174,19 @@ TEST_F(StrictReaders, NegativeCountsAndMetricsAreRefused) {
                 "/entries/00000/metrics@cutoff_deg is 400, outside [0, 90]");
 }
 
+TEST_F(StrictReaders, TwoChosenFitsOfOneMaterialAreRefused) {
+  // A report chooses one fit per material; with two, an export's pick would be the order's.
+  FitReportEntry a = GoodEntry(), b = GoodEntry();
+  a.chosen = b.chosen = true;
+  b.options = R"({"budget":"full","loss":"rel"})";
+  const fs::path two = dir_ / "two.h5";
+  WriteFitReport({a, b}, two);
+  ExpectRefused(two, "are both chosen for material 't' (a report chooses one fit per material)");
+  b.chosen = false;
+  WriteFitReport({a, b}, two);
+  EXPECT_EQ(ReadFitReport(two).size(), 2u);
+}
+
 TEST_F(StrictReaders, ParametersOutsideTheModelsBoundsAreRefused) {
   ExpectRefused(Damaged("huge.h5",
                         [](H5::Group& g) {
