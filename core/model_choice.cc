@@ -37,26 +37,17 @@ Combination Combine(const std::array<RegionError, kLightRegions>& regions) {
   return c;
 }
 
-std::array<RegionError, kLightRegions> RegionsOf(const RenderedError& rendered) {
-  RenderedError ok = rendered;
-  ok.ok = true;  // the score of the numbers held, whatever the flag (callers check it)
-  return RenderedRegions(ok);
-}
-
 }  // namespace
 
 double RenderedScoreDb(const RenderedError& rendered) {
-  bool regions = false;
-  for (const RenderedRegionError& g : rendered.regions) regions = regions || g.lights > 0;
-  if (rendered.num_lights == 0 && !regions) {  // the pooled numbers alone (a bench CSV's)
-    return std::min(rendered.psnr_db, kScorePsnrCapDb) - 20.0 * rendered.median_rel_error;
-  }
-  const Combination c = Combine(RegionsOf(rendered));
-  return c.any ? c.score : std::nan("");
+  const Combination c = Combine(RegionsOfNumbers(rendered));
+  if (c.any) return c.score;
+  // Neither regions nor lights: the pooled numbers alone (a bench CSV's without regions).
+  return std::min(rendered.psnr_db, kScorePsnrCapDb) - 20.0 * rendered.median_rel_error;
 }
 
 std::array<double, kRenderedRegions> RegionScoreWeights(const RenderedError& rendered) {
-  return Combine(RegionsOf(rendered)).region_weight;
+  return Combine(RegionsOfNumbers(rendered)).region_weight;
 }
 
 std::optional<double> RenderedScoreDb(const FitResult& fit) {

@@ -3,10 +3,10 @@
 //
 // Every fit is judged by its rendered-image error (fit/rendered_error.h) through one score,
 //
-//   S_k = min(psnr_db, 60) - 20 * median_rel_error      (dB; 1 point of median error = 0.2 dB)
+//   S_r = min(psnr_db, 60) - 20 * median_rel_error      (dB; 1 point of median error = 0.2 dB)
 //
-// per light image k, combined over the regions of the domain the lights show (RenderedScoreDb
-// below: the mean and the worst region's).
+// per region r of the domain the lights show (core/rendered_regions.h), its images pooled, the
+// regions then weighted with an extra share for the worst (RenderedScoreDb below).
 // A PSNR beyond 60 dB (an RMS error below 1/1000 of the peak, under the RMS error of 8-bit
 // quantization, 58.9 dB) counts as 60: nothing a display shows tells such fits apart, and on a
 // coarse table a fit can pass the measured images' own interpolation floor only by fitting that

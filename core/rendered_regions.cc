@@ -17,8 +17,11 @@ const char* RegionName(LightRegion region) {
 }
 
 std::array<RegionError, kLightRegions> RenderedRegions(const RenderedError& rendered) {
+  return rendered.ok ? RegionsOfNumbers(rendered) : std::array<RegionError, kLightRegions>{};
+}
+
+std::array<RegionError, kLightRegions> RegionsOfNumbers(const RenderedError& rendered) {
   std::array<RegionError, kLightRegions> out{};
-  if (!rendered.ok) return out;
   bool pooled = false;
   for (const RenderedRegionError& r : rendered.regions) pooled = pooled || r.lights > 0;
   if (pooled) {

@@ -36,5 +36,8 @@ struct RegionError {
 // The regions of a rendered error; all zero when it is not ok. From RenderedError::regions, or
 // where a file did not hold them, the means of the region's lights' numbers.
 std::array<RegionError, kLightRegions> RenderedRegions(const RenderedError& rendered);
+// The same from the numbers held, whatever `ok` says (the score of core/model_choice.h; its
+// callers check ok). All zero when neither regions nor lights are held.
+std::array<RegionError, kLightRegions> RegionsOfNumbers(const RenderedError& rendered);
 
 }  // namespace brdfit

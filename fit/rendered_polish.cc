@@ -142,6 +142,7 @@ RenderedPolishOutcome PolishOnRendered(const ModelOps& ops, const RenderedRefere
   bool beyond_front = false;
   for (int r = 1; r < kRenderedRegions; ++r) beyond_front |= out.rendered.regions[r].lights > 0;
   std::vector<double> stage_start = x;
+  RenderedError stage_start_rendered = out.rendered;  // the metric at stage_start
   for (int stage = beyond_front ? 0 : 1; stage < 2; ++stage) {
     const bool front_only = stage == 0;
     const auto stage_score = [&](const RenderedError& e) {
@@ -149,7 +150,7 @@ RenderedPolishOutcome PolishOnRendered(const ModelOps& ops, const RenderedRefere
       return front_only ? RenderedRegions(e)[0].score_db : RenderedScoreDb(e);
     };
     std::vector<double> cur = stage_start;
-    RenderedError cur_rendered = RenderedAt(ops, ref, cur);
+    RenderedError cur_rendered = stage_start_rendered;
     double stage_best = stage_score(cur_rendered);
     if (!std::isfinite(stage_best)) break;
     // The rounds are shared between the stages: the polish costs what one stage did.
@@ -192,6 +193,7 @@ RenderedPolishOutcome PolishOnRendered(const ModelOps& ops, const RenderedRefere
       if (std::isfinite(ss) && ss > stage_best) {
         stage_best = ss;
         stage_start = cur;
+        stage_start_rendered = e;
       }
       // IRLS until the stage's score stops rising (options' comment): two rounds at least.
       if (round >= 1 && !(gain >= o.min_round_gain_db)) break;

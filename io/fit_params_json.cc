@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <map>
 
 #include <nlohmann/json.hpp>
 #include <string>
@@ -189,17 +188,11 @@ std::vector<FitReportEntry> ReadFitParamsJson(const fs::path& path) {
       throw InputError(path, where + ": a member of the wrong type (" + e.what() + ")");
     }
   }
-  // A report chooses at most one fit per material (pipeline::MarkChosenFits); with two, which
-  // one an export takes would depend on their order.
-  std::map<std::string, std::size_t> chosen_at;
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    if (!out[i].chosen) continue;
-    const auto [it, first] = chosen_at.emplace(out[i].material, i);
-    if (!first) {
-      throw InputError(path, fmt::format("fits[{}] and fits[{}] are both chosen for material '{}' "
-                                         "(a report chooses one fit per material)",
-                                         it->second, i, PrintableExcerpt(out[i].material, 64)));
-    }
+  if (const auto two = TwoChosenOfOneMaterial(out)) {
+    throw InputError(path, fmt::format("fits[{}] and fits[{}] are both chosen for material '{}' "
+                                       "(a report chooses one fit per material)",
+                                       two->first, two->second,
+                                       PrintableExcerpt(out[two->second].material, 64)));
   }
   return out;
 }

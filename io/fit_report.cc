@@ -452,24 +452,17 @@ class Reader : public hdf5::Reader {
     const hsize_t n = entries.getNumObjs();
     if (n > kMaxEntries) Fail("too many entries");
     std::vector<FitReportEntry> out;
+    std::vector<std::string> names;
     for (hsize_t i = 0; i < n; ++i) {
-      const std::string name = entries.getObjnameByIdx(i);
-      out.push_back(Entry(Group(entries, "/entries", name), "/entries/" + name));
+      names.push_back(entries.getObjnameByIdx(i));
+      out.push_back(Entry(Group(entries, "/entries", names.back()), "/entries/" + names.back()));
     }
-    // A report chooses at most one fit per material (pipeline::MarkChosenFits); with two, which
-    // one an export takes would depend on their order.
-    std::map<std::string, std::string> chosen;
-    for (hsize_t i = 0; i < n; ++i) {
-      if (!out[i].chosen) continue;
-      const std::string name = entries.getObjnameByIdx(i);
-      const auto [it, first] = chosen.emplace(out[i].material, name);
-      if (!first) {
-        Fail(
-            fmt::format("/entries/{} and /entries/{} are both chosen for material '{}' (a report "
-                        "chooses one fit per material)",
-                        PrintableExcerpt(it->second, 64), PrintableExcerpt(name, 64),
-                        PrintableExcerpt(out[i].material, 64)));
-      }
+    if (const auto two = TwoChosenOfOneMaterial(out)) {
+      Fail(fmt::format(
+          "/entries/{} and /entries/{} are both chosen for material '{}' (a report "
+          "chooses one fit per material)",
+          PrintableExcerpt(names[two->first], 64), PrintableExcerpt(names[two->second], 64),
+          PrintableExcerpt(out[two->second].material, 64)));
     }
     return out;
   }
@@ -532,6 +525,17 @@ std::vector<FitReportEntry> ReadFitReport(const fs::path& path) {
   } catch (const H5::Exception& e) {
     throw InputError(path, hdf5::Describe(e));
   }
+}
+
+std::optional<std::pair<std::size_t, std::size_t>> TwoChosenOfOneMaterial(
+    const std::vector<FitReportEntry>& entries) {
+  std::map<std::string, std::size_t> chosen_at;
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    if (!entries[i].chosen) continue;
+    const auto [it, first] = chosen_at.emplace(entries[i].material, i);
+    if (!first) return std::make_pair(it->second, i);
+  }
+  return std::nullopt;
 }
 
 std::string FitParamsJson(std::vector<FitReportEntry> entries, bool run_details) {

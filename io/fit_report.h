@@ -33,6 +33,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/result.h"
@@ -93,6 +94,12 @@ void WriteFitReport(std::vector<FitReportEntry> entries, const std::filesystem::
 
 // Throws InputError naming the file and the problem.
 std::vector<FitReportEntry> ReadFitReport(const std::filesystem::path& path);
+
+// The first two entries chosen for one material (their indices), or nullopt. A report chooses
+// at most one fit per material (pipeline::MarkChosenFits); with two, which one an export takes
+// would depend on their order, so every reader of fits refuses such a file.
+std::optional<std::pair<std::size_t, std::size_t>> TwoChosenOfOneMaterial(
+    const std::vector<FitReportEntry>& entries);
 // The brdfit version that wrote the report (its root attribute brdfit_version; "" in a report
 // without one). Throws InputError as ReadFitReport.
 std::string ReadFitReportWriterVersion(const std::filesystem::path& path);

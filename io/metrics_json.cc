@@ -16,6 +16,19 @@ nlohmann::ordered_json RenderedErrorJson(const RenderedError& e) {
     return j;
   }
   j["score_db"] = RenderedScoreDb(e);
+  j["regions"] = RenderedRegionsJson(e);
+  nlohmann::ordered_json lights = nlohmann::ordered_json::array();
+  for (int k = 0; k < e.num_lights && k < kRenderedMaxLights; ++k) {
+    const RenderedLightError& l = e.lights[static_cast<std::size_t>(k)];
+    lights.push_back({{"light_deg", l.light_deg},
+                      {"psnr_db", l.psnr_db},
+                      {"median_rel_error", l.median_rel_error}});
+  }
+  j["lights"] = lights;
+  return j;
+}
+
+nlohmann::ordered_json RenderedRegionsJson(const RenderedError& e) {
   nlohmann::ordered_json regions = nlohmann::ordered_json::object();
   const auto by_region = RenderedRegions(e);
   for (int r = 0; r < kLightRegions; ++r) {
@@ -26,16 +39,7 @@ nlohmann::ordered_json RenderedErrorJson(const RenderedError& e) {
                                                         {"median_rel_error", g.median_rel_error},
                                                         {"score_db", g.score_db}};
   }
-  j["regions"] = regions;
-  nlohmann::ordered_json lights = nlohmann::ordered_json::array();
-  for (int k = 0; k < e.num_lights && k < kRenderedMaxLights; ++k) {
-    const RenderedLightError& l = e.lights[static_cast<std::size_t>(k)];
-    lights.push_back({{"light_deg", l.light_deg},
-                      {"psnr_db", l.psnr_db},
-                      {"median_rel_error", l.median_rel_error}});
-  }
-  j["lights"] = lights;
-  return j;
+  return regions;
 }
 
 }  // namespace brdfit

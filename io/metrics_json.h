@@ -20,6 +20,8 @@ namespace brdfit {
 // {"lights", "psnr_db", "median_rel_error", "score_db"}}, the regions with lights;
 // core/rendered_regions.h) and "lights" ([{"light_deg", "psnr_db", "median_rel_error"}]).
 nlohmann::ordered_json RenderedErrorJson(const RenderedError& e);
+// Its "regions" object alone (also `compare --json`'s).
+nlohmann::ordered_json RenderedRegionsJson(const RenderedError& e);
 
 // Whether a RenderedError was computed at all (a failed fit is not scored): the writers leave
 // "rendered" out when it was not.

@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/rendered_regions.h"
+#include "io/metrics_json.h"
 
 namespace brdfit::report {
 
@@ -214,15 +215,7 @@ nlohmann::ordered_json MetricsJson(const FitMetrics& m) {
                      {"psnr_srgb_db", Num(r.psnr_srgb_db)},
                      {"median_rel_error", Num(r.median_rel_error)},
                      {"p95_rel_error", Num(r.p95_rel_error)}};
-    nlohmann::ordered_json regions = nlohmann::ordered_json::object();
-    const auto by_region = RenderedRegions(r);
-    for (int g = 0; g < kLightRegions; ++g) {
-      if (by_region[g].lights == 0) continue;
-      regions[RegionName(static_cast<LightRegion>(g))] = {
-          {"psnr_db", Num(by_region[g].psnr_db)},
-          {"median_rel_error", Num(by_region[g].median_rel_error)}};
-    }
-    j["rendered"]["regions"] = regions;
+    j["rendered"]["regions"] = RenderedRegionsJson(r);
   }
   return j;
 }

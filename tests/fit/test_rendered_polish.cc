@@ -204,21 +204,40 @@ internal::ModelOps OpsOf(const std::string& model) {
 
 // The reweighting rounds (fit/rendered_polish.h): two always, then on while a round raises S
 // by at least min_round_gain_db, at most `rounds`; the x returned is the best by S.
-TEST(RenderedPolish, RoundsGoOnWhileTheScoreRises) {
+// Where the polish tests start: a lambert+ggx fit of the two-lobe table under the rel loss, its
+// parameters in optimization space, and the metric's reference with its front lights alone.
+struct PolishStart {
+  PreparedTable prepared;  // its rendered reference has every light of the metric
+  internal::ModelOps ops;
+  std::vector<double> x0;
+  RenderedReference front;
+  bool ok = false;  // the fit converged
+};
+
+PolishStart TwoLobeTableFit() {
   const Table t = TwoLobeTable();
   FitOptions fo;
   fo.loss = LossKind::kRel;
-  const PreparedTable prepared = PrepareTable(t, SampleOptions{}, fo);
-  const FitResult plain = FitPrepared("lambert+ggx", prepared, fo);
-  ASSERT_FALSE(plain.Failed());
-  const internal::ModelOps ops = OpsOf("lambert+ggx");
-  std::vector<double> x0(plain.params.size());
-  for (std::size_t i = 0; i < x0.size(); ++i) x0[i] = ops.layout.ToOpt(i, plain.params[i]);
-
-  // Front lights only: one stage (the stages: TwoStagesNeverScoreBelowTheFrontAlone).
+  PolishStart s;
+  s.prepared = PrepareTable(t, SampleOptions{}, fo);
+  const FitResult plain = FitPrepared("lambert+ggx", s.prepared, fo);
+  s.ok = !plain.Failed();
+  s.ops = OpsOf("lambert+ggx");
+  s.x0.resize(plain.params.size());
+  for (std::size_t i = 0; i < s.x0.size(); ++i) s.x0[i] = s.ops.layout.ToOpt(i, plain.params[i]);
   RenderedErrorOptions front_lights;
   front_lights.light_angles_deg = {0, 30, 45, 60, 70, 80};
-  const RenderedReference front = PrepareRenderedReference(t, front_lights);
+  s.front = PrepareRenderedReference(t, front_lights);
+  return s;
+}
+
+TEST(RenderedPolish, RoundsGoOnWhileTheScoreRises) {
+  // Front lights only: one stage (the stages: TwoStagesNeverScoreBelowTheFrontAlone).
+  const PolishStart start = TwoLobeTableFit();
+  ASSERT_TRUE(start.ok);
+  const internal::ModelOps& ops = start.ops;
+  const std::vector<double>& x0 = start.x0;
+  const RenderedReference& front = start.front;
   const auto polish = [&](int rounds, double min_gain, std::vector<double>& x) {
     internal::RenderedPolishOptions o;
     o.rounds = rounds;
@@ -264,23 +283,16 @@ TEST(RenderedPolish, RoundsGoOnWhileTheScoreRises) {
 // from there, the rounds shared: it never ends below what the front stage alone reached, scored
 // by the whole S, nor below its start.
 TEST(RenderedPolish, TwoStagesNeverScoreBelowTheFrontAlone) {
-  const Table t = TwoLobeTable();
-  FitOptions fo;
-  fo.loss = LossKind::kRel;
-  const PreparedTable prepared = PrepareTable(t, SampleOptions{}, fo);
-  const FitResult plain = FitPrepared("lambert+ggx", prepared, fo);
-  ASSERT_FALSE(plain.Failed());
-  const internal::ModelOps ops = OpsOf("lambert+ggx");
-  std::vector<double> x0(plain.params.size());
-  for (std::size_t i = 0; i < x0.size(); ++i) x0[i] = ops.layout.ToOpt(i, plain.params[i]);
-  RenderedErrorOptions front_lights;
-  front_lights.light_angles_deg = {0, 30, 45, 60, 70, 80};
-  const RenderedReference front = PrepareRenderedReference(t, front_lights);
+  const PolishStart start = TwoLobeTableFit();
+  ASSERT_TRUE(start.ok);
+  const PreparedTable& prepared = start.prepared;
+  const internal::ModelOps& ops = start.ops;
+  const std::vector<double>& x0 = start.x0;
   const internal::RenderedPolishOptions o;
   std::vector<double> x_front = x0, x_whole = x0;
   internal::RenderedPolishOptions half = o;
   half.rounds = (o.rounds + 1) / 2;
-  ASSERT_TRUE(internal::PolishOnRendered(ops, front, half, x_front).ran);
+  ASSERT_TRUE(internal::PolishOnRendered(ops, start.front, half, x_front).ran);
   const auto whole = internal::PolishOnRendered(ops, prepared.rendered, o, x_whole);
   ASSERT_TRUE(whole.ran);
   EXPECT_LE(whole.round_scores.size(), static_cast<std::size_t>(2 * half.rounds));
