@@ -185,10 +185,10 @@ Registrar reg{
                    "measured | fitted | factored | error panels (scene 'comparison')");
       sub.footer(
           "Exit codes: 0 written, 2 bad scene or input (also a fit the scene needs that fails).\n"
-          "Examples:\n  brdfit render data/scenes/seed000_ggx_directional.json -o ggx.png\n"
+          "Examples:\n  brdfit render data/scenes/ggx_directional.json -o ggx.png\n"
           "  brdfit render scene.json -o cmp.png --compare --size 512x512 --explain\n"
           "  brdfit render nbrdf:gold-metallic-paint -o gold.png\n"
-          "  brdfit render data/scenes/seed000_ggx_spot.json --window");
+          "  brdfit render data/scenes/ggx_spot.json --window");
       return [opts] { return RunRender(*opts); };
     }};
 

@@ -14,7 +14,8 @@ namespace brdfit {
 enum class BurleyVariant {
   kFrostbite,  // Lagarde & de Rousiers 2014 renormalized, linearRoughness r = sqrt(alpha)
   kDisney,     // Burley 2012 original (albedo up to ~1.2 at r = 1: not energy conserving)
-  kSeed004,    // URP workshop 2025 steps 14-15: Frostbite's code fed alpha as linearRoughness
+  // URP workshop 2025 steps 14-15: Frostbite's code fed alpha as linearRoughness.
+  kUrpLinearRoughness,
 };
 
 // Burley 2012, "Physically-Based Shading at Disney" (SIGGRAPH course), §5.3 diffuse:
@@ -27,7 +28,7 @@ enum class BurleyVariant {
 //   F(c) = 1 + (F_D90 - 1)(1 - c)^5.                                         [1/sr, no cosine]
 // r is Frostbite's "linearRoughness", the perceptual roughness: r = sqrt(alpha) (the project's
 // parameter is alpha). The URP workshop 2025 (step 14, docs/models.md) passes alpha itself as
-// linearRoughness; kSeed004 reproduces it.
+// linearRoughness; kUrpLinearRoughness reproduces it.
 // NOT energy conserving: Frostbite's renormalization (energyFactor = 1/1.51 at r = 1) is a fit;
 // with kd = 1 the directional albedo reaches 1.03 at 89.9 deg incidence and r = 1 (1.009 at
 // 89 deg); Burley 2012's original reaches about 1.2 (tests/models/test_physics.cc).
@@ -50,7 +51,7 @@ struct BurleyDiffuse {
     using std::sqrt;
     const T& alpha = p[3];
     // alpha >= 1e-4 in bounds: sqrt's derivative is finite.
-    const T r = V == BurleyVariant::kSeed004 ? alpha : sqrt(alpha);
+    const T r = V == BurleyVariant::kUrpLinearRoughness ? alpha : sqrt(alpha);
     const bool frostbite = V != BurleyVariant::kDisney;
     const T bias = frostbite ? 0.5 * r : T(0.5);
     const T factor = frostbite ? 1.0 + (1.0 / 1.51 - 1.0) * r : T(1.0);

@@ -6,7 +6,7 @@
 // specular lobe, two-lobe GGX and two/three-lobe Lafortune. Each entry costs one Ceres autodiff
 // instantiation in fit/, so variants that reproduce tutorials (Schlick-k choices, legacy
 // normalizations, anisotropic Ward, ...) are types outside the catalog, tested in
-// tests/models/seed_variants.h (docs/models.md).
+// tests/models/tutorial_variants.h (docs/models.md).
 #pragma once
 
 #include <string>

@@ -20,14 +20,14 @@ namespace brdfit {
 //   G: Schlick-Smith with k = (r + 1)^2 / 8 (Karis eq. 4-5)
 //   F: Schlick, F0 = mix(0.04, base, m) per channel (Schlick 1994's (1 - c)^5; Karis 2013
 //      uses a spherical-Gaussian fit of the same curve)
-// [1/sr, without the cosine]. With kSeed002DiffuseFresnel the diffuse term is also weighted
+// [1/sr, without the cosine]. With kDiffuseFresnel the diffuse term is also weighted
 // by (1 - F), as the OpenGL course 2023's shader code does.
 // NOT energy conserving: the diffuse and specular terms are added without a (1 - F) coupling,
 // so base = 1, m = 0 reflects more than 1 (Karis 2013 accepts this).
 //
 // Parameters: base_r, base_g, base_b [0, 1] (not linear weights: base also sets F0);
 // metallic [0, 1]; alpha [1e-4, 1] (log).
-template <bool kSeed002DiffuseFresnel>
+template <bool kDiffuseFresnel>
 struct Ue4Brdf {
   static constexpr bool kEnergyConserving = false;
   static constexpr std::array<ParamSpec, 5> kParams = {{
@@ -50,7 +50,7 @@ struct Ue4Brdf {
       const T f0 = 0.04 * (1.0 - m) + p[c] * m;
       const T f = FSchlickOneMinusCos(f0, omc);
       T diffuse = (1.0 - m) * p[c] * kInvPi;
-      if constexpr (kSeed002DiffuseFresnel) diffuse = diffuse * (1.0 - f);
+      if constexpr (kDiffuseFresnel) diffuse = diffuse * (1.0 - f);
       rgb[c] = diffuse + dg * f;
     }
   }

@@ -1,5 +1,5 @@
 // Ward's Gaussian lobe, isotropic ("ward", "ward-duer"); the anisotropic form is
-// tests/models/seed_variants.h's WardAniso.
+// tests/models/tutorial_variants.h's WardAniso.
 #pragma once
 
 #include <array>

@@ -44,7 +44,7 @@ HeadlessGlContext::HeadlessGlContext() {
 #if BRDFIT_ASAN
   // Under ASan only: LeakSanitizer's exit-time check can crash in its own tracer (signal 11
   // while stopping the threads) once Mesa llvmpipe's worker threads exist, failing a process
-  // that did nothing wrong (make test-asan: the seed004_steps golden test every run,
+  // that did nothing wrong (make test-asan: the urp_steps golden test every run,
   // RenderCli.FourPanelComparison512 now and then). Check for leaks now, before any GL thread
   // exists; LeakSanitizer then skips its exit-time check. Leaks after this point go unseen.
   static const bool checked = [] {

@@ -13,7 +13,7 @@
 #include "tests/models/catalog_types.h"
 #include "tests/models/oracle_cases.h"
 #include "tests/models/oracles.h"
-#include "tests/models/seed_variants.h"
+#include "tests/models/tutorial_variants.h"
 
 namespace brdfit {
 namespace {
@@ -146,15 +146,15 @@ TEST(ModelOracles, WardAnisotropic) {
                                    oracle::WardAniso);
 }
 
-// ---- tutorial variants (tests/models/seed_variants.h), against the sources' code forms -------
-// Their GGX and Beckmann forms ((n.h)^2 (a^2 - 1) + 1, 1 - (n.h)^2) cancel near theta_h = 0 for
-// small alpha; these grids keep alpha >= 0.1 where those forms are accurate. Sources:
+// ---- tutorial variants (tests/models/tutorial_variants.h), against the sources' code forms
+// ------- Their GGX and Beckmann forms ((n.h)^2 (a^2 - 1) + 1, 1 - (n.h)^2) cancel near theta_h = 0
+// for small alpha; these grids keep alpha >= 0.1 where those forms are accurate. Sources:
 // docs/models.md, "Formula variants in tutorials and course notes".
 
 // mebiusbox 2018's shader: a = roughness^2 (= alpha), D = a^2 / (pi ((n.h)^2 (a^2 - 1) + 1)^2),
 // k = a * a * 0.5 (without its +1e-6), G = G_Schlick(l) G_Schlick(v), F Schlick(v.h).
-TEST(SeedVariants, Seed000GgxCode) {
-  ExpectMatchesOracle<Seed000GgxCode>(
+TEST(TutorialVariants, MebiusboxGgxCode) {
+  ExpectMatchesOracle<MebiusboxGgxCode>(
       WithWeights({{0.1, 0.04}, {0.4, 0.5}, {1.0, 0.9}}),
       [](const double* p, const oracle::Angles& a, double* rgb) {
         const double alpha = p[3], f0 = p[4];
@@ -172,13 +172,13 @@ TEST(SeedVariants, Seed000GgxCode) {
 // URP workshop 2025 step 12: alpha2 = roughness^4 = alpha^2,
 // D = exp(-(1 - nh^2) / (nh^2 alpha2)) / (4 alpha2 nh^4),
 // G = min(1, 2 min(nh nv / vh, nh nl / lh)), brdf = base D G F / (4 nl nv).
-// Seed004CookTorrance reproduces it with ks = base * pi / 4 (the workshop's D = pi/4 Walter D).
-TEST(SeedVariants, Seed004CookTorrance) {
+// UrpCookTorrance reproduces it with ks = base * pi / 4 (the workshop's D = pi/4 Walter D).
+TEST(TutorialVariants, UrpCookTorrance) {
   std::vector<std::vector<double>> params;
   for (auto s : std::vector<std::pair<double, double>>{{0.1, 0.8}, {0.4, 0.04}, {1.0, 0.5}}) {
     params.push_back({0.86 * kPi / 4, 0.39 * kPi / 4, 0.2 * kPi / 4, s.first, s.second});
   }
-  ExpectMatchesOracle<Seed004CookTorrance>(
+  ExpectMatchesOracle<UrpCookTorrance>(
       params, [](const double* p, const oracle::Angles& a, double* rgb) {
         const double alpha2 = p[3] * p[3], f0 = p[4];
         const oracle::HalfAngles h = oracle::Half(a);
@@ -197,8 +197,8 @@ TEST(SeedVariants, Seed004CookTorrance) {
 
 // Tokoi's lecture notes: Beckmann p(th) = exp(-tan^2 / m^2) / (4 m^2 cos^4) under the
 // Cook-Torrance pi-form F/pi D G / (cos cos), with the Schlick-Smith k = sqrt(2 m^2 / pi).
-TEST(SeedVariants, Seed001Beckmann) {
-  ExpectMatchesOracle<Seed001Beckmann>(
+TEST(TutorialVariants, TokoiBeckmann) {
+  ExpectMatchesOracle<TokoiBeckmann>(
       WithWeights({{0.05, 0.04}, {0.3, 0.5}, {1.0, 0.9}}),
       [](const double* p, const oracle::Angles& a, double* rgb) {
         const double m = p[3], f0 = p[4];
@@ -214,46 +214,46 @@ TEST(SeedVariants, Seed001Beckmann) {
 }
 
 // OpenGL course 2023 shader: diffuse = base (1 - F)(1 - metallic) / pi, specular as UE4.
-TEST(SeedVariants, Seed002Ue4) {
+TEST(TutorialVariants, OpenGlCourseUe4) {
   std::vector<std::vector<double>> params;
   for (double m : {0.0, 0.6, 1.0})
     for (double alpha : {0.1, 0.49, 1.0}) params.push_back({0.2, 0.5, 0.9, m, alpha});
-  ExpectMatchesOracle<Seed002Ue4>(params,
-                                  [](const double* p, const oracle::Angles& a, double* rgb) {
-                                    double full[3];
-                                    oracle::Ue4(p, a, full);
-                                    const double td = oracle::Half(a).td;
-                                    for (int c = 0; c < 3; ++c) {
-                                      const double f0 = 0.04 * (1 - p[3]) + p[c] * p[3];
-                                      const double f = oracle::FSchlick(f0, td);
-                                      const double diffuse = p[c] / oracle::kPi * (1 - p[3]);
-                                      rgb[c] = full[c] - diffuse + diffuse * (1 - f);
-                                    }
-                                  });
+  ExpectMatchesOracle<OpenGlCourseUe4>(params,
+                                       [](const double* p, const oracle::Angles& a, double* rgb) {
+                                         double full[3];
+                                         oracle::Ue4(p, a, full);
+                                         const double td = oracle::Half(a).td;
+                                         for (int c = 0; c < 3; ++c) {
+                                           const double f0 = 0.04 * (1 - p[3]) + p[c] * p[3];
+                                           const double f = oracle::FSchlick(f0, td);
+                                           const double diffuse = p[c] / oracle::kPi * (1 - p[3]);
+                                           rgb[c] = full[c] - diffuse + diffuse * (1 - f);
+                                         }
+                                       });
 }
 
 // URP workshop 2025 step 15 specular without its second 1/(4 nl nv): D (its form) times
 // Frostbite's V_SmithGGXCorrelated (code form, alphaG2 = alpha^2) times Schlick F.
-TEST(SeedVariants, Seed004PbrSpecular) {
-  ExpectMatchesOracle<Seed004PbrSpecular>(
-      WithWeights({{0.1, 0.8}, {0.4, 0.04}, {1.0, 0.5}}),
-      [](const double* p, const oracle::Angles& a, double* rgb) {
-        const double alpha = p[3], a2 = alpha * alpha, f0 = p[4];
-        const oracle::HalfAngles h = oracle::Half(a);
-        const double nh = std::cos(h.th), nl = std::cos(a.ti), nv = std::cos(a.to);
-        const double den = nh * nh * (a2 - 1.0) + 1.0;
-        const double d = a2 / (oracle::kPi * den * den);
-        const double lv = nl * std::sqrt((-nv * a2 + nv) * nv + a2);
-        const double ll = nv * std::sqrt((-nl * a2 + nl) * nl + a2);
-        const double vis = 0.5 / (lv + ll);
-        const double v = d * vis * oracle::FSchlick(f0, h.td);
-        for (int c = 0; c < 3; ++c) rgb[c] = p[c] * v;
-      });
+TEST(TutorialVariants, UrpPbrSpecular) {
+  ExpectMatchesOracle<UrpPbrSpecular>(WithWeights({{0.1, 0.8}, {0.4, 0.04}, {1.0, 0.5}}),
+                                      [](const double* p, const oracle::Angles& a, double* rgb) {
+                                        const double alpha = p[3], a2 = alpha * alpha, f0 = p[4];
+                                        const oracle::HalfAngles h = oracle::Half(a);
+                                        const double nh = std::cos(h.th), nl = std::cos(a.ti),
+                                                     nv = std::cos(a.to);
+                                        const double den = nh * nh * (a2 - 1.0) + 1.0;
+                                        const double d = a2 / (oracle::kPi * den * den);
+                                        const double lv = nl * std::sqrt((-nv * a2 + nv) * nv + a2);
+                                        const double ll = nv * std::sqrt((-nl * a2 + nl) * nl + a2);
+                                        const double vis = 0.5 / (lv + ll);
+                                        const double v = d * vis * oracle::FSchlick(f0, h.td);
+                                        for (int c = 0; c < 3; ++c) rgb[c] = p[c] * v;
+                                      });
 }
 
 // GGX lobes with the other Fresnel forms: Far Cry 3 (URP workshop 2025 step 9) and the exact
 // dielectric (s/p amplitude form with Snell's law).
-TEST(SeedVariants, GgxFresnelAlternatives) {
+TEST(TutorialVariants, GgxFresnelAlternatives) {
   auto ggx_hc = [](const double* p, const oracle::Angles& a) {
     double rgb[3];
     const double q[4] = {1, 1, 1, p[3]};
@@ -275,8 +275,8 @@ TEST(SeedVariants, GgxFresnelAlternatives) {
 }
 
 // URP workshop 2025 step 14: Fr_DisneyDiffuse(linearRoughness = alpha) / pi; Burley 2012 original.
-TEST(SeedVariants, DiffuseVariants) {
-  ExpectMatchesOracle<Seed004FrostbiteDiffuse>(
+TEST(TutorialVariants, DiffuseVariants) {
+  ExpectMatchesOracle<UrpFrostbiteDiffuse>(
       WithWeights({{0.01}, {0.16}, {1.0}}),
       [](const double* p, const oracle::Angles& a, double* rgb) {
         const double q[4] = {p[0], p[1], p[2], p[3] * p[3]};  // oracle takes r = sqrt(alpha)

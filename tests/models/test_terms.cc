@@ -110,8 +110,8 @@ TEST(Masking, VisibilityTermsMatchSeedForms) {
     EXPECT_DOUBLE_EQ(NoMasking::G<GgxNdf>(0.1, g), 1.0);
     const double hn = g.cos_h, vn = g.cos_o, ln = g.cos_i;
     const double vh = Dot(g.wo, g.h), lh = Dot(g.wi, g.h);
-    const double seed004 = std::min(1.0, 2 * std::min(hn * vn / vh, hn * ln / lh));
-    EXPECT_LE(RelDiff(VGroove::G<GgxNdf>(0.1, g), seed004), 1e-14);
+    const double urp = std::min(1.0, 2 * std::min(hn * vn / vh, hn * ln / lh));
+    EXPECT_LE(RelDiff(VGroove::G<GgxNdf>(0.1, g), urp), 1e-14);
   }
 }
 

@@ -1,5 +1,5 @@
 // Published D, G and F terms that no catalog model uses, kept out of the headers the fitter
-// includes (models/microfacet/): the tutorial variants (tests/models/seed_variants.h) are
+// includes (models/microfacet/): the tutorial variants (tests/models/tutorial_variants.h) are
 // built on them, and tests check them against the papers' and tutorials' printed forms
 // (test_terms.cc, test_oracles.cc, test_physics.cc). docs/models.md ("Formula variants in
 // tutorials and course notes") maps each printed formula to one of these.

@@ -1,9 +1,9 @@
 // Golden images: sphere set-ups of two shading tutorials (docs/models.md) rendered headless and
 // compared with PNGs in data/golden/ (docs/preview.md, "Golden images").
-//   seed000_ggx_{directional,point,spot}: mebiusbox 2018's Three.js sample (its
+//   ggx_{directional,point,spot}: mebiusbox 2018's Three.js sample (its
 //     metallic/roughness material as the catalog's ue4 model, alpha = roughness^2) under each of
 //     its three light types, with range, decay, cone and penumbra; the pi punctual convention.
-//   seed004_steps: the URP workshop 2025's spheres from Lambert to PBR (steps 3, 5, 6, 12, 13,
+//   urp_steps: the URP workshop 2025's spheres from Lambert to PBR (steps 3, 5, 6, 12, 13,
 //     14, 15) under Unity's default directional light, the workshop's parameters, no pi factor.
 //   mesh_torus: a triangle mesh (data/scenes/torus.obj, scripts/make_torus_obj.py) with
 //     lambert+ggx under a directional and a point light.
@@ -75,9 +75,9 @@ TEST_P(Golden, MatchesStoredImage) {
   EXPECT_LE(over, total / 1000) << "more than 0.1 % of the channel values differ by > 2 levels";
 }
 
-INSTANTIATE_TEST_SUITE_P(Seeds, Golden,
-                         ::testing::Values("seed000_ggx_directional", "seed000_ggx_point",
-                                           "seed000_ggx_spot", "seed004_steps", "mesh_torus"));
+INSTANTIATE_TEST_SUITE_P(Scenes, Golden,
+                         ::testing::Values("ggx_directional", "ggx_point", "ggx_spot", "urp_steps",
+                                           "mesh_torus"));
 
 }  // namespace
 }  // namespace brdfit::preview

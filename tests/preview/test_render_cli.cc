@@ -311,7 +311,7 @@ TEST_F(RenderCli, MeshObjectsRenderAndABrokenMeshIsNamed) {
 
 // --window without a display: a clear error and exit 2, nothing written.
 TEST_F(RenderCli, WindowWithoutDisplayExitsTwo) {
-  const std::string scene = std::string(BRDFIT_SOURCE_DIR) + "/data/scenes/seed000_ggx_point.json";
+  const std::string scene = std::string(BRDFIT_SOURCE_DIR) + "/data/scenes/ggx_point.json";
   const CliRun n = RunCli("render " + scene + " --size 64x64");
   EXPECT_EQ(n.code, 2);
   EXPECT_NE(n.out.find("-o out.png (or --window)"), std::string::npos) << n.out;
@@ -330,7 +330,7 @@ TEST_F(RenderCli, WindowFrameMatchesTheHeadlessRender) {
   if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) {
     GTEST_SKIP() << "xvfb-run not installed: window mode not tested (scripts/setup-deps.sh)";
   }
-  const std::string scene = std::string(BRDFIT_SOURCE_DIR) + "/data/scenes/seed000_ggx_spot.json";
+  const std::string scene = std::string(BRDFIT_SOURCE_DIR) + "/data/scenes/ggx_spot.json";
   const CliRun h = RunCli("render " + scene + " --size 128x96 -o " + (dir_ / "h.png").string());
   ASSERT_EQ(h.code, 0) << h.out;
   const CliRun w = RunShell(
