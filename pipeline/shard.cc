@@ -18,12 +18,9 @@ namespace {
 constexpr int kMaxShards = 100000;
 
 // The measured cost of one fit of each catalog model, in units of 10 ms of one core: the mean
-// initializer + Levenberg-Marquardt time of `brdfit bench` at the default budget (stride:32,
-// 30,778 samples), one thread, over the five MERL proxies of bench/bench_tables.h and the
-// losses rel and logratio (10 fits per model), plus 100 ms for the metric pass every fit pays
-// (the model at every cell and the rendered-image metric: 75-167 ms in bench/bench_fit_cli,
-// whatever the model). Measured 2026-12-02 on the 2-core development machine, load 4-6:
-// docs/scale.md "Cost of a fit" has the command. Only the ratios matter.
+// initializer + Levenberg-Marquardt time of `brdfit bench` at the default budget, plus the
+// metric pass every fit pays. docs/scale.md "Cost of a fit" has the command, the machine and
+// the times each number comes from; only the ratios matter.
 const std::map<std::string, int>& MeasuredRunCost() {
   static const std::map<std::string, int> costs = {
       {"lambert", 11},
@@ -58,16 +55,13 @@ const std::map<std::string, int>& MeasuredRunCost() {
       {"lambert+abc", 58},
       {"lambert+lafortune+lafortune", 109},
       {"lambert+lafortune+lafortune+lafortune", 289},
-      // The sheen models, measured later (2026-12-02, load 3) beside lambert+ggx (33 ms) and
-      // burley+ggx (75 ms), scaled to the table above by lambert+ggx's ratio (1.4).
+      // The sheen models, measured later and scaled to the others by lambert+ggx's ratio.
       {"sheen", 12},
       {"lambert+sheen", 12},
       {"lambert+ggx+sheen", 20},
       {"burley+ggx+sheen", 40},
       // The factorization candidate (pipeline/factor_candidate.h: four forms, their scores and
-      // files), 2026-12-03, load 3.8: 874 ms median over three proxies in one run (the systems
-      // built for the first table, reused after) against 236 ms for lambert+ggx+ggx, each plus
-      // the metric pass: 2.9 times lambert+ggx+ggx's 29 units.
+      // files): 2.9 times lambert+ggx+ggx.
       {"factorization", 85},
   };
   return costs;
