@@ -126,9 +126,10 @@ int RunBench(BenchCliOptions o, std::vector<fs::path>* written = nullptr) {
   fo.threads = o.threads;
   fo.polish = plan.polish;
   if (!o.quiet) {
-    fmt::print("{:<24} {:<16} {:<5} {:<11} {:<14} {:>10} {:>10} {:>10} {:>9} {:>8} {:>8}\n",
-               "table", "model", "loss", "budget", "status", "time ms", "log_rmse", "cbrt_rmse",
-               "cells", "psnr_dB", "med_lum");
+    std::string errors;
+    for (const ErrorMetricField& f : kErrorMetrics) errors += fmt::format(" {:>10}", f.name);
+    fmt::print("{:<24} {:<16} {:<5} {:<11} {:<14} {:>10}{} {:>9} {:>8} {:>8}\n", "table", "model",
+               "loss", "budget", "status", "time ms", errors, "cells", "psnr_dB", "med_lum");
   }
   pipeline::BenchConfig config;
   config.models = o.models;
@@ -144,12 +145,14 @@ int RunBench(BenchCliOptions o, std::vector<fs::path>* written = nullptr) {
     bar.Clear();
     if (!o.quiet) {
       const RenderedError& re = b.metrics.rendered;
-      fmt::print(
-          "{:<24} {:<16} {:<5} {:<11} {:<14} {:>10.1f} {:>10.4g} {:>10.4g} {:>9} {:>8} {:>8}\n",
-          TerminalSafe(b.material), b.model, b.loss, b.budget, b.status, b.time_ms,
-          b.metrics.log_rmse, b.metrics.cbrt_rmse, b.fit_cells,
-          re.ok ? fmt::format("{:.2f}", re.psnr_db) : "-",
-          re.ok ? fmt::format("{:.1f}%", 100 * re.median_rel_error) : "-");
+      std::string errors;
+      for (const ErrorMetricField& f : kErrorMetrics) {
+        errors += fmt::format(" {:>10.4g}", b.metrics.*f.value);
+      }
+      fmt::print("{:<24} {:<16} {:<5} {:<11} {:<14} {:>10.1f}{} {:>9} {:>8} {:>8}\n",
+                 TerminalSafe(b.material), b.model, b.loss, b.budget, b.status, b.time_ms, errors,
+                 b.fit_cells, re.ok ? fmt::format("{:.2f}", re.psnr_db) : "-",
+                 re.ok ? fmt::format("{:.1f}%", 100 * re.median_rel_error) : "-");
     }
   };
   for (const BenchInput& in : inputs) {

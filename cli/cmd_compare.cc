@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 
 struct CompareCliOptions {
   std::string old_path, new_path;
-  std::string metric = "log_rmse";
+  std::string metric = kErrorMetrics[kPrimaryErrorMetric].name;
   report::CompareOptions options;
   bool ignore_missing = false;
   bool ignore_rendered = false;
@@ -33,7 +33,7 @@ report::Report Load(const std::string& path) {
 }
 
 int RunCompare(CompareCliOptions o) {
-  o.options.metric = FromString<report::MetricName>(o.metric);
+  o.options.metric = report::ErrorMetricIndex(o.metric);
   o.options.missing_is_regression = !o.ignore_missing;
   o.options.judge_rendered = !o.ignore_rendered;
   if (!(o.options.threshold >= 0) || !(o.options.abs_floor >= 0) ||
@@ -71,7 +71,7 @@ Registrar reg{
                      "baseline: fit report, .factor.json, bench .csv, or a folder of them")
           ->required();
       sub.add_option("new", o->new_path, "results to judge, same kinds")->required();
-      sub.add_option("--metric", o->metric, "deciding metric: log_rmse, cbrt_rmse or rel_l2")
+      sub.add_option("--metric", o->metric, "deciding metric: " + ErrorMetricNames(" | "))
           ->capture_default_str();
       sub.add_option("--threshold", o->options.threshold,
                      "relative increase of the metric counted as a regression (0.05 = 5 %)")
@@ -103,7 +103,7 @@ Registrar reg{
           "2 bad input.\n"
           "Examples:\n"
           "  brdfit compare baseline/fits.h5 fits.h5\n"
-          "  brdfit compare old-bench.csv new-bench.csv --metric cbrt_rmse --threshold 0.02\n"
+          "  brdfit compare old-bench.csv new-bench.csv --metric rel_l2 --threshold 0.02\n"
           "  brdfit compare main-results/ pr-results/ --json > delta.json");
       return [o] { return RunCompare(*o); };
     }};

@@ -18,25 +18,19 @@
 #include "core/error.h"
 #include "core/file_stem.h"
 #include "core/model_choice.h"
-#include "core/provenance.h"
 #include "factor/factor.h"
 #include "factor/factor_choice.h"
 #include "factor/factor_form.h"
-#include "factor/factor_metrics.h"
 #include "io/factor_io.h"
 #include "io/input_file.h"
-#include "io/metrics_json.h"
 #include "io/nbrdf.h"
 #include "io/output_policy.h"
 #include "io/table_io.h"
-#include "pipeline/factor_export.h"
 #include "pipeline/factor_settings.h"
-#include "pipeline/factor_sidecar.h"
-#include "pipeline/factor_with_choice.h"
+#include "pipeline/factor_table.h"
 #include "pipeline/inputs.h"
 #include "pipeline/material_keys.h"
 #include "pipeline/shard.h"
-#include "report/report_inputs.h"
 
 namespace brdfit::cli {
 namespace {
@@ -160,11 +154,13 @@ void PrintSummary(const std::string& stem, const Factorization& r, double ln_rms
           ? fmt::format("{}+{}", cost.fetches_per_light, cost.fetches_per_fragment)
           : fmt::format("{}", cost.fetches_per_light);
   const FactorStats& s = r.stats;
+  std::string errors;
+  for (const ErrorMetricField& f : kErrorMetrics) errors += fmt::format(" {:>9.4g}", m.*f.value);
   fmt::print(
-      "{:<28} {:<13} {:>4} {:>8} {:>7} {:>10.4g} {:>9.4g} {:>9.4g} {:>7} {:>7} {:>8.1f} "
+      "{:<28} {:<13} {:>4} {:>8} {:>7} {:>10.4g}{} {:>7} {:>7} {:>8.1f} "
       "{:>7} {:>8} {:>8.1f}ms\n",
       stem, FactorFormLabel(form), r.options.resolution, s.used_cells, s.nonpositive_cells, ln_rmse,
-      m.log_rmse, m.cbrt_rmse, psnr, lum, cost.texture_bytes / 1024.0, fetches,
+      errors, psnr, lum, cost.texture_bytes / 1024.0, fetches,
       s.system_rebuilt  ? "rebuilt"
       : s.system_reused ? "reused"
                         : "built",
@@ -208,79 +204,46 @@ int RunFactor(const FactorCliOptions& o, std::vector<fs::path>* written = nullpt
   FactorSystemCache cache;
   int code = kExitOk;
   if (!o.quiet) {
+    std::string errors;
+    for (const ErrorMetricField& f : kErrorMetrics) errors += fmt::format(" {:>9}", f.name);
     fmt::print(
-        "{:<28} {:<13} {:>4} {:>8} {:>7} {:>10} {:>9} {:>9} {:>7} {:>7} {:>8} {:>7} {:>8} "
+        "{:<28} {:<13} {:>4} {:>8} {:>7} {:>10}{} {:>7} {:>7} {:>8} {:>7} {:>8} "
         "{:>9}\n",
-        "table", "form", "res", "cells", "f<=0", "ln-rmse", "E2-log", "cbrt", "psnr_dB", "med_lum",
-        "tex_KiB", "fetches", "system", "time");
+        "table", "form", "res", "cells", "f<=0", "ln-rmse", errors, "psnr_dB", "med_lum", "tex_KiB",
+        "fetches", "system", "time");
   }
   for (const FactorInput& input : inputs) {
     const std::string& file = input.file;
     const bool last = &input == &inputs.back();
     try {
       const Table table = pipeline::LoadInput(file);
-      Factorization r;
-      RenderedError re;
-      nlohmann::json choice;
-      try {
-        if (!o.auto_form) {
-          r = Factor(table, options, &cache);
-          // What the preview draws from the textures written below (docs/accuracy.md).
-          re = ScoreFactorizationRendered(table, r.brdf);
-        } else {
-          // On the last table, a parameterization's system goes once its candidates are done.
-          pipeline::FactorWithChoice c = pipeline::FactorChoosingForm(table, options, &cache, last);
-          choice = pipeline::ChoiceJson(c, !o.no_timings);
-          if (!o.quiet) {
-            for (std::size_t k = 0; k < c.scores.size(); ++k) {
-              fmt::print("  candidate {:<16} {}{}\n", kAutoFactorCandidates[k].name,
-                         ScoreText(c.scores[k].rendered), k == c.chosen ? "  <- chosen" : "");
-            }
-          }
-          r = std::move(c.kept);
-          re = c.rendered;
-        }
-      } catch (const InputError& e) {
-        throw InputError(file, e.what());
-      }
-      // The factored systems (~100 MB each on the MERL grid) serve the next tables; after the
-      // last one they are dropped before the metrics' own per-cell arrays are made.
-      if (last) cache.Clear();
-      const double ln_rmse = FactorLnRatioRmse(table, r.brdf, options.max_theta);
-      // What each product bought: the lower ranks met on the way, scored like the result.
-      nlohmann::json ranks;
-      if (!r.lower_ranks.empty()) {
-        std::vector<const FactoredBrdf*> all;
-        for (const FactoredBrdf& b : r.lower_ranks) all.push_back(&b);
-        all.push_back(&r.brdf);
-        for (const FactoredBrdf* b : all) {
-          const RenderedError e = b == &r.brdf ? re : ScoreFactorizationRendered(table, *b);
-          const FactorCost c = CostOf(*b);
-          nlohmann::json line = pipeline::ScoreJson(e);
-          line["rank"] = b->rank();
-          line["texture_bytes"] = c.texture_bytes;
-          line["fetches_per_light"] = c.fetches_per_light;
-          line["fetches_per_fragment"] = c.fetches_per_fragment;
-          ranks.push_back(std::move(line));
-          if (!o.quiet) {
-            fmt::print("  rank {}: {}  {:>7.1f} KiB  {} fetches per light\n", b->rank(),
-                       ScoreText(e), c.texture_bytes / 1024.0, c.fetches_per_light);
-          }
-        }
-      }
-      const FitMetrics m = ScoreFactorization(table, r.brdf, metric_samples);
-      const std::string stem = OutputStem(input.material, o.suffix);
-      nlohmann::json extra = {{"material", input.material},
-                              {"source", pipeline::SourceJson(file, table)},
-                              {"metrics", pipeline::MetricsJson(m, re, ln_rmse)},
-                              {"provenance", pipeline::ProvenanceJson(!o.no_timings)}};
-      if (!choice.is_null()) extra["choice"] = choice;
-      if (!ranks.is_null()) extra["ranks"] = ranks;
-      const FactorPaths paths = SaveFactorization(r, o.out_dir, stem, extra, !o.no_timings);
+      pipeline::FactorTableRequest q;
+      q.file = file;
+      q.material = input.material;
+      q.stem = OutputStem(input.material, o.suffix);
+      q.options = options;
+      q.auto_form = o.auto_form;
+      q.metric_samples = metric_samples;
+      q.out_dir = o.out_dir;
+      q.timings = !o.no_timings;
+      q.cache = &cache;
+      q.last = last;
+      const pipeline::FactoredTable t = pipeline::FactorTable(table, q);
       if (written) {
-        for (const fs::path& p : paths.All()) written->push_back(p);
+        for (const fs::path& p : t.paths.All()) written->push_back(p);
       }
-      if (!o.quiet) PrintSummary(stem, r, ln_rmse, m, re);
+      if (!o.quiet) {
+        for (const pipeline::FormScore& f : t.forms) {
+          fmt::print("  candidate {:<16} {}{}\n", f.name, ScoreText(f.rendered),
+                     f.chosen ? "  <- chosen" : "");
+        }
+        for (const pipeline::RankScore& k : t.ranks) {
+          fmt::print("  rank {}: {}  {:>7.1f} KiB  {} fetches per light\n", k.rank,
+                     ScoreText(k.rendered), k.cost.texture_bytes / 1024.0,
+                     k.cost.fetches_per_light);
+        }
+        PrintSummary(q.stem, t.result, t.ln_rmse, t.metrics, t.rendered);
+      }
     } catch (const InputError& e) {
       fmt::print(stderr, "brdfit: error: {}\n", e.what());
       code = kExitBadInput;

@@ -1,11 +1,13 @@
 // `brdfit report RESULTS... -o report.html`: one self-contained HTML page from fit reports,
-// factorizations, bench CSVs, renders and tables (report/report_inputs.h, report/html_report.h), with
-// θh slices of every material whose table is at hand. Also the demo's last step (order 90).
+// factorizations, bench CSVs, renders and tables, with θh slices and renders of every material
+// whose table is at hand (built by pipeline/build_report.h, drawn by report/html_report.h).
+// Also the demo's last step (order 90).
 #include <fmt/core.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,22 +16,19 @@
 #include "cli/progress.h"
 #include "cli/terminal_text.h"
 #include "core/error.h"
-#include "fit/metrics.h"
 #include "io/atomic_file.h"
 #include "io/output_policy.h"
 #include "io/table_io.h"
-#include "pipeline/factor_export.h"
+#include "pipeline/build_report.h"
 #include "pipeline/inputs.h"
 #include "pipeline/rendered_views.h"
 #include "report/html_report.h"
-#include "report/report_inputs.h"
 #include "report/report_slices.h"
 
 namespace brdfit::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using report::Entry;
 
 struct ReportCliOptions {
   std::vector<std::string> inputs;
@@ -44,74 +43,6 @@ struct ReportCliOptions {
   bool keep_going = false;
   bool quiet = false;
 };
-
-// What could not be read. Without --keep-going the first problem ends the run (exit 2, nothing
-// written); with it, each becomes a note on the page and an error on stderr, and the run exits
-// 2 after writing the page.
-class Problems {
- public:
-  explicit Problems(bool keep_going) : keep_going_(keep_going) {}
-  // Throws e unless keep-going; else records it and returns its text for a note.
-  std::string Add(const InputError& e) {
-    if (!keep_going_) throw e;
-    all_.push_back(e.what());
-    return e.what();
-  }
-  std::vector<std::string>* Sink() { return keep_going_ ? &all_ : nullptr; }
-  const std::vector<std::string>& All() const { return all_; }
-
- private:
-  bool keep_going_;
-  std::vector<std::string> all_;
-};
-
-// Slices of one material: its table against its best results (the pick, then by
-// report::RankEntries), at most kMaxSliceResults of them: a material with thousands of fits
-// would otherwise draw thousands of lines per slice.
-constexpr std::size_t kMaxSliceResults = 8;
-
-void AddSlices(const report::ReportSources& src, const ReportCliOptions& o, const Table& table,
-               report::Material* m) {
-  std::map<std::string, int> uses;  // entries per name: a shared name gets budget and loss
-  for (const Entry& e : m->entries) ++uses[e.name];
-  std::vector<std::size_t> order = report::RankEntries(m->entries);
-  const int best = report::BestEntry(m->entries);
-  if (best >= 0) {
-    std::stable_partition(order.begin(), order.end(),
-                          [&](std::size_t i) { return static_cast<int>(i) == best; });
-  }
-  std::vector<report::NamedPredictor> predictors;
-  std::size_t drawable = 0;
-  for (const std::size_t i : order) {
-    const Entry& e = m->entries[i];
-    if (e.Failed() || (e.kind == Entry::Kind::kFit && e.params.empty())) continue;
-    if (++drawable > kMaxSliceResults) continue;  // counted for the note, not drawn
-    try {
-      if (e.kind == Entry::Kind::kFit) {
-        const std::string label =
-            uses[e.name] > 1 ? e.name + " (" + e.budget + ", " + e.loss + ")" : e.name;
-        predictors.push_back({label, "fitted", report::ModelPredictor(e.Model(), e.params)});
-        continue;
-      }
-      const auto f = std::find_if(src.factors.begin(), src.factors.end(), [&](const auto& r) {
-        return r.material == m->name && r.label == e.name;
-      });
-      if (f == src.factors.end()) continue;
-      auto brdf = std::make_shared<FactoredBrdf>(LoadFactoredBrdf(f->sidecar));
-      predictors.push_back(
-          {f->label, "factored", [brdf](const HalfDiffAngles& a) { return brdf->Eval(a); }});
-    } catch (const InputError& err) {
-      m->notes.push_back(fmt::format("{}: not drawn in the slices: {}", e.name, err.what()));
-    }
-  }
-  if (drawable > kMaxSliceResults) {
-    m->notes.push_back(fmt::format(
-        "The θh slices draw the best {} of this material's {} results (the ★ one first, then "
-        "in the table's order).",
-        kMaxSliceResults, drawable));
-  }
-  m->slices = report::ComputeThetaHSlices(table, o.theta_d, o.phi_d, predictors);
-}
 
 void CheckOptions(const ReportCliOptions& o) {
   for (const double td : o.theta_d) {
@@ -132,72 +63,29 @@ int RunReport(const ReportCliOptions& o) {
   read.push_back(chart_js);
   CheckOutputs(read, {{o.out, "-o"}});
   const std::string js = report::ReadChartJs(chart_js);  // fail before any work
-  std::vector<fs::path> inputs(given.begin(), given.end());
-  Problems problems(o.keep_going);
-  report::ReportSources src = report::ReadReportInputs(inputs, problems.Sink());
-  report::Report& r = src.report;
-  for (const std::string& p : problems.All()) r.notes.push_back("Left out (unreadable): " + p);
-  if (!o.title.empty()) r.title = o.title;
-  r.metric_definition = MetricsDefinition();
-  if (r.materials.empty() && r.bench.empty() && r.renders.empty()) {
-    throw InputError(
-        "nothing to report: no fit report, factorization, bench CSV, render or table "
-        "among the inputs");
-  }
-  if (!o.no_slices || !o.no_renders) {
-    Progress bar(r.materials.size(), "slices and renders", !o.quiet);
-    for (report::Material& m : r.materials) {
-      bar.Step(m.name);
-      const auto t = src.tables.find(m.name);
-      if (t == src.tables.end()) {
-        std::string why =
-            "the table of this material was not given and the results do not name "
-            "a readable one";
-        if (const auto u = src.unloadable_tables.find(m.name); u != src.unloadable_tables.end()) {
-          std::error_code ec;
-          if (fs::exists(u->second, ec)) {
-            // A device, a folder, a socket where a table should be: bad input, like a damaged one.
-            why = problems.Add(InputError(u->second, "named as the table of material '" + m.name +
-                                                         "' but not a regular file"));
-          } else {
-            // Results moved without their tables still report their numbers; said, not silent.
-            why = "its table " + u->second.string() + " (named by the results) is missing";
-            if (!o.quiet) {
-              fmt::print(stderr, "brdfit: warning: material '{}': {}: no slices or renders\n",
-                         TerminalSafe(m.name), TerminalSafe(why));
-            }
-          }
-        }
-        if (!o.no_slices) m.notes.push_back(fmt::format("No θh slices: {}.", why));
-        if (!o.no_renders) m.views.missing = fmt::format("No renders: {}.", why);
-        continue;
-      }
-      // A table that is there but cannot be read is an error, not a note.
-      Table table;
-      try {
-        table = pipeline::LoadInput(t->second);
-      } catch (const InputError& e) {
-        const std::string why = problems.Add(e);
-        if (!o.no_slices) m.notes.push_back(fmt::format("No θh slices: {}", why));
-        if (!o.no_renders) m.views.missing = fmt::format("No renders: {}", why);
-        continue;
-      }
-      if (!o.no_slices) {
-        try {
-          AddSlices(src, o, table, &m);
-        } catch (const InputError& e) {
-          m.notes.push_back(fmt::format("No θh slices: {}", problems.Add(e)));
-        }
-      }
-      if (!o.no_renders) {
-        try {
-          m.views = pipeline::RenderMaterialViews(table, m, src.factors, o.render_lights);
-        } catch (const InputError& e) {
-          m.views.missing = fmt::format("No renders: {}", problems.Add(e));
-        }
-      }
+  pipeline::ReportRequest q;
+  q.inputs = given;
+  q.title = o.title;
+  q.theta_d = o.theta_d;
+  q.phi_d = o.phi_d;
+  q.slices = !o.no_slices;
+  q.renders = !o.no_renders;
+  q.render_lights = o.render_lights;
+  q.keep_going = o.keep_going;
+  std::optional<Progress> bar;
+  q.on_material = [&](std::size_t materials, const std::string& material) {
+    if (!bar) bar.emplace(materials, "slices and renders", !o.quiet);
+    bar->Step(material);
+  };
+  q.on_warning = [&](const std::string& material, const std::string& warning) {
+    if (!o.quiet) {
+      fmt::print(stderr, "brdfit: warning: material '{}': {}: no slices or renders\n",
+                 TerminalSafe(material), TerminalSafe(warning));
     }
-  }
+  };
+  const pipeline::BuiltReport built = pipeline::BuildReport(q);
+  if (bar) bar->Done();
+  const report::Report& r = built.report;
   const std::string html = report::RenderHtml(r, js);
   WriteTextAtomically(o.out, html);
   if (!o.quiet) {
@@ -213,12 +101,12 @@ int RunReport(const ReportCliOptions& o) {
         fs::absolute(o.out).string(), r.materials.size(), entries, r.bench.size(), views,
         r.renders.size());
   }
-  if (!problems.All().empty()) {
-    for (const std::string& p : problems.All()) {
+  if (!built.problems.empty()) {
+    for (const std::string& p : built.problems) {
       fmt::print(stderr, "brdfit: error: {}\n", TerminalSafe(p));
     }
-    fmt::print(stderr, "brdfit: {} problem{} noted in {} (--keep-going)\n", problems.All().size(),
-               problems.All().size() == 1 ? "" : "s", o.out);
+    fmt::print(stderr, "brdfit: {} problem{} noted in {} (--keep-going)\n", built.problems.size(),
+               built.problems.size() == 1 ? "" : "s", o.out);
     return kExitBadInput;
   }
   return kExitOk;

@@ -19,8 +19,10 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <string>
 
 #include "models/geometry.h"
@@ -102,12 +104,76 @@ struct FitMetrics {
   RenderedError rendered;
 };
 
-// One line describing the metric definitions, for reports (io/fit_report.cc writes it).
-inline const char* MetricsDefinition() {
-  return "log_rmse: sqrt(sum w (ln(1+f cos_i) - ln(1+m cos_i))^2 / (3 sum w)) (Low 2012 E2); "
-         "cbrt_rmse: sqrt(sum w (cbrt(f cos_i) - cbrt(m cos_i))^2 / (3 sum w)); "
-         "rel_l2: sqrt(sum w cos_i^2 (f-m)^2 / sum w cos_i^2 m^2); sums over cells and RGB; "
-         "w = cell weight; worst: max over cells of |ln(1+f cos_i) - ln(1+m cos_i)|";
+// ---- The record's schema -------------------------------------------------------------------
+// Every reader and writer of results iterates these tables instead of naming the members: fit
+// reports (io/fit_report.h, HDF5 and JSON), factorization sidecars (pipeline/factor_sidecar.h),
+// bench CSVs (report/bench_csv.h), `compare` (report/compare.h), the HTML report's columns and
+// charts, the CLI's tables and the Python dicts. Adding an error metric is a member of
+// FitMetrics, one row of kErrorMetrics and its computation (fit/metrics.cc); adding a number of
+// the rendered summary is a member of RenderedError, one row of kRenderedSummary and its
+// computation (fit/rendered_error.cc).
+
+// An error metric of FitMetrics over the table's cells: a number >= 0, lower is better,
+// required in a result whose metrics are ok (a reader refuses one without it) and read as 0 when
+// the metrics are not ok and it is absent.
+struct ErrorMetricField {
+  const char* name;        // its key in every format, its column, and `compare --metric`'s value
+  const char* unit;        // "" when dimensionless
+  const char* definition;  // the formula, as the files' metrics_definition states it
+  double FitMetrics::*value;
+};
+inline constexpr ErrorMetricField kErrorMetrics[] = {
+    {"log_rmse", "", "sqrt(sum w (ln(1+f cos_i) - ln(1+m cos_i))^2 / (3 sum w)) (Low 2012 E2)",
+     &FitMetrics::log_rmse},
+    {"cbrt_rmse", "sr^-1/3", "sqrt(sum w (cbrt(f cos_i) - cbrt(m cos_i))^2 / (3 sum w))",
+     &FitMetrics::cbrt_rmse},
+    {"rel_l2", "", "sqrt(sum w cos_i^2 (f-m)^2 / sum w cos_i^2 m^2)", &FitMetrics::rel_l2},
+};
+inline constexpr std::size_t kNumErrorMetrics = std::size(kErrorMetrics);
+// The metric that ranks fits when no rendered score decides (the HTML report, compare's default).
+inline constexpr std::size_t kPrimaryErrorMetric = 0;
+
+// A number of the rendered-image metric's summary (RenderedError; docs/accuracy.md): finite,
+// >= min_value, required when the summary is ok.
+struct RenderedSummaryField {
+  const char* name;  // its key in JSON and HDF5, its bench CSV column
+  const char* unit;
+  const char* doc;
+  double RenderedError::*value;
+  double min_value;
+  bool higher_is_better;
+};
+inline constexpr RenderedSummaryField kRenderedSummary[] = {
+    {"psnr_db", "dB", "linear PSNR over all lit pixels of all light images",
+     &RenderedError::psnr_db, -HUGE_VAL, true},
+    {"psnr_srgb_db", "dB", "tone-mapped (exposure, clamp, sRGB OETF) PSNR, peak 1",
+     &RenderedError::psnr_srgb_db, -HUGE_VAL, true},
+    {"median_rel_error", "", "median relative luminance error over all compared pixels",
+     &RenderedError::median_rel_error, 0, false},
+    {"p95_rel_error", "", "95th percentile of the relative luminance error",
+     &RenderedError::p95_rel_error, 0, false},
+};
+
+// The metric definitions in one line, for reports (fit reports' metrics_definition, sidecars,
+// the HTML report): "NAME: DEFINITION; " per error metric, then the weights and the worst cell.
+inline const std::string& MetricsDefinition() {
+  static const std::string text = [] {
+    std::string s;
+    for (const ErrorMetricField& f : kErrorMetrics) {
+      s += std::string(f.name) + ": " + f.definition + "; ";
+    }
+    return s +
+           "sums over cells and RGB; w = cell weight; worst: max over cells of "
+           "|ln(1+f cos_i) - ln(1+m cos_i)|";
+  }();
+  return text;
+}
+
+// The error metrics' names joined by sep ("log_rmse, cbrt_rmse, rel_l2"), for help texts.
+inline std::string ErrorMetricNames(const char* sep = ", ") {
+  std::string s;
+  for (const ErrorMetricField& f : kErrorMetrics) s += (s.empty() ? "" : sep) + std::string(f.name);
+  return s;
 }
 
 }  // namespace brdfit

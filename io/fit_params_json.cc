@@ -12,6 +12,7 @@
 #include "io/input_file.h"
 #include "io/metrics_json.h"
 #include "io/model_params.h"
+#include "io/result_json.h"
 #include "io/unique_keys_json.h"
 #include "models/registry.h"
 
@@ -21,130 +22,77 @@ namespace fs = std::filesystem;
 
 namespace {
 
-double Number(const fs::path& p, const nlohmann::json& j, const char* key,
-              const std::string& where) {
-  if (!j.contains(key)) return 0;
-  if (!j[key].is_number()) throw InputError(p, where + "." + key + " is not a number");
-  return j[key].get<double>();
-}
-
-// An error measure: a number >= 0 (0 when absent, as the writer leaves out what it lacks).
-double NonNegative(const fs::path& p, const nlohmann::json& j, const char* key,
-                   const std::string& where) {
-  const double v = Number(p, j, key, where);
-  if (!(v >= 0)) throw InputError(p, where + "." + key + " is negative");
-  return v;
-}
-
-// A member the writer always makes of `type`, when present.
-void CheckType(const fs::path& p, const nlohmann::json& j, const char* key,
-               nlohmann::json::value_t type, const char* type_name, const std::string& where) {
-  if (j.contains(key) && j[key].type() != type) {
-    throw InputError(p, where + "." + key + " is not " + type_name);
-  }
-}
-
-std::string String(const fs::path& p, const nlohmann::json& j, const char* key,
-                   const std::string& where) {
-  if (!j.contains(key)) return "";
-  if (!j[key].is_string()) throw InputError(p, where + "." + key + " is not a string");
-  return j[key].get<std::string>();
-}
-
+// One fit of "fits" with the strictness of every result reader (io/result_json.h): a member
+// that is present has its type and range; a usable fit has its registered model's parameters,
+// in order and in bounds, and its metrics.
 FitReportEntry Entry(const fs::path& p, const nlohmann::ordered_json& f, const std::string& where) {
   if (!f.is_object()) throw InputError(p, where + " is not an object");
+  const JsonFields ff(p, where);
+  const nlohmann::json fj = f;  // unordered for the members whose order does not matter
   FitReportEntry e;
-  const nlohmann::json fj = f;
-  e.source = String(p, fj, "source", where);
-  e.material = String(p, fj, "material", where);
-  if (fj.contains("source_hash")) e.source_hash = String(p, fj, "source_hash", where);
+  e.source = ff.String(fj, "source", "");
+  e.material = ff.String(fj, "material", "");
+  e.source_hash = ff.String(fj, "source_hash", "");
   FitResult& r = e.result;
-  r.model = String(p, fj, "model", where);
-  r.message = String(p, fj, "message", where);
-  const std::string status = String(p, fj, "status", where);
-  r.status = status == "converged"        ? FitStatus::kConverged
-             : status == "no_convergence" ? FitStatus::kNoConvergence
-                                          : FitStatus::kFailed;
+  r.model = ff.String(fj, "model", "");
+  r.message = ff.String(fj, "message", "");
+  const std::string status = ff.String(fj, "status", "");
+  const std::optional<FitStatus> known = kFitStatusNames.Find(status);
+  if (!known)
+    ff.Fail("status", "is '" + PrintableExcerpt(status, 64) + "', not " + kFitStatusNames.List());
+  r.status = *known;
+  // Ordered: the parameters keep the model's order.
   if (f.contains("params")) {
-    if (!f["params"].is_object()) throw InputError(p, where + ".params is not an object");
+    if (!f["params"].is_object()) ff.Fail("params", "is not an object");
     for (const auto& [name, value] : f["params"].items()) {
-      if (!value.is_number()) throw InputError(p, where + ".params." + name + " is not a number");
+      if (!value.is_number()) ff.Fail("params." + name, "is not a number");
       r.param_names.push_back(name);
       r.params.push_back(value.get<double>());
     }
   }
-  using T = nlohmann::json::value_t;
-  CheckType(p, fj, "at_bound", T::array, "an array of parameter names", where);
-  CheckType(p, fj, "metrics", T::object, "an object", where);
-  CheckType(p, fj, "chosen", T::boolean, "true or false", where);
-  CheckType(p, fj, "choice", T::string, "a string", where);
-  CheckType(p, fj, "options", T::object, "an object", where);
   r.at_bound.assign(r.params.size(), false);
   if (fj.contains("at_bound")) {
+    if (!fj["at_bound"].is_array()) ff.Fail("at_bound", "is not an array of parameter names");
     for (const auto& n : fj["at_bound"]) {
-      if (!n.is_string()) throw InputError(p, where + ".at_bound holds a non-name");
+      if (!n.is_string()) ff.Fail("at_bound", "holds a non-name");
       for (std::size_t i = 0; i < r.param_names.size(); ++i) {
-        if (n.is_string() && n.get<std::string>() == r.param_names[i]) r.at_bound[i] = true;
+        if (n.get<std::string>() == r.param_names[i]) r.at_bound[i] = true;
       }
     }
   }
-  if (r.model == kFactorizationModel) {
+  e.chosen = ff.Bool(fj, "chosen", false);
+  e.choice = ff.String(fj, "choice", "");
+  const nlohmann::json options = ff.Object(fj, "options");
+  e.options = options.empty() ? "" : options.dump();
+  if (IsFactorizationModel(r.model)) {
     // A factorization among the candidates (io/fit_report.h): no parameters, its sidecar.
-    const std::string w = where + ".factorization";
-    if (!r.params.empty()) throw InputError(p, where + ".params: a factorization has none");
+    if (!r.params.empty()) ff.Fail("params", "is not empty: a factorization has none");
     // A failed one (its solve, or its files) may have no textures to describe.
     if (!r.Failed() || fj.contains("factorization")) {
-      if (!fj.contains("factorization") || !fj["factorization"].is_object()) {
-        throw InputError(p, w + " is missing or not an object");
-      }
-      const nlohmann::json& fz = fj["factorization"];
+      if (!fj.contains("factorization")) ff.Fail("factorization", "is missing");
+      const JsonFields fz = ff.Child("factorization");
+      const nlohmann::json fo = ff.Object(fj, "factorization");
       FactorizationRef ref;
-      ref.form = String(p, fz, "form", w);
-      ref.sidecar = String(p, fz, "sidecar", w);
-      const double bytes = Number(p, fz, "texture_bytes", w), values = Number(p, fz, "values", w);
-      if (ref.form.empty() || ref.sidecar.empty() || !(bytes >= 0 && bytes < 1e15) ||
-          !(values >= 1 && values < 1e15)) {
-        throw InputError(p, w + ": form, sidecar, texture_bytes >= 0 and values >= 1 are needed");
-      }
+      ref.form = fz.String(fo, "form", "");
+      ref.sidecar = fz.String(fo, "sidecar", "");
+      if (ref.form.empty()) fz.Fail("form", "is missing or empty");
+      if (ref.sidecar.empty()) fz.Fail("sidecar", "is missing or empty");
+      const double bytes = fz.Required(fo, "texture_bytes", 0);
+      const double values = fz.Required(fo, "values", 1);
+      if (bytes >= 1e15 || values >= 1e15) fz.Fail("values", "or texture_bytes is too large");
       ref.texture_bytes = static_cast<std::uint64_t>(bytes);
       ref.values = static_cast<std::uint64_t>(values);
       e.factorization = ref;
     }
   } else if (!r.Failed()) {
     const ModelInfo* m = FindModel(r.model);
-    if (!m) throw InputError(p, where + ".model '" + r.model + "' is not a registered model");
+    if (!m) ff.Fail("model", "is '" + PrintableExcerpt(r.model, 64) + "', not a registered model");
     std::string bad = CheckModelParamNames(*m, r.param_names);
     if (bad.empty()) bad = CheckModelParams(r.model, r.params);
-    if (!bad.empty()) throw InputError(p, where + ".params are not the model's: " + bad);
+    if (!bad.empty()) ff.Fail("params", "are not the model's: " + bad);
   }
-  if (fj.contains("metrics") && fj["metrics"].is_object()) {
-    const nlohmann::json& m = fj["metrics"];
-    const std::string w = where + ".metrics";
-    r.metrics.ok = !r.Failed();
-    r.metrics.log_rmse = NonNegative(p, m, "log_rmse", w);
-    r.metrics.cbrt_rmse = NonNegative(p, m, "cbrt_rmse", w);
-    r.metrics.rel_l2 = NonNegative(p, m, "rel_l2", w);
-    r.metrics.weighting = String(p, m, "weighting", w);
-    r.metrics.cutoff_deg = Number(p, m, "cutoff_deg", w);
-    CheckType(p, m, "rendered", T::object, "an object", w);
-    if (m.contains("rendered")) {
-      const nlohmann::json& re = m["rendered"];
-      RenderedError& out = r.metrics.rendered;
-      CheckType(p, re, "ok", T::boolean, "true or false", w + ".rendered");
-      out.ok = re.value("ok", false);
-      out.problem = String(p, re, "problem", w + ".rendered");
-      out.psnr_db = Number(p, re, "psnr_db", w + ".rendered");
-      out.psnr_srgb_db = Number(p, re, "psnr_srgb_db", w + ".rendered");
-      out.median_rel_error = NonNegative(p, re, "median_rel_error", w + ".rendered");
-      out.p95_rel_error = NonNegative(p, re, "p95_rel_error", w + ".rendered");
-      if (const std::string bad = RenderedLightsFromJson(re, &out); !bad.empty()) {
-        throw InputError(p, w + ".rendered." + bad);
-      }
-    }
-  }
-  e.chosen = fj.value("chosen", false);
-  e.choice =
-      fj.contains("choice") && fj["choice"].is_string() ? fj["choice"].get<std::string>() : "";
+  if (!r.Failed() && !fj.contains("metrics")) ff.Fail("metrics", "is missing");
+  r.metrics = MetricsFromJson(ff.Object(fj, "metrics"), !r.Failed(), ff.Child("metrics"));
   return e;
 }
 

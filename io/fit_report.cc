@@ -68,10 +68,7 @@ void WriteRendered(const H5::Group& mg, const RenderedError& e) {
   H5::Group rg = MakeGroup(mg, "rendered");
   WriteIntAttr(rg, "ok", e.ok ? 1 : 0);
   WriteStringAttr(rg, "problem", e.problem);
-  DoubleAttr(rg, "psnr_db", e.psnr_db);
-  DoubleAttr(rg, "psnr_srgb_db", e.psnr_srgb_db);
-  DoubleAttr(rg, "median_rel_error", e.median_rel_error);
-  DoubleAttr(rg, "p95_rel_error", e.p95_rel_error);
+  for (const RenderedSummaryField& f : kRenderedSummary) DoubleAttr(rg, f.name, e.*f.value);
   WriteIntAttr(rg, "resolution", e.resolution);
   WriteIntAttr(rg, "lit_pixels", static_cast<std::int64_t>(e.lit_pixels));
   WriteIntAttr(rg, "masked_pixels", static_cast<std::int64_t>(e.masked_pixels));
@@ -131,9 +128,7 @@ void WriteEntry(const H5::Group& g, const FitReportEntry& e, bool timings) {
   H5::Group mg = MakeGroup(g, "metrics");
   WriteIntAttr(mg, "ok", m.ok ? 1 : 0);
   WriteStringAttr(mg, "problem", m.problem);
-  DoubleAttr(mg, "log_rmse", m.log_rmse);
-  DoubleAttr(mg, "cbrt_rmse", m.cbrt_rmse);
-  DoubleAttr(mg, "rel_l2", m.rel_l2);
+  for (const ErrorMetricField& f : kErrorMetrics) DoubleAttr(mg, f.name, m.*f.value);
   WriteIntAttr(mg, "cells", static_cast<std::int64_t>(m.cells));
   DoubleAttr(mg, "total_weight", m.total_weight);
   WriteStringAttr(mg, "weighting", m.weighting);
@@ -221,10 +216,11 @@ class Reader : public hdf5::Reader {
   void ReadRendered(const H5::Group& rg, const std::string& rw, RenderedError* e) const {
     e->ok = Int(rg, rw, "ok") != 0;
     e->problem = String(rg, rw, "problem");
-    e->psnr_db = Double(rg, rw, "psnr_db");
-    e->psnr_srgb_db = Double(rg, rw, "psnr_srgb_db");
-    e->median_rel_error = Double(rg, rw, "median_rel_error");
-    e->p95_rel_error = Double(rg, rw, "p95_rel_error");
+    for (const RenderedSummaryField& f : kRenderedSummary) {
+      e->*f.value = Double(rg, rw, f.name);
+      if (e->*f.value < f.min_value)
+        Fail(fmt::format("{}@{} is {}, below {}", rw, f.name, e->*f.value, f.min_value));
+    }
     e->resolution = static_cast<int>(Count(rg, rw, "resolution"));
     e->lit_pixels = Count(rg, rw, "lit_pixels");
     e->masked_pixels = Count(rg, rw, "masked_pixels");
@@ -262,9 +258,6 @@ class Reader : public hdf5::Reader {
         }
         e->regions[g] = {static_cast<int>(lights[g]), rpsnr[g], rmed[g]};
       }
-    }
-    if (e->psnr_db < 0 || e->median_rel_error < 0 || e->p95_rel_error < 0) {
-      Fail(rw + ": negative error");
     }
   }
 
@@ -383,9 +376,7 @@ class Reader : public hdf5::Reader {
     FitMetrics& m = r.metrics;
     m.ok = Int(mg, mw, "ok") != 0;
     m.problem = String(mg, mw, "problem");
-    m.log_rmse = NonNegative(mg, mw, "log_rmse");
-    m.cbrt_rmse = NonNegative(mg, mw, "cbrt_rmse");
-    m.rel_l2 = NonNegative(mg, mw, "rel_l2");
+    for (const ErrorMetricField& f : kErrorMetrics) m.*f.value = NonNegative(mg, mw, f.name);
     m.cells = Count(mg, mw, "cells");
     m.total_weight = NonNegative(mg, mw, "total_weight");
     m.weighting = String(mg, mw, "weighting");
@@ -484,6 +475,17 @@ std::string ReadFitReportWriterVersion(const fs::path& path) {
   }
 }
 
+FitReportEntry NewFactorizationEntry(std::string source, std::string material, std::string options,
+                                     std::string source_hash) {
+  FitReportEntry e;
+  e.source = std::move(source);
+  e.material = std::move(material);
+  e.options = std::move(options);
+  e.source_hash = std::move(source_hash);
+  e.result.model = kFactorizationModel;
+  return e;
+}
+
 void SortEntries(std::vector<FitReportEntry>& entries) {
   std::stable_sort(entries.begin(), entries.end(),
                    [](const FitReportEntry& a, const FitReportEntry& b) {
@@ -565,11 +567,10 @@ std::string FitParamsJson(std::vector<FitReportEntry> entries, bool run_details)
                             {"texture_bytes", f.texture_bytes},
                             {"values", f.values}};
     }
-    j["metrics"] = {{"log_rmse", r.metrics.log_rmse},
-                    {"cbrt_rmse", r.metrics.cbrt_rmse},
-                    {"rel_l2", r.metrics.rel_l2},
-                    {"weighting", r.metrics.weighting},
-                    {"cutoff_deg", r.metrics.cutoff_deg}};
+    nlohmann::ordered_json& mj = j["metrics"];
+    for (const ErrorMetricField& f : kErrorMetrics) mj[f.name] = r.metrics.*f.value;
+    mj["weighting"] = r.metrics.weighting;
+    mj["cutoff_deg"] = r.metrics.cutoff_deg;
     if (RenderedErrorComputed(r.metrics.rendered)) {
       j["metrics"]["rendered"] = RenderedErrorJson(r.metrics.rendered);
     }

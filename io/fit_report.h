@@ -9,8 +9,8 @@
 //              starts, init_cost, final_cost, fit_samples, fit_cells
 //       params       float64 [P]   attr names: the qualified parameter names, in order
 //       at_bound     uint8   [P]   1 where a parameter ended on a bound
-//       metrics      group, attrs ok, problem, log_rmse, cbrt_rmse, rel_l2, cells,
-//                    total_weight, weighting, cutoff_deg
+//       metrics      group, attrs ok, problem, the error metrics (core/metrics.h
+//                    kErrorMetrics), cells, total_weight, weighting, cutoff_deg
 //       metrics/worst  group, attrs cell, theta_h, theta_d, phi_d (rad), theta_i_deg,
 //                    theta_o_deg, log_error; datasets measured [3], predicted [3] (1/sr)
 //       samples      group, attrs cells, valid, nonfinite, negative, beyond_cutoff, eligible,
@@ -33,6 +33,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -48,6 +49,9 @@ inline constexpr int kFitParamsJsonVersion = 1;
 // The model name of an entry that is a factorization (McCool et al. 2001; factor/factor.h)
 // scored and chosen among the fits: it has no parameters, its textures are files.
 inline constexpr const char* kFactorizationModel = "factorization";
+inline bool IsFactorizationModel(std::string_view model) {
+  return model == kFactorizationModel;
+}
 
 // What a factorization entry holds besides its metrics.
 struct FactorizationRef {
@@ -82,6 +86,12 @@ struct FitReportEntry {
   }
 };
 
+// An entry for a factorization among the candidates, of model kFactorizationModel, not yet
+// made (FitResult's defaults: failed, no parameters; the caller fills its result and
+// FactorizationRef).
+FitReportEntry NewFactorizationEntry(std::string source, std::string material, std::string options,
+                                     std::string source_hash);
+
 // Sorts entries by (source, model, options): the order of a report does not depend on the order
 // in which fits finished.
 void SortEntries(std::vector<FitReportEntry>& entries);
@@ -105,9 +115,9 @@ std::optional<std::pair<std::size_t, std::size_t>> TwoChosenOfOneMaterial(
 std::string ReadFitReportWriterVersion(const std::filesystem::path& path);
 
 // {"format": "brdfit-fit-params", "format_version": 1, "fits": [{"source", "material", "model",
-//  "status", "message", "params": {"name": value, ...}, "metrics": {"log_rmse", "cbrt_rmse",
-//  "rel_l2", "weighting", "cutoff_deg", "rendered": {"psnr_db", "psnr_srgb_db",
-//  "median_rel_error", "p95_rel_error", "ok", "problem" if not ok} (when computed, i.e. not for
+//  "status", "message", "params": {"name": value, ...}, "metrics": {the error metrics
+//  (core/metrics.h kErrorMetrics), "weighting", "cutoff_deg", "rendered": {kRenderedSummary's
+//  numbers, "ok", "problem" if not ok, ...} (when computed, i.e. not for
 //  a failed fit; io/metrics_json.h, docs/accuracy.md)}, "factorization": {"form", "sidecar",
 //  "texture_bytes", "values"} (factorization entries only), "chosen": bool, "choice": "why" (chosen
 //  fits only), "options": {...}, "source_hash" (when known)},

@@ -14,7 +14,7 @@
 namespace brdfit {
 
 // The rendered-image metric (docs/accuracy.md) as written under "metrics"/"rendered":
-//   {"psnr_db", "psnr_srgb_db", "median_rel_error", "p95_rel_error" (fractions), "ok"}
+//   {the numbers of core/metrics.h kRenderedSummary, "ok"}
 // plus "problem" when ok is false (the numbers are then zeros, as RenderedError holds them),
 // and when ok: "score_db" (S, core/model_choice.h), "regions" ({"front"|"side"|"rim":
 // {"lights", "psnr_db", "median_rel_error", "score_db"}}, the regions with lights;

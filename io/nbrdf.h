@@ -16,16 +16,12 @@
 #include <string_view>
 #include <vector>
 
+#include "core/input_name.h"
 #include "core/table.h"
 
 namespace brdfit {
 
-// An input that names a network of the archive instead of a file: "nbrdf:NAME" (the CLI
-// tabulates it on the MERL grid, pipeline/inputs.h; its material is NAME, report/report_inputs.h).
-inline constexpr std::string_view kNbrdfInputPrefix = "nbrdf:";
-inline bool IsNbrdfInput(std::string_view input) {
-  return input.starts_with(kNbrdfInputPrefix);
-}
+// Inputs that name a network of the archive, "nbrdf:NAME": core/input_name.h.
 
 struct NbrdfNetwork {
   std::string material;

@@ -40,23 +40,117 @@ double MsSince(Clock::time_point t0) {
 
 struct Task {
   std::size_t input;
-  std::string model;    // a catalog model, or kFactorizationModel (pipeline/factor_candidate.h)
+  TaskKind kind;
+  std::string model;    // the entry's model: a catalog model, or a factorization's
   FitOptions fit;       // the request's, with the run's own loss if it has one
-  std::string options;  // OptionsJson of the fit
+  std::string options;  // OptionsJson of the fit (FactorizationOptionsJson of a factorization)
 };
 
-// An input loaded and prepared once, shared by the fits of its models; freed after the last.
+// An input loaded and prepared once, shared by the tasks of its model runs; freed after the
+// last.
 struct InputState {
   std::mutex mu;
   bool ready = false;
   std::optional<PreparedTable> prepared;  // when the input has fits to make
   std::optional<Table> table;             // kept while a factorization of it is to be made
-  int fits = 0, factorizations = 0;       // tasks of the input left, of each kind (st.mu)
+  std::array<int, 2> left{};              // tasks of the input left, per TaskKind (mu)
   std::string error;                      // InputError message if loading failed
   double load_ms = 0, prepare_ms = 0;
   std::string content_hash;  // core/provenance.h TableContentHash
   std::atomic<int> remaining{0};
 };
+
+int& TasksLeft(InputState& st, TaskKind kind) {
+  return st.left[static_cast<std::size_t>(kind)];
+}
+
+// What every task of a batch shares besides its input.
+struct TaskContext {
+  const BatchFitRequest& req;
+  const std::vector<std::string>& keys;  // material key per input
+  PrepareCache* prepare_cache;           // nullptr: a table fitted alone (nothing to share)
+  FactorSystemCache* factor_cache;
+  bool single_input;  // one input has tasks: the factor systems go after it
+};
+
+// Loads and prepares the task's input once (under st.mu): the table is kept while a
+// factorization of it is to be made, its samples while fits are. A failure to load is the
+// input's error, reported once its last task is done.
+void LoadInputOnce(const Task& t, InputState& st, const TaskContext& c, BatchSchedule& schedule) {
+  std::lock_guard<std::mutex> lock(st.mu);
+  if (st.ready) return;
+  const std::string& input = c.req.inputs[t.input];
+  try {
+    auto t0 = Clock::now();
+    Table table = LoadInput(input);
+    st.content_hash = TableContentHash(table);
+    st.load_ms = MsSince(t0);
+    t0 = Clock::now();
+    const bool fits = TasksLeft(st, TaskKind::kFit) > 0;
+    if (TasksLeft(st, TaskKind::kFactor) > 0) {
+      st.table.emplace(std::move(table));
+      if (fits)
+        st.prepared.emplace(PrepareTable(*st.table, c.req.samples, c.req.fit, c.prepare_cache));
+    } else {
+      st.prepared.emplace(
+          PrepareTable(std::move(table), c.req.samples, c.req.fit, c.prepare_cache));
+    }
+    st.prepare_ms = MsSince(t0);
+  } catch (const InputError& e) {
+    st.error = e.what();
+  } catch (const std::exception& e) {  // e.g. out of memory: reported, not fatal
+    st.error = input + ": " + e.what();
+  }
+  st.ready = true;
+  schedule.MarkLoaded(t.input);
+}
+
+// A fit of the task's model to its prepared input; the prepared samples go with the input's
+// last fit, before a factorization of it that may still run (peak memory).
+FitReportEntry RunFitTask(const Task& t, InputState& st, const TaskContext& c) {
+  FitResult r;
+  try {
+    r = FitPrepared(t.model, *st.prepared, t.fit);
+  } catch (const std::exception& ex) {  // never expected; a failed entry, not a crash
+    r = FitResult{};
+    r.model = t.model;
+    r.status = FitStatus::kFailed;
+    r.message = std::string("internal error: ") + ex.what();
+  }
+  r.times.load = st.load_ms;
+  r.times.prepare = st.prepare_ms;
+  {
+    std::lock_guard<std::mutex> lock(st.mu);
+    if (--TasksLeft(st, TaskKind::kFit) == 0) st.prepared.reset();
+  }
+  FitReportEntry e;
+  e.source = c.req.inputs[t.input];
+  e.material = c.keys[t.input];
+  e.options = t.options;
+  e.result = std::move(r);
+  e.source_hash = st.content_hash;
+  return e;
+}
+
+// The input's factorization (pipeline/factor_candidate.h); the table goes after it.
+FitReportEntry RunFactorTask(const Task& t, InputState& st, const TaskContext& c) {
+  FitReportEntry e;
+  try {
+    e = FactorizationEntry({&*st.table, c.req.inputs[t.input], c.keys[t.input], st.content_hash,
+                            c.req.samples, FactorizationFolder(c.req.report), c.req.timings,
+                            c.factor_cache, /*last=*/c.single_input});
+  } catch (const std::exception& ex) {  // never expected; a failed entry, not a crash
+    e = NewFactorizationEntry(c.req.inputs[t.input], c.keys[t.input], t.options, st.content_hash);
+    e.result.status = FitStatus::kFailed;
+    e.result.message = std::string("internal error: ") + ex.what();
+  }
+  {
+    std::lock_guard<std::mutex> lock(st.mu);
+    if (--TasksLeft(st, TaskKind::kFactor) == 0) st.table.reset();
+  }
+  e.result.times.load = st.load_ms;
+  return e;
+}
 
 // The report's entries (none when it does not exist). `force` redoes this run's fits; it does
 // not drop the report's other fits: only a report that cannot be read is replaced whole.
@@ -232,8 +326,8 @@ std::vector<ModelRun> ResolveModelRuns(const std::vector<std::string>& requested
     out.push_back(run);
   };
   for (const std::string& n : requested) {
-    if (n == kFactorizationModel) {
-      add({n, std::nullopt});  // pipeline/factor_candidate.h: no loss of the request's
+    if (IsFactorizationModel(n)) {
+      add({n, std::nullopt, TaskKind::kFactor});  // pipeline/factor_candidate.h: no loss
       continue;
     }
     if (n != "auto") {
@@ -261,8 +355,8 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
     FitOptions fo = req.fit;
     if (m.loss) fo.loss = *m.loss;
     run_fit.push_back(fo);
-    run_options.push_back(m.model == kFactorizationModel ? FactorizationOptionsJson(req.samples)
-                                                         : OptionsJson(req.samples, fo));
+    run_options.push_back(m.kind == TaskKind::kFactor ? FactorizationOptionsJson(req.samples)
+                                                      : OptionsJson(req.samples, fo));
   }
   const std::vector<std::string>& inputs = req.inputs;
   // Fits are identified by (material key, model, options) (pipeline/material_keys.h).
@@ -316,9 +410,9 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
         ++result.skipped;
         continue;
       }
-      tasks.push_back({f, m, run_fit[k], run_options[k]});
+      tasks.push_back({f, req.models[k].kind, m, run_fit[k], run_options[k]});
       ++states[f]->remaining;
-      ++(m == kFactorizationModel ? states[f]->factorizations : states[f]->fits);
+      ++TasksLeft(*states[f], req.models[k].kind);
     }
   }
   result.planned = tasks.size();
@@ -359,88 +453,21 @@ BatchFitResult RunBatchFit(const BatchFitRequest& req, const BatchProgress& on_s
   std::vector<std::size_t> task_inputs;
   for (const Task& t : tasks) task_inputs.push_back(t.input);
   BatchSchedule schedule(std::move(task_inputs));
+  const TaskContext context{req, keys, cache, &factor_cache, inputs_fitted == 1};
   auto worker = [&] {
     while (true) {
       const std::optional<std::size_t> i = schedule.Next();
       if (!i) return;
       const Task& t = tasks[*i];
-      const std::string& input = inputs[t.input];
       InputState& st = *states[t.input];
       if (on_start) {
         std::lock_guard<std::mutex> lock(mu);
         on_start(tasks.size(), keys[t.input] + " " + t.model);
       }
-      {
-        std::lock_guard<std::mutex> lock(st.mu);
-        if (!st.ready) {
-          try {
-            auto t0 = Clock::now();
-            Table table = LoadInput(input);
-            st.content_hash = TableContentHash(table);
-            st.load_ms = MsSince(t0);
-            t0 = Clock::now();
-            if (st.factorizations > 0) {
-              st.table.emplace(std::move(table));
-              if (st.fits > 0)
-                st.prepared.emplace(PrepareTable(*st.table, req.samples, req.fit, cache));
-            } else {
-              st.prepared.emplace(PrepareTable(std::move(table), req.samples, req.fit, cache));
-            }
-            st.prepare_ms = MsSince(t0);
-          } catch (const InputError& e) {
-            st.error = e.what();
-          } catch (const std::exception& e) {  // e.g. out of memory: reported, not fatal
-            st.error = input + ": " + e.what();
-          }
-          st.ready = true;
-          schedule.MarkLoaded(t.input);
-        }
-      }
+      LoadInputOnce(t, st, context, schedule);
       if (st.error.empty()) {
-        FitReportEntry e;
-        if (t.model == kFactorizationModel) {
-          try {
-            e = FactorizationEntry({&*st.table, input, keys[t.input], st.content_hash, req.samples,
-                                    FactorizationFolder(req.report), req.timings, &factor_cache,
-                                    /*last=*/inputs_fitted == 1});
-          } catch (const std::exception& ex) {  // never expected; a failed entry, not a crash
-            e = FitReportEntry{};
-            e.source = input;
-            e.material = keys[t.input];
-            e.options = t.options;
-            e.source_hash = st.content_hash;
-            e.result.model = kFactorizationModel;
-            e.result.message = std::string("internal error: ") + ex.what();
-          }
-          {
-            std::lock_guard<std::mutex> lock(st.mu);
-            if (--st.factorizations == 0) st.table.reset();
-          }
-          e.result.times.load = st.load_ms;
-        } else {
-          FitResult r;
-          try {
-            r = FitPrepared(t.model, *st.prepared, t.fit);
-          } catch (const std::exception& ex) {  // never expected; a failed entry, not a crash
-            r = FitResult{};
-            r.model = t.model;
-            r.status = FitStatus::kFailed;
-            r.message = std::string("internal error: ") + ex.what();
-          }
-          r.times.load = st.load_ms;
-          r.times.prepare = st.prepare_ms;
-          {
-            // The prepared samples go with the table's last fit, before a factorization of
-            // it that may still run (peak memory).
-            std::lock_guard<std::mutex> lock(st.mu);
-            if (--st.fits == 0) st.prepared.reset();
-          }
-          e.source = input;
-          e.material = keys[t.input];
-          e.options = t.options;
-          e.result = std::move(r);
-          e.source_hash = st.content_hash;
-        }
+        FitReportEntry e = t.kind == TaskKind::kFactor ? RunFactorTask(t, st, context)
+                                                       : RunFitTask(t, st, context);
         std::lock_guard<std::mutex> lock(mu);
         {
           if (req.on_fit_done) req.on_fit_done(e);

@@ -31,10 +31,16 @@
 
 namespace brdfit::pipeline {
 
-// One model to fit to every input, under the request's loss or its own.
+// What a run makes of each input: a fit of an analytic model, or the table's factorization
+// (pipeline/factor_candidate.h), a candidate of the model choice like the fits.
+enum class TaskKind { kFit, kFactor };
+
+// One model to fit to every input, under the request's loss or its own, or the factorization.
 struct ModelRun {
-  std::string model;             // registry name (ResolveModelNames)
+  std::string model;             // registry name (ResolveModelNames), or the entries' model
+                                 // name of a factorization (io/fit_report.h)
   std::optional<LossKind> loss;  // nullopt: BatchFitRequest::fit.loss
+  TaskKind kind = TaskKind::kFit;
   bool operator==(const ModelRun&) const = default;
 };
 
@@ -111,7 +117,7 @@ std::vector<std::string> ResolveModelNames(const std::vector<std::string>& reque
 
 // The runs of `brdfit fit --model`: each name through ResolveModelNames under the request's
 // loss, "auto" as kAutoCandidates (each under its own loss, or all under the request's
-// when the user gave one: loss_given), and "factorization" (kFactorizationModel) as itself:
+// when the user gave one: loss_given), and "factorization" as a TaskKind::kFactor run:
 // the table factored as `brdfit factor` does by default, a candidate of the model choice
 // (pipeline/factor_candidate.h; its textures go to FactorizationFolder(report)). Duplicate
 // runs are dropped.

@@ -2,15 +2,15 @@
 
 #include <filesystem>
 
+#include "core/input_name.h"
 #include "io/nbrdf.h"
 #include "pipeline/factor_settings.h"
-#include "report/report_inputs.h"
 
 namespace brdfit::pipeline {
 
 nlohmann::json ComparisonScene(const std::string& input, bool quick) {
   const std::string table = IsNbrdfInput(input) ? input : std::filesystem::absolute(input).string();
-  const std::string name = report::MaterialName(input);
+  const std::string name = MaterialName(input);
   nlohmann::json s = {
       {"camera", {{"position", {0, 0, 4}}, {"fov_deg", 30}}},
       {"lights",

@@ -16,6 +16,7 @@
 #include "pipeline/factor_export.h"
 #include "pipeline/factor_settings.h"
 #include "pipeline/factor_sidecar.h"
+#include "pipeline/factor_table.h"
 #include "pipeline/factor_with_choice.h"
 
 namespace brdfit::pipeline {
@@ -48,13 +49,9 @@ std::string FactorizationOptionsJson(const SampleOptions& samples) {
 FitReportEntry FactorizationEntry(const FactorizationJob& job) {
   using Clock = std::chrono::steady_clock;
   const Table& table = *job.table;
-  FitReportEntry e;
-  e.source = job.source;
-  e.material = job.material;
-  e.options = FactorizationOptionsJson(job.samples);
-  e.source_hash = job.source_hash;
+  FitReportEntry e = NewFactorizationEntry(job.source, job.material,
+                                           FactorizationOptionsJson(job.samples), job.source_hash);
   FitResult& r = e.result;
-  r.model = kFactorizationModel;
   const auto t0 = Clock::now();
   FactorWithChoice c;
   FactorSystemCache own;  // when the caller shares none
@@ -94,18 +91,14 @@ FitReportEntry FactorizationEntry(const FactorizationJob& job) {
   r.times.metrics = std::chrono::duration<double, std::milli>(t2 - t1).count();
   // The textures and the sidecar `brdfit factor TABLE` writes, with the candidates' scores.
   const double ln_rmse = FactorLnRatioRmse(table, brdf, c.kept.options.max_theta);
-  nlohmann::json extra = {{"material", job.material},
-                          {"source", SourceJson(job.source, table)},
-                          {"metrics", MetricsJson(r.metrics, c.rendered, ln_rmse)},
-                          {"provenance", ProvenanceJson(job.timings)},
-                          {"choice", ChoiceJson(c, job.timings)}};
   // Files that cannot be written (a file in the folder's place, a read-only folder, a full
   // disk) fail this entry, not the run: the report keeps the fits and says why.
   try {
     std::error_code ec;
     fs::create_directories(job.folder, ec);
     if (ec) throw OutputError(job.folder, "cannot create the folder: " + ec.message());
-    SaveFactorization(c.kept, job.folder, stem, extra, job.timings);
+    WriteFactorFiles(c.kept, table, job.folder, stem, job.material, job.source, r.metrics,
+                     c.rendered, ln_rmse, ChoiceJson(c, job.timings), nullptr, job.timings);
   } catch (const OutputError& ex) {
     r.status = FitStatus::kFailed;
     r.message = std::string("textures not written: ") + ex.what();

@@ -2,7 +2,7 @@
 // `--model`; docs/accuracy.md, "Factorizations among the candidates"): the table factored
 // as `brdfit factor` does by default (the forms of factor/factor_choice.h, the one the rendered
 // metric prefers kept), its textures and sidecar written into a folder beside the fit report,
-// and a fit report entry (io/fit_report.h, model kFactorizationModel) that carries its metrics
+// and a fit report entry (io/fit_report.h NewFactorizationEntry) that carries its metrics
 // — the same fit metrics and rendered-image metric as every fit of the table — so that the
 // model choice (core/model_choice.h) weighs it against the analytic fits, its texture values
 // counted as its parameters.

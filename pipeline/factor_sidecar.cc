@@ -14,14 +14,13 @@ nlohmann::json MetricsJson(const FitMetrics& m, const RenderedError& rendered, d
                       {"ln_ratio_rmse_definition",
                        "sqrt(mean over valid cells above the horizon with all channels > 0 of "
                        "(ln f_factored - ln f_table)^2), unweighted, cell centres"}};
-  j["fit_metrics"] = {{"ok", m.ok},
-                      {"log_rmse", m.log_rmse},
-                      {"cbrt_rmse", m.cbrt_rmse},
-                      {"rel_l2", m.rel_l2},
-                      {"cells", m.cells},
-                      {"weighting", m.weighting},
-                      {"cutoff_deg", m.cutoff_deg},
-                      {"definition", MetricsDefinition()}};
+  nlohmann::json& fm = j["fit_metrics"];
+  fm = {{"ok", m.ok},
+        {"cells", m.cells},
+        {"weighting", m.weighting},
+        {"cutoff_deg", m.cutoff_deg},
+        {"definition", MetricsDefinition()}};
+  for (const ErrorMetricField& f : kErrorMetrics) fm[f.name] = m.*f.value;
   if (!m.ok) j["fit_metrics"]["problem"] = m.problem;
   // The rendered-image metric, written as brdfit fit writes it (io/metrics_json.h).
   j["rendered"] = nlohmann::json(RenderedErrorJson(rendered));

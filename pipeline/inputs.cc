@@ -3,11 +3,11 @@
 #include <cstdlib>
 
 #include "core/error.h"
+#include "core/input_name.h"
 #include "io/input_file.h"
 #include "io/nbrdf.h"
 #include "io/table_io.h"
 #include "pipeline/cache_key.h"
-#include "report/report_inputs.h"
 
 namespace brdfit::pipeline {
 
@@ -57,7 +57,7 @@ Table LoadInput(const std::string& input) {
     throw InputError("input path contains a NUL byte: " + PrintableExcerpt(input));
   }
   if (!IsNbrdfInput(input)) return LoadTable(input);
-  const NbrdfNetwork net = ReadNbrdf(NbrdfArchive(), report::MaterialName(input));
+  const NbrdfNetwork net = ReadNbrdf(NbrdfArchive(), MaterialName(input));
   Table t = TabulateNbrdf(net, Grid::Merl(), 1).table;
   t.provenance.source = input;
   return t;

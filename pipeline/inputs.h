@@ -1,6 +1,6 @@
 // Table inputs shared by the subcommands: files (any format io/table_io.h detects) and NBRDF
 // networks ("nbrdf:NAME", "nbrdf:all": the networks of ../shared/data/merl_nbrdf.zip tabulated
-// on the MERL grid in memory, io/nbrdf.h). An input's material name: report::MaterialName.
+// on the MERL grid in memory, io/nbrdf.h). An input's material name: core/input_name.h.
 #pragma once
 
 #include <filesystem>

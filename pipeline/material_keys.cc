@@ -9,8 +9,8 @@
 #include <map>
 
 #include "core/error.h"
+#include "core/input_name.h"
 #include "io/nbrdf.h"
-#include "report/report_inputs.h"
 
 namespace brdfit::pipeline {
 namespace {
@@ -40,7 +40,7 @@ std::vector<std::string> MaterialKeys(const std::vector<std::string>& inputs) {
   std::vector<std::size_t> index;  // input of each file
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     if (IsNbrdfInput(inputs[i])) {
-      keys[i] = report::MaterialName(inputs[i]);
+      keys[i] = MaterialName(inputs[i]);
       continue;
     }
     files.push_back(fs::absolute(fs::path(inputs[i])).lexically_normal());

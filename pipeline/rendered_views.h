@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "core/table.h"
-#include "report/report_inputs.h"
 #include "report/report_model.h"
 
 namespace brdfit::pipeline {

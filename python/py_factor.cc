@@ -14,6 +14,14 @@
 namespace brdfit::python {
 namespace {
 
+// The docstring of Factorization.metrics: its keys.
+const char* MetricsDoc() {
+  static const std::string doc = "ln_ratio_rmse, " + ErrorMetricNames() +
+                                 " and rendered (docs/accuracy.md), as `brdfit factor` prints "
+                                 "them; empty with metrics=False";
+  return doc.c_str();
+}
+
 struct PyFactorization {
   Factorization f;
   py::dict metrics;
@@ -50,32 +58,34 @@ void BindFactor(py::module_& m) {
       .def_property_readonly("rank", [](const PyFactorization& r) { return r.f.brdf.rank(); })
       .def_property_readonly("resolution",
                              [](const PyFactorization& r) { return r.f.options.resolution; })
-      .def_property_readonly("diffuse", [](const PyFactorization& r) { return r.f.brdf.diffuse(); },
-                             "the diffuse value d, 1/sr per channel (0 without --diffuse)")
-      .def_property_readonly("textures",
-                             [](const PyFactorization& r) {
-                               py::list l;
-                               for (const FactorTerm& t : r.f.brdf.terms())
-                                 l.append(py::make_tuple(TextureArray(t.p), TextureArray(t.q)));
-                               return l;
-                             },
-                             "[(p, q)] per product, (height, width, 3) float32 arrays")
+      .def_property_readonly(
+          "diffuse", [](const PyFactorization& r) { return r.f.brdf.diffuse(); },
+          "the diffuse value d, 1/sr per channel (0 without --diffuse)")
+      .def_property_readonly(
+          "textures",
+          [](const PyFactorization& r) {
+            py::list l;
+            for (const FactorTerm& t : r.f.brdf.terms())
+              l.append(py::make_tuple(TextureArray(t.p), TextureArray(t.q)));
+            return l;
+          },
+          "[(p, q)] per product, (height, width, 3) float32 arrays")
       .def_property_readonly("stats", [](const PyFactorization& r) { return Stats(r.f.stats); })
-      .def_readonly("metrics", &PyFactorization::metrics,
-                    "ln_ratio_rmse, log_rmse, cbrt_rmse, rel_l2 and rendered (docs/accuracy.md), "
-                    "as `brdfit factor` prints them; empty with metrics=False")
-      .def("eval",
-           [](const PyFactorization& r, py::handle wi, py::handle wo) {
-             return EvalDirections(wi, wo,
-                                   [&](const Vec3& a, const Vec3& b) { return r.f.brdf.Eval(a, b); });
-           },
-           py::arg("wi"), py::arg("wo"), "f_r from the float32 textures at (N, 3) directions")
-      .def("eval_halfdiff",
-           [](const PyFactorization& r, py::handle th, py::handle td, py::handle pd) {
-             return EvalHalfDiff(th, td, pd,
-                                 [&](const HalfDiffAngles& a) { return r.f.brdf.Eval(a); });
-           },
-           py::arg("theta_h"), py::arg("theta_d"), py::arg("phi_d"));
+      .def_readonly("metrics", &PyFactorization::metrics, MetricsDoc())
+      .def(
+          "eval",
+          [](const PyFactorization& r, py::handle wi, py::handle wo) {
+            return EvalDirections(
+                wi, wo, [&](const Vec3& a, const Vec3& b) { return r.f.brdf.Eval(a, b); });
+          },
+          py::arg("wi"), py::arg("wo"), "f_r from the float32 textures at (N, 3) directions")
+      .def(
+          "eval_halfdiff",
+          [](const PyFactorization& r, py::handle th, py::handle td, py::handle pd) {
+            return EvalHalfDiff(th, td, pd,
+                                [&](const HalfDiffAngles& a) { return r.f.brdf.Eval(a); });
+          },
+          py::arg("theta_h"), py::arg("theta_d"), py::arg("phi_d"));
 
   m.def(
       "factor",
@@ -100,9 +110,7 @@ void BindFactor(py::module_& m) {
         }
         if (metrics) {
           out.metrics["ln_ratio_rmse"] = ln_rmse;
-          out.metrics["log_rmse"] = fm.log_rmse;
-          out.metrics["cbrt_rmse"] = fm.cbrt_rmse;
-          out.metrics["rel_l2"] = fm.rel_l2;
+          for (const ErrorMetricField& f : kErrorMetrics) out.metrics[f.name] = fm.*f.value;
           out.metrics["rendered"] =
               py::module_::import("json").attr("loads")(RenderedErrorJson(re).dump());
         }

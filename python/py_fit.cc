@@ -8,13 +8,13 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/input_name.h"
 #include "core/provenance.h"
 #include "fit/fitter.h"
 #include "io/fit_report.h"
 #include "pipeline/batch_fit.h"
 #include "pipeline/fit_settings.h"
 #include "python/bindings.h"
-#include "report/report_inputs.h"
 
 namespace brdfit::python {
 namespace {
@@ -46,7 +46,7 @@ PyFitResult Fit(const Table& table, const std::string& source, const std::string
     throw InputError("model '" + model + "' is " + std::to_string(runs.size()) +
                      " fits; brdfit.fit fits one model (call it once per candidate)");
   }
-  if (runs[0].model == kFactorizationModel) {
+  if (runs[0].kind == pipeline::TaskKind::kFactor) {
     throw InputError("brdfit.fit fits analytic models; a factorization is brdfit.factor(...)");
   }
   FitOptions fo = req.fit;
@@ -63,8 +63,15 @@ PyFitResult Fit(const Table& table, const std::string& source, const std::string
     const double prepare_ms = ms(t0);
     FitResult r = FitPrepared(runs[0].model, prepared, fo);
     r.times.prepare = prepare_ms;
-    out.entry = {source, report::MaterialName(source), OptionsJson(req.samples, fo), std::move(r),
-                 false, {}, TableContentHash(table), false, std::nullopt};
+    out.entry = {source,
+                 MaterialName(source),
+                 OptionsJson(req.samples, fo),
+                 std::move(r),
+                 false,
+                 {},
+                 TableContentHash(table),
+                 false,
+                 std::nullopt};
     std::vector<FitReportEntry> one{out.entry};
     pipeline::MarkChosenFits(one);  // as the CLI marks the fits of a report before writing
     out.entry = one[0];

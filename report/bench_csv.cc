@@ -17,17 +17,22 @@
 namespace brdfit::report {
 
 const std::vector<std::string>& BenchCsvColumns() {
-  static const std::vector<std::string> columns = {
-      "material", "table",      "model",     "loss",         "budget",    "status",
-      "time_ms",  "prepare_ms", "init_ms",   "solve_ms",     "log_rmse",  "cbrt_rmse",
-      "rel_l2",   "metric_ok",  "metric_cells", "weighting", "cutoff_deg", "fit_cells",
-      "iterations", "message",
-      // Appended with the rendered-image metric (docs/accuracy.md); empty when not computed.
-      "psnr_db", "psnr_srgb_db", "median_rel_error", "p95_rel_error",
-      // Appended with the metric's regions (core/rendered_regions.h); empty for a region
-      // without lights and when the metric was not computed.
-      "front_psnr_db", "front_median_rel_error", "side_psnr_db", "side_median_rel_error",
-      "rim_psnr_db", "rim_median_rel_error"};
+  static const std::vector<std::string> columns = [] {
+    std::vector<std::string> c = {"material", "table",   "model",      "loss",    "budget",
+                                  "status",   "time_ms", "prepare_ms", "init_ms", "solve_ms"};
+    for (const ErrorMetricField& f : kErrorMetrics) c.push_back(f.name);
+    c.insert(c.end(), {"metric_ok", "metric_cells", "weighting", "cutoff_deg", "fit_cells",
+                       "iterations", "message"});
+    // Appended with the rendered-image metric (docs/accuracy.md); empty when not computed.
+    for (const RenderedSummaryField& f : kRenderedSummary) c.push_back(f.name);
+    // Appended with the metric's regions (core/rendered_regions.h); empty for a region
+    // without lights and when the metric was not computed.
+    for (const char* region : kRenderedRegionNames) {
+      c.push_back(std::string(region) + "_psnr_db");
+      c.push_back(std::string(region) + "_median_rel_error");
+    }
+    return c;
+  }();
   return columns;
 }
 
@@ -55,19 +60,17 @@ std::string BenchCsvText(const std::vector<BenchPoint>& points) {
   for (std::size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + cols[i];
   out += "\n";
   for (const BenchPoint& b : points) {
-    const std::vector<std::string> f = {
-        Quote(b.material),        Quote(b.table),           Quote(b.model),
-        Quote(b.loss),            Quote(b.budget),          Quote(b.status),
-        Num(b.time_ms),           Num(b.prepare_ms),        Num(b.init_ms),
-        Num(b.solve_ms),          Num(b.metrics.log_rmse),  Num(b.metrics.cbrt_rmse),
-        Num(b.metrics.rel_l2),    b.metrics.ok ? "1" : "0", std::to_string(b.metrics.cells),
-        Quote(b.metrics.weighting), Num(b.metrics.cutoff_deg), std::to_string(b.fit_cells),
-        std::to_string(b.iterations), Quote(b.message),
-        Rendered(b.metrics.rendered, b.metrics.rendered.psnr_db),
-        Rendered(b.metrics.rendered, b.metrics.rendered.psnr_srgb_db),
-        Rendered(b.metrics.rendered, b.metrics.rendered.median_rel_error),
-        Rendered(b.metrics.rendered, b.metrics.rendered.p95_rel_error)};
-    std::vector<std::string> fields = f;
+    std::vector<std::string> fields = {
+        Quote(b.material), Quote(b.table), Quote(b.model),    Quote(b.loss),  Quote(b.budget),
+        Quote(b.status),   Num(b.time_ms), Num(b.prepare_ms), Num(b.init_ms), Num(b.solve_ms)};
+    for (const ErrorMetricField& f : kErrorMetrics) fields.push_back(Num(b.metrics.*f.value));
+    fields.insert(fields.end(),
+                  {b.metrics.ok ? "1" : "0", std::to_string(b.metrics.cells),
+                   Quote(b.metrics.weighting), Num(b.metrics.cutoff_deg),
+                   std::to_string(b.fit_cells), std::to_string(b.iterations), Quote(b.message)});
+    for (const RenderedSummaryField& f : kRenderedSummary) {
+      fields.push_back(Rendered(b.metrics.rendered, b.metrics.rendered.*f.value));
+    }
     for (const RenderedRegionError& g : b.metrics.rendered.regions) {
       const bool judged = b.metrics.rendered.ok && g.lights > 0;
       fields.push_back(judged ? Num(g.psnr_db) : std::string());
@@ -224,29 +227,30 @@ std::vector<BenchPoint> ReadBenchCsv(const std::filesystem::path& path) {
     b.prepare_ms = num("prepare_ms");
     b.init_ms = num("init_ms");
     b.solve_ms = num("solve_ms");
-    b.metrics.log_rmse = num("log_rmse");
-    b.metrics.cbrt_rmse = num("cbrt_rmse");
-    b.metrics.rel_l2 = num("rel_l2");
+    for (const ErrorMetricField& f : kErrorMetrics) b.metrics.*f.value = num(f.name);
     if (col.count("metric_ok") && get("metric_ok") != "0" && get("metric_ok") != "1") {
       throw InputError(path, fmt::format("line {}: column metric_ok: '{}' is not 0 or 1", line,
                                          get("metric_ok")));
     }
-    b.metrics.ok = col.count("metric_ok") ? get("metric_ok") == "1"
-                                          : std::isfinite(b.metrics.log_rmse);
+    b.metrics.ok = col.count("metric_ok")
+                       ? get("metric_ok") == "1"
+                       : std::isfinite(b.metrics.*kErrorMetrics[kPrimaryErrorMetric].value);
     RequireNonNegative(b.time_ms, path, line, "time_ms");
     for (const char* c : {"prepare_ms", "init_ms", "solve_ms"}) {
       if (col.count(c)) RequireNonNegative(num(c), path, line, c);
     }
     if (b.metrics.ok) {
-      for (const char* c : {"log_rmse", "cbrt_rmse", "rel_l2"}) {
-        if (col.count(c)) RequireNonNegative(num(c), path, line, c);
+      for (const ErrorMetricField& f : kErrorMetrics) {
+        if (col.count(f.name)) RequireNonNegative(b.metrics.*f.value, path, line, f.name);
       }
     }
     // What a file does not record reads as 0, as in a fit report: no NaN leaves the reader
     // (fuzz_bench_csv: an empty error of a failed point was written back as "nan" and refused).
-    for (double* v : {&b.prepare_ms, &b.init_ms, &b.solve_ms, &b.metrics.log_rmse,
-                      &b.metrics.cbrt_rmse, &b.metrics.rel_l2}) {
+    for (double* v : {&b.prepare_ms, &b.init_ms, &b.solve_ms}) {
       if (std::isnan(*v)) *v = 0;
+    }
+    for (const ErrorMetricField& f : kErrorMetrics) {
+      if (std::isnan(b.metrics.*f.value)) b.metrics.*f.value = 0;
     }
     b.metrics.cells = static_cast<std::size_t>(count("metric_cells"));
     b.metrics.weighting = get("weighting");
@@ -265,23 +269,25 @@ std::vector<BenchPoint> ReadBenchCsv(const std::filesystem::path& path) {
     b.iterations = static_cast<int>(iterations);
     // Files written before the rendered-image metric have none of its columns.
     RenderedError& re = b.metrics.rendered;
-    re.psnr_db = num("psnr_db");
-    re.psnr_srgb_db = num("psnr_srgb_db");
-    re.median_rel_error = num("median_rel_error");
-    re.p95_rel_error = num("p95_rel_error");
-    re.ok = std::isfinite(re.psnr_db) && std::isfinite(re.psnr_srgb_db) &&
-            std::isfinite(re.median_rel_error) && std::isfinite(re.p95_rel_error);
-    const bool none = std::isnan(re.psnr_db) && std::isnan(re.psnr_srgb_db) &&
-                      std::isnan(re.median_rel_error) && std::isnan(re.p95_rel_error);
+    re.ok = true;
+    bool none = true;
+    for (const RenderedSummaryField& f : kRenderedSummary) {
+      re.*f.value = num(f.name);
+      re.ok = re.ok && std::isfinite(re.*f.value);
+      none = none && std::isnan(re.*f.value);
+    }
     if (!re.ok && !none) {
       throw InputError(path, fmt::format("line {}: the rendered-error columns are partly empty "
-                                         "(all four or none)",
-                                         line));
+                                         "(all {} or none)",
+                                         line, std::size(kRenderedSummary)));
     }
-    if (re.ok && (re.median_rel_error < 0 || re.p95_rel_error < 0)) {
-      throw InputError(path, fmt::format("line {}: a negative rendered luminance error", line));
+    for (const RenderedSummaryField& f : kRenderedSummary) {
+      if (re.ok && re.*f.value < f.min_value) {
+        throw InputError(path, fmt::format("line {}: column {}: {} is below {}", line, f.name,
+                                           re.*f.value, f.min_value));
+      }
+      if (!re.ok) re.*f.value = 0;
     }
-    if (!re.ok) re.psnr_db = re.psnr_srgb_db = re.median_rel_error = re.p95_rel_error = 0;
     // The regions (files written before them have none): both numbers or neither, and only
     // with the metric. The CSV does not record how many lights a region had: 1 marks it judged.
     for (int g = 0; g < kRenderedRegions; ++g) {

@@ -24,16 +24,11 @@ bool Usable(const Entry& e) {
 bool HasRendered(const Entry* e) { return e && Usable(*e) && e->metrics.rendered.ok; }
 }  // namespace
 
-double MetricValue(const FitMetrics& m, MetricName name) {
-  switch (name) {
-    case MetricName::kCbrtRmse:
-      return m.cbrt_rmse;
-    case MetricName::kRelL2:
-      return m.rel_l2;
-    case MetricName::kLogRmse:
-      break;
+std::size_t ErrorMetricIndex(const std::string& name) {
+  for (std::size_t i = 0; i < kNumErrorMetrics; ++i) {
+    if (name == kErrorMetrics[i].name) return i;
   }
-  return m.log_rmse;
+  throw InputError("unknown metric '" + name + "' (expected " + ErrorMetricNames(" | ") + ")");
 }
 
 int Comparison::Count(Change c) const {
@@ -99,13 +94,13 @@ EntryDelta Judge(const std::string& material, const Entry* a, const Entry* b,
     d.status_old = a->status;
     d.old_metrics = a->metrics;
     d.old_time_ms = a->time_ms;
-    if (Usable(*a)) d.old_value = MetricValue(a->metrics, o.metric);
+    if (Usable(*a)) d.old_value = a->metrics.*kErrorMetrics[o.metric].value;
   }
   if (b) {
     d.status_new = b->status;
     d.new_metrics = b->metrics;
     d.new_time_ms = b->time_ms;
-    if (Usable(*b)) d.new_value = MetricValue(b->metrics, o.metric);
+    if (Usable(*b)) d.new_value = b->metrics.*kErrorMetrics[o.metric].value;
   }
   if (!b) {
     d.change = Change::kMissing;
@@ -207,15 +202,13 @@ nlohmann::ordered_json Num(double v) {
   return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
 }
 nlohmann::ordered_json MetricsJson(const FitMetrics& m) {
-  nlohmann::ordered_json j = {{"ok", m.ok}, {"log_rmse", Num(m.log_rmse)},
-                              {"cbrt_rmse", Num(m.cbrt_rmse)}, {"rel_l2", Num(m.rel_l2)}};
+  nlohmann::ordered_json j = {{"ok", m.ok}};
+  for (const ErrorMetricField& f : kErrorMetrics) j[f.name] = Num(m.*f.value);
   const RenderedError& r = m.rendered;
   if (r.ok) {
-    j["rendered"] = {{"psnr_db", Num(r.psnr_db)},
-                     {"psnr_srgb_db", Num(r.psnr_srgb_db)},
-                     {"median_rel_error", Num(r.median_rel_error)},
-                     {"p95_rel_error", Num(r.p95_rel_error)}};
-    j["rendered"]["regions"] = RenderedRegionsJson(r);
+    nlohmann::ordered_json& rj = j["rendered"];
+    for (const RenderedSummaryField& f : kRenderedSummary) rj[f.name] = Num(r.*f.value);
+    rj["regions"] = RenderedRegionsJson(r);
   }
   return j;
 }
@@ -230,7 +223,7 @@ nlohmann::ordered_json CostJson(bool has, const FactorCost& c) {
 
 nlohmann::ordered_json ComparisonToJson(const Comparison& c) {
   nlohmann::ordered_json j;
-  j["metric"] = ToString(c.options.metric);
+  j["metric"] = kErrorMetrics[c.options.metric].name;
   j["threshold"] = c.options.threshold;
   j["abs_floor"] = c.options.abs_floor;
   j["time_threshold"] = c.options.time_threshold;
@@ -284,7 +277,7 @@ nlohmann::ordered_json ComparisonToJson(const Comparison& c) {
 }
 
 std::string FormatComparison(const Comparison& c, bool all) {
-  const char* metric = ToString(c.options.metric);
+  const char* metric = kErrorMetrics[c.options.metric].name;
   std::string out;
   std::string material;
   auto pct = [](double r) { return std::isfinite(r) ? fmt::format("{:+.1f} %", 100 * r) : "–"; };

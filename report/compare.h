@@ -12,18 +12,12 @@
 
 namespace brdfit::report {
 
-enum class MetricName { kLogRmse, kCbrtRmse, kRelL2 };
-inline constexpr auto kMetricNames =
-    MakeEnumNames<MetricName>("metric", {{MetricName::kLogRmse, "log_rmse"},
-                                         {MetricName::kCbrtRmse, "cbrt_rmse"},
-                                         {MetricName::kRelL2, "rel_l2"}});
-constexpr const auto& EnumNamesOf(MetricName) {
-  return kMetricNames;
-}
-double MetricValue(const FitMetrics& m, MetricName name);
+// The deciding metric: an index into core/metrics.h kErrorMetrics.
+// The index of the error metric called `name`; InputError listing the names when none is.
+std::size_t ErrorMetricIndex(const std::string& name);
 
 struct CompareOptions {
-  MetricName metric = MetricName::kLogRmse;  // the metric that decides
+  std::size_t metric = kPrimaryErrorMetric;  // the metric that decides (kErrorMetrics)
   // A change is a regression when new > old * (1 + threshold) and new - old > abs_floor
   // (the floor keeps round-off on near-perfect fits from failing CI).
   double threshold = 0.05;

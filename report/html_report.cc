@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -127,6 +128,20 @@ namespace {
 
 std::string Num(double v, const char* spec = "{:.4g}") {
   return std::isfinite(v) ? fmt::format(fmt::runtime(spec), v) : "–";
+}
+
+// The error metrics' columns (core/metrics.h kErrorMetrics): headers, and each metric's cell
+// made by cell(value), in the table's order.
+std::string ErrorMetricHeaders() {
+  std::string s;
+  for (const ErrorMetricField& f : kErrorMetrics) s += fmt::format("<th>{}</th>", f.name);
+  return s;
+}
+template <class Cell>
+std::string ErrorMetricCells(const FitMetrics& m, Cell cell) {
+  std::string s;
+  for (const ErrorMetricField& f : kErrorMetrics) s += cell(m.*f.value);
+  return s;
 }
 
 // Anchor-safe id from a name.
@@ -496,22 +511,23 @@ class Page {
       Chart(ParetoChart("Run time against error: " + mat, BenchPoints(of[mat], mat), palette_),
             "scatter plot of run time against log_rmse for " + mat);
     }
-    body_ += "</div>\n<details><summary>All bench points</summary>\n<div class=\"scroll\"><table><tr>"
-             "<th class=\"l\">material</th><th class=\"l\">model</th><th class=\"l\">loss</th>"
-             "<th class=\"l\">budget</th><th class=\"l\">status</th><th>time (ms)</th>"
-             "<th>PSNR (dB)</th><th>lum. err.</th><th>log_rmse</th><th>cbrt_rmse</th><th>rel_l2</th>"
-             "</tr>\n";
+    body_ +=
+        "</div>\n<details><summary>All bench points</summary>\n<div class=\"scroll\"><table><tr>"
+        "<th class=\"l\">material</th><th class=\"l\">model</th><th class=\"l\">loss</th>"
+        "<th class=\"l\">budget</th><th class=\"l\">status</th><th>time (ms)</th>"
+        "<th>PSNR (dB)</th><th>lum. err.</th>" +
+        ErrorMetricHeaders() + "</tr>\n";
     for (const auto& b : report_.bench) {
       const RenderedError& re = b.metrics.rendered;
       body_ += fmt::format(
           "<tr{}><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td>"
           "<td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td>"
-          "<td>{}</td><td>{}</td><td>{}</td></tr>\n",
+          "{}</tr>\n",
           b.status == "failed" ? " class=\"failed\"" : "", HtmlEscape(b.material),
           HtmlEscape(b.model), HtmlEscape(b.loss), HtmlEscape(b.budget), HtmlEscape(b.status),
           Num(b.time_ms, "{:.1f}"), re.ok ? fmt::format("{:.2f}", re.psnr_db) : "–",
-          re.ok ? fmt::format("{:.1f} %", 100 * re.median_rel_error) : "–", Num(b.metrics.log_rmse), Num(b.metrics.cbrt_rmse),
-          Num(b.metrics.rel_l2));
+          re.ok ? fmt::format("{:.1f} %", 100 * re.median_rel_error) : "–",
+          ErrorMetricCells(b.metrics, [](double v) { return "<td>" + Num(v) + "</td>"; }));
     }
     body_ += "</table></div></details>\n</section>\n";
   }
@@ -571,9 +587,10 @@ class Page {
       }
       return b;
     };
-    const double best_log = best_of([](const Entry& e) { return e.metrics.log_rmse; });
-    const double best_cbrt = best_of([](const Entry& e) { return e.metrics.cbrt_rmse; });
-    const double best_rel = best_of([](const Entry& e) { return e.metrics.rel_l2; });
+    std::array<double, kNumErrorMetrics> best_error{};
+    for (std::size_t k = 0; k < kNumErrorMetrics; ++k) {
+      best_error[k] = best_of([k](const Entry& e) { return e.metrics.*kErrorMetrics[k].value; });
+    }
     const double best_time = best_of([](const Entry& e) { return e.time_ms; });
     const double best_psnr = -best_of([](const Entry& e) { return -e.metrics.rendered.psnr_db; }, true);
     const double best_lum =
@@ -586,8 +603,9 @@ class Page {
         "<div class=\"scroll\"><table><tr><th class=\"l\">approximation</th>"
         "<th>PSNR (dB)</th><th class=\"wrap\">median lum. err.</th>"
         "<th class=\"wrap\">front · side · rim (dB)</th>"
-        "<th class=\"l\">loss</th><th class=\"l\">budget</th><th class=\"l\">status</th>"
-        "<th>log_rmse</th><th>cbrt_rmse</th><th>rel_l2</th><th>cells</th>"
+        "<th class=\"l\">loss</th><th class=\"l\">budget</th><th class=\"l\">status</th>" +
+        ErrorMetricHeaders() +
+        "<th>cells</th>"
         "<th class=\"wrap\">memory · params</th><th class=\"wrap\">fetches / light</th>"
         "<th class=\"wrap\">fetches / fragment</th><th>time (ms)</th>"
         "<th class=\"l\">stages (ms)</th><th>iter.</th><th>Pareto</th></tr>\n";
@@ -609,17 +627,18 @@ class Page {
       body_ += fmt::format(
           "<tr{}><td class=\"l\">{}{}</td>{}{}<td>{}</td><td class=\"l\">{}</td><td "
           "class=\"l\">{}</td>"
-          "<td class=\"l\">{}</td>{}{}{}<td>{}</td>{}{}<td class=\"stages\">{}</td><td>{}</td>"
+          "<td class=\"l\">{}</td>{}<td>{}</td>{}{}<td class=\"stages\">{}</td><td>{}</td>"
           "<td>{}</td></tr>\n",
           cls, static_cast<int>(i) == best ? "★ " : "", HtmlEscape(e.name),
           cell(psnr, best_psnr, "{:.2f}"),
           fmt::format("<td{}>{}</td>", rendered && lum == 100 * best_lum ? " class=\"bestv\"" : "",
                       rendered ? fmt::format("{:.1f} %", lum) : "–"),
           RegionsText(e), HtmlEscape(e.loss), HtmlEscape(e.budget), status,
-          cell(ok ? e.metrics.log_rmse : NAN, best_log),
-          cell(ok ? e.metrics.cbrt_rmse : NAN, best_cbrt),
-          cell(ok ? e.metrics.rel_l2 : NAN, best_rel), e.metrics.cells, CostCells(e),
-          cell(e.time_ms, ok ? best_time : NAN, "{:.1f}"), stages,
+          ErrorMetricCells(e.metrics,
+                           [&, k = std::size_t{0}](double v) mutable {
+                             return cell(ok ? v : NAN, best_error[k++]);
+                           }),
+          e.metrics.cells, CostCells(e), cell(e.time_ms, ok ? best_time : NAN, "{:.1f}"), stages,
           e.kind == Entry::Kind::kFit ? std::to_string(e.iterations) : std::string("–"),
           front.count(i) ? "◆" : "");
     }

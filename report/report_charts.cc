@@ -186,28 +186,30 @@ json SliceChart(const std::string& title, const Slice& slice, const Palette& pal
 
 json MetricsChart(const std::string& title, const Material& m) {
   json labels = json::array();
-  json log_rmse = json::array(), cbrt_rmse = json::array(), rel_l2 = json::array();
+  std::vector<json> data(kNumErrorMetrics, json::array());
   std::size_t drawn = 0;
   for (const std::size_t i : RankEntries(m.entries)) {
     const Entry& e = m.entries[i];
     if (e.Failed() || !e.metrics.ok) continue;
     if (drawn++ == kMaxMetricBars) break;
     labels.push_back(e.name + " (" + e.budget + ")");
-    log_rmse.push_back(Value(e.metrics.log_rmse));
-    cbrt_rmse.push_back(Value(e.metrics.cbrt_rmse));
-    rel_l2.push_back(Value(e.metrics.rel_l2));
+    for (std::size_t k = 0; k < kNumErrorMetrics; ++k) {
+      data[k].push_back(Value(e.metrics.*kErrorMetrics[k].value));
+    }
   }
-  auto bars = [](const char* label, json data, const char* color) {
-    return json{{"label", label}, {"data", std::move(data)}, {"backgroundColor", color}};
-  };
+  // One bar series per error metric (core/metrics.h kErrorMetrics), Tableau 10's colours.
+  static constexpr const char* kColors[] = {"#4e79a7", "#f28e2b", "#59a14f",
+                                            "#e15759", "#76b7b2", "#edc948"};
+  json datasets = json::array();
+  for (std::size_t k = 0; k < kNumErrorMetrics; ++k) {
+    datasets.push_back({{"label", kErrorMetrics[k].name},
+                        {"data", std::move(data[k])},
+                        {"backgroundColor", kColors[k % std::size(kColors)]}});
+  }
   json options = BaseOptions(title);
   options["scales"] = {{"y", Axis("logarithmic", "error (log scale; lower is better)")}};
   return {{"type", "bar"},
-          {"data",
-           {{"labels", labels},
-            {"datasets",
-             {bars("log_rmse", log_rmse, "#4e79a7"), bars("cbrt_rmse", cbrt_rmse, "#f28e2b"),
-              bars("rel_l2", rel_l2, "#59a14f")}}}},
+          {"data", {{"labels", labels}, {"datasets", datasets}}},
           {"options", options}};
 }
 

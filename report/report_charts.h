@@ -41,7 +41,8 @@ std::vector<ParetoPoint> BenchPoints(const std::vector<BenchPoint>& bench,
 // as dashed lines.
 nlohmann::json SliceChart(const std::string& title, const Slice& slice, const Palette& palette);
 
-// log_rmse, cbrt_rmse and rel_l2 of the usable entries of a material (bars, log y): the first
+// The error metrics (core/metrics.h kErrorMetrics) of the usable entries of a material (bars,
+// log y): the first
 // kMaxMetricBars by RankEntries.
 inline constexpr std::size_t kMaxMetricBars = 40;
 nlohmann::json MetricsChart(const std::string& title, const Material& m);

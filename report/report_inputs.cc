@@ -14,14 +14,15 @@
 
 #include "core/error.h"
 #include "io/factor_io.h"
+#include "io/fit_params_json.h"
 #include "io/fit_report.h"
 #include "io/image_io.h"
 #include "io/model_params.h"
 #include "io/nbrdf.h"
+#include "io/result_json.h"
 #include "io/table_io.h"
 #include "models/registry.h"
 #include "report/bench_csv.h"
-#include "report/result_json.h"
 
 namespace brdfit::report {
 
@@ -105,12 +106,6 @@ std::vector<FactorForm::Term> TermSizes(const json& j, int rank) {
 }
 
 }  // namespace
-
-std::string MaterialName(const fs::path& table) {
-  const std::string text = table.string();
-  if (IsNbrdfInput(text)) return text.substr(kNbrdfInputPrefix.size());
-  return table.stem().string();
-}
 
 Entry FactorEntry(const fs::path& sidecar, std::string* material, std::string* table) {
   const json j = ReadJson(sidecar);
@@ -331,90 +326,11 @@ void AddFitReport(const std::vector<FitReportEntry>& entries, const fs::path& fr
       AddFactorizationEntry(material, f.source, *f.factorization, f.chosen, f.choice, from, b);
     } else {
       Entry e = FitEntry(f);
-      if (f.result.model == kFactorizationModel) e.kind = Entry::Kind::kFactor;  // failed: no files
+      if (IsFactorizationModel(f.result.model)) e.kind = Entry::Kind::kFactor;  // failed: no files
       AddEntry(b, material, f.source, std::move(e));
     }
     NoteNamedTable(material, f.source, out);
   }
-}
-
-// The parameters JSON of `brdfit fit` (FitParamsJson): fits without timings.
-bool AddFitParamsJson(const fs::path& p, Builder* b) {
-  ReportSources* out = &b->out;
-  // Ordered: the parameters must keep the model's order.
-  std::ifstream in(p, std::ios::binary);
-  if (!in) throw InputError(p, "cannot open");
-  const auto j = nlohmann::ordered_json::parse(in, nullptr, false);
-  if (j.is_discarded() || !j.is_object()) throw InputError(p, "not a JSON object");
-  if (!j.contains("format") || j["format"] != "brdfit-fit-params") return false;
-  const auto fits = j.value("fits", nlohmann::ordered_json::array());
-  if (!fits.is_array()) throw InputError(p, "\"fits\" is not an array");
-  struct Fit {
-    std::string material, source;
-    Entry entry;
-    std::optional<FactorizationRef> factorization;
-  };
-  std::vector<Fit> read;  // all checked before any is added
-  for (std::size_t i = 0; i < fits.size(); ++i) {
-    const auto& f = fits[i];
-    if (!f.is_object()) throw InputError(p, "an element of \"fits\" is not an object");
-    const JsonFields ff(p, fmt::format("fits[{}]", i));
-    Entry e;
-    e.kind = Entry::Kind::kFit;
-    const json fj = f;  // unordered for the members whose order does not matter
-    e.name = ff.String(fj, "model", "?");
-    const json options = ff.Object(fj, "options");
-    e.loss = LossLabel(options);
-    e.budget = options.value("budget", std::string("?"));
-    e.status = ff.String(fj, "status", "?");
-    e.message = ff.String(fj, "message", "");
-    if (f.contains("params") && !f["params"].is_object()) ff.Fail("params", "is not an object");
-    const auto params = f.value("params", nlohmann::ordered_json::object());
-    for (const auto& [name, value] : params.items()) {
-      if (!value.is_number()) throw InputError(p, "parameter " + name + " is not a number");
-      e.param_names.push_back(name);
-      e.params.push_back(value.get<double>());
-    }
-    std::optional<FactorizationRef> factorization;
-    if (e.name == kFactorizationModel && e.status == "failed" && !fj.contains("factorization")) {
-      e.kind = Entry::Kind::kFactor;  // a failed factorization that wrote no files
-    } else if (e.name == kFactorizationModel) {
-      // A factorization among the candidates (io/fit_report.h): its form and sidecar.
-      const JsonFields fz = ff.Child("factorization");
-      const json fo = ff.Object(fj, "factorization");
-      factorization = FactorizationRef{};
-      factorization->form = fz.String(fo, "form", "");
-      factorization->sidecar = fz.String(fo, "sidecar", "");
-      if (factorization->form.empty()) fz.Fail("form", "is missing");
-      if (factorization->sidecar.empty()) fz.Fail("sidecar", "is missing");
-    } else if (e.status != "failed") {
-      // A usable fit's parameters are its registered model's, in order and in bounds (as a
-      // fit report's, io/fit_report.h).
-      const ModelInfo* model = FindModel(e.name);
-      if (!model) ff.Fail("model", "is '" + e.name + "', not a registered model");
-      std::string bad = CheckModelParamNames(*model, e.param_names);
-      if (bad.empty()) bad = CheckModelParams(e.name, e.params);
-      if (!bad.empty()) ff.Fail("params", "are not the model's: " + bad);
-    }
-    if (e.status != "failed" && !f.contains("metrics")) ff.Fail("metrics", "is missing");
-    e.metrics =
-        MetricsFromJson(ff.Object(fj, "metrics"), e.status != "failed", ff.Child("metrics"));
-    e.chosen = ff.Bool(fj, "chosen", false);
-    e.choice = ff.String(fj, "choice", "");
-    const std::string source = ff.String(fj, "source", "");
-    const std::string material = ff.String(fj, "material", MaterialName(source));
-    read.push_back({material, source, std::move(e), std::move(factorization)});
-  }
-  for (Fit& f : read) {
-    if (f.factorization) {
-      AddFactorizationEntry(f.material, f.source, *f.factorization, f.entry.chosen, f.entry.choice,
-                            p, b);
-    } else {
-      AddEntry(b, f.material, f.source, std::move(f.entry));
-    }
-    NoteNamedTable(f.material, f.source, out);
-  }
-  return true;
 }
 
 void AddInputOf(const fs::path& p, bool explicit_input, Builder* b);
@@ -466,9 +382,8 @@ void AddInputOf(const fs::path& p, bool explicit_input, Builder* b) {
     case Kind::kParamsJson:
       // In a folder the fit report beside it holds the same fits (and their times).
       if (!explicit_input) break;
-      if (!AddFitParamsJson(p, b)) {
-        throw InputError(p, "not a brdfit fit parameters file (format \"brdfit-fit-params\")");
-      }
+      // The parameters JSON of `brdfit fit` (io/fit_params_json.h): fits without timings.
+      AddFitReport(ReadFitParamsJson(p), p, b);
       break;
     case Kind::kTable: {
       TableFormat format;

@@ -17,15 +17,10 @@
 #include <string>
 #include <vector>
 
+#include "core/input_name.h"
 #include "report/report_model.h"
 
 namespace brdfit::report {
-
-struct FactorRef {
-  std::string material;
-  std::string label;  // the entry's name, e.g. "factor:mccool"
-  std::filesystem::path sidecar;
-};
 
 struct ReportSources {
   Report report;
@@ -37,7 +32,7 @@ struct ReportSources {
 };
 
 // Throws InputError naming the file when an input is missing, not a regular file or folder,
-// unreadable, of no known kind, or holds a member out of its range (report/result_json.h); with
+// unreadable, of no known kind, or holds a member out of its range (io/result_json.h); with
 // `skipped`, such an input is left out and its error appended there instead.
 ReportSources ReadReportInputs(const std::vector<std::filesystem::path>& inputs,
                                std::vector<std::string>* skipped = nullptr);
@@ -45,10 +40,6 @@ ReportSources ReadReportInputs(const std::vector<std::filesystem::path>& inputs,
 // Bench points as entries of their materials (for `brdfit compare` on two bench CSVs): one fit
 // entry per point, keyed like any fit (model | loss | budget).
 void AddBenchEntries(Report* report);
-
-// The material a table input stands for: its file name without the extension, or NAME for an
-// NBRDF input "nbrdf:NAME" (io/nbrdf.h). Reports, fit reports and factor outputs use it.
-std::string MaterialName(const std::filesystem::path& table);
 
 // One factorization sidecar as a report entry (exposed for tests). Sets *material from the
 // sidecar's source.file.

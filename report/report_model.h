@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,6 +15,13 @@
 #include "core/metrics.h"
 
 namespace brdfit::report {
+
+// A factorization's files, for its slices and renders (pipeline/factor_export.h writes them).
+struct FactorRef {
+  std::string material;
+  std::string label;  // the entry's name, e.g. "factor:mccool"
+  std::filesystem::path sidecar;
+};
 
 // One approximation of one material.
 struct Entry {

@@ -55,6 +55,8 @@ run_all() {
     -o "$out/fits.h5" --json "$out/fits.json"
   "$b" fit "${tables[@]}" --model ggx,lambert+ggx,lambert+ggx+sheen,ward -q --no-timings \
     --no-progress --polish none -o "$out/models.h5" --json "$out/models.json"
+  "$b" fit "${tables[@]:0:2}" --model lambert+ggx,factorization -q --no-timings --no-progress \
+    -j 2 -o "$out/candidates.h5" --json "$out/candidates.json"
   "$b" factor "${tables[@]}" -q --no-timings --no-progress -o "$out/factors" 2>/dev/null ||
     "$b" factor "${tables[@]}" -q --no-timings -o "$out/factors"
   "$b" bench "${tables[@]:0:2}" --models ggx,lambert+ggx --budgets stride:8 --losses log,rel \

@@ -268,8 +268,8 @@ TEST_F(NewSurfaces, FitsJsonOfTheWrongTypeNamesTheFileAndMessagesEscapeControls)
                      (dir_ / "x.gltf").string()},
                     dir_ / "typed.log");
   EXPECT_EQ(r.code, 2) << r.log;
-  EXPECT_THAT(r.log,
-              HasSubstr((dir_ / "typed.json").string() + ": fits[0].chosen is not true or false"));
+  EXPECT_THAT(r.log, HasSubstr((dir_ / "typed.json").string() +
+                               ": fits[0].chosen is string, not true or false"));
   EXPECT_FALSE(fs::exists(dir_ / "x.gltf"));
   // A model name with an escape sequence and a newline: one line, the bytes escaped.
   j = nlohmann::ordered_json::parse(ReadAll(json));
@@ -282,6 +282,43 @@ TEST_F(NewSurfaces, FitsJsonOfTheWrongTypeNamesTheFileAndMessagesEscapeControls)
   EXPECT_THAT(r.log, HasSubstr("\\x1b]0;pwn\\x07\\x0aforged line"));
   EXPECT_EQ(r.log.find('\x1b'), std::string::npos);
   EXPECT_EQ(std::count(r.log.begin(), r.log.end(), '\n'), 1) << r.log;
+}
+
+// Every reader of a fits JSON is one reader (io/fit_params_json.h with io/result_json.h): export
+// and report refuse the same damage with the same words, where export read an absent error of
+// a usable fit as 0 and an unknown status as "failed".
+TEST_F(NewSurfaces, ExportAndReportReadAFitsJsonWithOneStrictness) {
+  const fs::path json = FitParamsJson();
+  const std::string text = ReadAll(json);
+  const auto edited = [&](const std::function<void(nlohmann::ordered_json&)>& edit) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::parse(text);
+    edit(j["fits"][0]);
+    return j.dump();
+  };
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {edited([](auto& f) { f["metrics"].erase("log_rmse"); }),
+       "fits[0].metrics.log_rmse is missing"},
+      {edited([](auto& f) { f.erase("metrics"); }), "fits[0].metrics is missing"},
+      {edited([](auto& f) { f["status"] = "great"; }), "fits[0].status is 'great', not"},
+      {edited([](auto& f) { f["metrics"]["rendered"]["psnr_db"] = nullptr; }),
+       "fits[0].metrics.rendered.psnr_db is null, not a number"},
+  };
+  for (const auto& [bad, problem] : cases) {
+    SCOPED_TRACE(problem);
+    std::ofstream(dir_ / "bad.json") << bad;
+    const CliRun exported = Brdfit({"export", (dir_ / "bad.json").string(), "--format", "gltf",
+                                    "-o", (dir_ / "x.gltf").string()},
+                                   dir_ / "export.log");
+    const CliRun reported =
+        Brdfit({"report", (dir_ / "bad.json").string(), "-q", "-o", (dir_ / "r.html").string()},
+               dir_ / "report.log");
+    for (const CliRun* r : {&exported, &reported}) {
+      EXPECT_EQ(r->code, 2) << r->log;
+      EXPECT_THAT(r->log, HasSubstr((dir_ / "bad.json").string() + ": " + problem));
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "x.gltf"));
+    EXPECT_FALSE(fs::exists(dir_ / "r.html"));
+  }
 }
 
 // The fits JSON reader holds every member to what the writer makes: a key twice, a negative
@@ -303,14 +340,14 @@ TEST_F(NewSurfaces, FitsJsonMembersAndInputIdentityAreChecked) {
   two["fits"][1]["params"]["ggx.alpha"] = 0.5;
   const std::vector<std::pair<std::string, std::string>> cases = {
       {edited([](auto& f) { f["metrics"]["log_rmse"] = -1; }),
-       "fits[0].metrics.log_rmse is negative"},
+       "fits[0].metrics.log_rmse is -1, below 0"},
       {edited([](auto& f) { f["at_bound"] = "ggx.alpha"; }), "fits[0].at_bound is not an array"},
       {edited([](auto& f) { f["at_bound"] = nlohmann::ordered_json::array({1}); }),
        "fits[0].at_bound holds a non-name"},
       {edited([](auto& f) { f["metrics"] = "good"; }), "fits[0].metrics is not an object"},
-      {edited([](auto& f) { f["choice"] = 3; }), "fits[0].choice is not a string"},
+      {edited([](auto& f) { f["choice"] = 3; }), "fits[0].choice is number, not a string"},
       {edited([](auto& f) { f["metrics"]["rendered"]["ok"] = "yes"; }),
-       "fits[0].metrics.rendered.ok is not true or false"},
+       "fits[0].metrics.rendered.ok is string, not true or false"},
       // A key twice: the text itself, nlohmann would keep the last.
       {std::string(text).insert(text.find("\"model\""), "\"model\": \"ward\", "),
        "duplicate key 'model' in fits[0]"},

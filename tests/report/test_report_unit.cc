@@ -317,8 +317,8 @@ TEST(Compare, TimeRegressionOnlyWhenAsked) {
 }
 
 TEST(Compare, MetricChoice) {
-  EXPECT_EQ(FromString<MetricName>("cbrt_rmse"), MetricName::kCbrtRmse);
-  EXPECT_THROW(FromString<MetricName>("psnr"), InputError);
+  EXPECT_EQ(kErrorMetrics[ErrorMetricIndex("cbrt_rmse")].value, &FitMetrics::cbrt_rmse);
+  EXPECT_THROW(ErrorMetricIndex("psnr"), InputError);
 }
 
 // ---- inputs ---------------------------------------------------------------------------------

@@ -1,4 +1,4 @@
-#include "report/result_json.h"
+#include "io/result_json.h"
 
 #include <fmt/core.h>
 
@@ -7,7 +7,7 @@
 #include "core/error.h"
 #include "io/metrics_json.h"
 
-namespace brdfit::report {
+namespace brdfit {
 
 using nlohmann::json;
 
@@ -74,10 +74,9 @@ void RenderedFromJson(const json& parent, const JsonFields& f, FitMetrics* m) {
   e.ok = rf.Bool(r, "ok", true);
   e.problem = rf.String(r, "problem", "");
   if (e.ok) {
-    e.psnr_db = rf.Required(r, "psnr_db");
-    e.psnr_srgb_db = rf.Required(r, "psnr_srgb_db");
-    e.median_rel_error = rf.Required(r, "median_rel_error", 0);
-    e.p95_rel_error = rf.Required(r, "p95_rel_error", 0);
+    for (const RenderedSummaryField& s : kRenderedSummary) {
+      e.*s.value = rf.Required(r, s.name, s.min_value);
+    }
     if (const std::string bad = RenderedLightsFromJson(r, &e); !bad.empty()) {
       const std::size_t space = bad.find(' ');  // "member problem"
       rf.Fail(bad.substr(0, space), bad.substr(space + 1));
@@ -89,14 +88,8 @@ FitMetrics MetricsFromJson(const json& j, bool ok_default, const JsonFields& f) 
   FitMetrics m;
   m.ok = f.Bool(j, "ok", ok_default);
   m.problem = f.String(j, "problem", "");
-  if (m.ok) {
-    m.log_rmse = f.Required(j, "log_rmse", 0);
-    m.cbrt_rmse = f.Required(j, "cbrt_rmse", 0);
-    m.rel_l2 = f.Required(j, "rel_l2", 0);
-  } else {
-    m.log_rmse = f.Number(j, "log_rmse", 0, 0);
-    m.cbrt_rmse = f.Number(j, "cbrt_rmse", 0, 0);
-    m.rel_l2 = f.Number(j, "rel_l2", 0, 0);
+  for (const ErrorMetricField& e : kErrorMetrics) {
+    m.*e.value = m.ok ? f.Required(j, e.name, 0) : f.Number(j, e.name, 0, 0);
   }
   m.cells = f.Count(j, "cells", 0);
   m.weighting = f.String(j, "weighting", "");
@@ -105,4 +98,4 @@ FitMetrics MetricsFromJson(const json& j, bool ok_default, const JsonFields& f) 
   return m;
 }
 
-}  // namespace brdfit::report
+}  // namespace brdfit

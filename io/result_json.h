@@ -1,5 +1,6 @@
 // Strict reading of the JSON members of result files (factorization sidecars, fit parameters
-// files) for `brdfit report` and `compare`: a member that is absent takes its documented
+// files), the one strictness of every reader of them (io/fit_params_json.h, `brdfit report`,
+// `compare`): a member that is absent takes its documented
 // default, one that is present must have its type and range, else InputError names the file
 // and the member ("metrics.fit_metrics.log_rmse is null, not a number"). A null or negative
 // error read as 0 made a broken result look perfect.
@@ -13,7 +14,7 @@
 
 #include "core/metrics.h"
 
-namespace brdfit::report {
+namespace brdfit {
 
 class JsonFields {
  public:
@@ -40,13 +41,13 @@ class JsonFields {
   std::string where_;  // "metrics.fit_metrics" or "fits[3].metrics"; empty at the root
 };
 
-// The metrics of a sidecar's "fit_metrics" or a fit parameters file's "metrics" (core/metrics.h
-// names): ok (default ok_default); when ok, log_rmse, cbrt_rmse and rel_l2 are required and
-// >= 0; the rendered-image summary "rendered" (io/metrics_json.h) when present, its numbers
-// required when its ok is true.
+// The metrics of a sidecar's "fit_metrics" or a fit parameters file's "metrics" (the fields of
+// core/metrics.h kErrorMetrics): ok (default ok_default); when ok, every error metric is
+// required and >= 0; the rendered-image summary "rendered" (io/metrics_json.h) when present,
+// its numbers (kRenderedSummary) required when its ok is true.
 FitMetrics MetricsFromJson(const nlohmann::json& j, bool ok_default, const JsonFields& f);
 // Only the rendered-image summary "rendered" of `parent`, into m (a sidecar keeps it beside
 // fit_metrics).
 void RenderedFromJson(const nlohmann::json& parent, const JsonFields& f, FitMetrics* m);
 
-}  // namespace brdfit::report
+}  // namespace brdfit
