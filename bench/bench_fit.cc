@@ -21,9 +21,9 @@
 #include <vector>
 
 #include "bench/bench_tables.h"
+#include "core/model_params.h"
 #include "core/synth.h"
 #include "fit/fitter.h"
-#include "io/model_params.h"
 #include "io/nbrdf.h"
 #include "models/registry.h"
 #include "pipeline/bench_sweep.h"
@@ -63,7 +63,7 @@ void BM_Fit(benchmark::State& state, const BenchTable* table, std::string model,
             std::string budget) {
   SampleOptions so;
   so.budget = Budget::Parse(budget);
-  FitOptions fo;
+  FitOptions fo = LogLossUnpolished();
   PreparedTable prepared = PrepareTable(table->table, so, fo);
   prepared.metric_own = Subsample(prepared.fit, 1, 1);
   prepared.has_own_metric = true;

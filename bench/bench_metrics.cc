@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "bench/bench_tables.h"
+#include "core/model_params.h"
 #include "fit/fitter.h"
 #include "fit/rendered_error.h"
-#include "io/model_params.h"
 #include "io/nbrdf.h"
 #include "models/registry.h"
 
@@ -42,7 +42,7 @@ std::vector<Case> LoadCases() {
     return cases;
   }
   NbrdfTabulation tab = TabulateNbrdf(ReadNbrdf(kZip, "gold-metallic-paint"), Grid::Merl(), 1);
-  const FitResult fit = FitTable("lambert+ggx", tab.table, SampleOptions{}, FitOptions{});
+  const FitResult fit = FitTable("lambert+ggx", tab.table, SampleOptions{}, LogLossUnpolished());
   cases.push_back({"nbrdf-gold-metallic-paint", std::move(tab.table), fit.params});
   return cases;
 }

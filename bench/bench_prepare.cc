@@ -100,7 +100,7 @@ BENCHMARK(BM_SelectBudget)->Unit(benchmark::kMillisecond);
 void BM_PrepareLoss(benchmark::State& state) {
   const Samples fit = PrepareSamples(BenchTable(), Defaults());
   for (auto _ : state) {
-    LossData l = PrepareLoss(fit, FitOptions{});
+    LossData l = PrepareLoss(fit, LogLossUnpolished());
     benchmark::DoNotOptimize(l.mult.data());
   }
 }
@@ -113,13 +113,13 @@ void BM_PrepareTable(benchmark::State& state) {
   PrepareCache* use = state.range(0) ? &cache : nullptr;
   if (use) {
     Table warm = BenchTable();
-    benchmark::DoNotOptimize(PrepareTable(std::move(warm), Defaults(), FitOptions{}, use));
+    benchmark::DoNotOptimize(PrepareTable(std::move(warm), Defaults(), LogLossUnpolished(), use));
   }
   for (auto _ : state) {
     state.PauseTiming();
     Table copy = BenchTable();
     state.ResumeTiming();
-    PreparedTable p = PrepareTable(std::move(copy), Defaults(), FitOptions{}, use);
+    PreparedTable p = PrepareTable(std::move(copy), Defaults(), LogLossUnpolished(), use);
     benchmark::DoNotOptimize(p.fit.cell.data());
   }
 }

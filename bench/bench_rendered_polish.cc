@@ -71,6 +71,7 @@ int main(int argc, char** argv) {
       for (const auto& c : pipeline::kAutoCandidates) {
         FitOptions fo;
         fo.loss = *c.loss;
+        fo.polish = PolishKind::kNone;
         PreparedTable pt = PrepareTable(table, so, fo);
         plain.push_back(FitPrepared(c.model, pt, fo));
         fo.polish = PolishKind::kRendered;

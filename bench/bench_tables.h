@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "core/model_params.h"
 #include "core/synth.h"
-#include "io/model_params.h"
 #include "models/registry.h"
 #include "pipeline/inputs.h"
 

@@ -23,6 +23,7 @@
 #include "pipeline/inputs.h"
 #include "pipeline/rendered_views.h"
 #include "report/html_report.h"
+#include "report/report_inputs.h"
 #include "report/report_slices.h"
 
 namespace brdfit::cli {
@@ -63,8 +64,10 @@ int RunReport(const ReportCliOptions& o) {
   read.push_back(chart_js);
   CheckOutputs(read, {{o.out, "-o"}});
   const std::string js = report::ReadChartJs(chart_js);  // fail before any work
+  std::vector<std::string> unreadable;                   // with --keep-going: the inputs left out
+  report::ReportSources sources = report::ReadReportInputs(
+      std::vector<fs::path>(given.begin(), given.end()), o.keep_going ? &unreadable : nullptr);
   pipeline::ReportRequest q;
-  q.inputs = given;
   q.title = o.title;
   q.theta_d = o.theta_d;
   q.phi_d = o.phi_d;
@@ -83,7 +86,8 @@ int RunReport(const ReportCliOptions& o) {
                  TerminalSafe(material), TerminalSafe(warning));
     }
   };
-  const pipeline::BuiltReport built = pipeline::BuildReport(q);
+  const pipeline::BuiltReport built =
+      pipeline::BuildReport(std::move(sources), std::move(unreadable), q);
   if (bar) bar->Done();
   const report::Report& r = built.report;
   const std::string html = report::RenderHtml(r, js);

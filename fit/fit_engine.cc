@@ -193,7 +193,7 @@ FitResult FitWithOps(const ModelOps& ops, const Samples& fit, const LossData& lo
   r.final_cost = 2.0 * best_cost;  // Ceres reports 1/2 sum r^2
   for (std::size_t i = 0; i < P; ++i) {
     // exp(log(upper)) can land one ulp beyond the bound (abc.c = 10.000000000000002 for
-    // nbrdf:black-fabric), which every reader refuses (io/model_params.h): the report could
+    // nbrdf:black-fabric), which every reader refuses (core/model_params.h): the report could
     // not be resumed or merged. The bounds are the model's domain: clamp into them.
     r.params[i] =
         std::clamp(layout.FromOpt(i, best_x[i]), layout.specs[i].lower, layout.specs[i].upper);

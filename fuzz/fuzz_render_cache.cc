@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "fuzz/harness_util.h"
 #include "core/error.h"
+#include "core/model_params.h"
+#include "fuzz/harness_util.h"
 #include "io/fit_cache_entry.h"
-#include "io/model_params.h"
 #include "models/registry.h"
 
 namespace brdfit::fuzz {

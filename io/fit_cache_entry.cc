@@ -3,8 +3,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/model_params.h"
 #include "io/input_file.h"
-#include "io/model_params.h"
 
 namespace brdfit {
 

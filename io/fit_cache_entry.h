@@ -22,7 +22,7 @@ std::string FitCacheEntryJson(const FitCacheEntry& e);
 
 // The parameters of a cached fit of `model`. Throws InputError naming the file: not a JSON
 // object, "model" or "params" missing or of the wrong type, another model, parameters that are
-// not the model's (io/model_params.h CheckModelParams).
+// not the model's (core/model_params.h CheckModelParams).
 std::vector<double> ReadFitCacheEntry(const std::filesystem::path& path, const std::string& model);
 
 }  // namespace brdfit

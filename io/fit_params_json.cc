@@ -9,9 +9,9 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/model_params.h"
 #include "io/input_file.h"
 #include "io/metrics_json.h"
-#include "io/model_params.h"
 #include "io/result_json.h"
 #include "io/unique_keys_json.h"
 #include "models/registry.h"

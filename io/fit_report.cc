@@ -15,11 +15,11 @@
 
 #include "core/error.h"
 #include "core/metrics.h"
+#include "core/model_params.h"
 #include "core/provenance.h"
 #include "io/hdf5_util.h"
 #include "io/input_file.h"
 #include "io/metrics_json.h"
-#include "io/model_params.h"
 #include "models/registry.h"
 
 namespace brdfit {

@@ -6,30 +6,20 @@
 //   x  = (sin th, 0, cos th, sin td cos pd, sin td sin pd, cos td)   (half and difference vectors)
 //   h1 = relu(x K1 + b1),  h2 = relu(h1 K2 + b2),  y = h2 K3 + b3,   f_r = exp(y) - 1  [1/sr]
 // The output is f_r in 1/sr with MERL's channel scales already applied.
+// This file reads the archive; the network and its evaluation are core/nbrdf_network.h.
 #pragma once
 
-#include <Eigen/Core>
-#include <array>
-#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "core/input_name.h"
-#include "core/table.h"
+#include "core/nbrdf_network.h"
 
 namespace brdfit {
 
 // Inputs that name a network of the archive, "nbrdf:NAME": core/input_name.h.
-
-struct NbrdfNetwork {
-  std::string material;
-  std::string source;  // "<zip>:merl_nbrdf/<material>.h5"
-  // Kernels input-major as stored (x K + b with row vectors x).
-  Eigen::MatrixXd k1, k2, k3;
-  Eigen::RowVectorXd b1, b2, b3;
-};
 
 // The materials in the archive (names of merl_nbrdf/*.h5 without extension), sorted; empty for
 // an archive without such members (callers that need one say kNoNbrdfMaterials).
@@ -42,22 +32,5 @@ std::vector<std::string> ListNbrdfMaterials(const std::filesystem::path& zip);
 // temporary file). Throws InputError naming the archive and the problem (unknown material,
 // missing dataset, wrong shape, non-finite weight).
 NbrdfNetwork ReadNbrdf(const std::filesystem::path& zip, const std::string& material);
-
-// Network output exp(y) - 1 at one angle triple, unclamped (can be slightly negative).
-std::array<double, 3> EvalNbrdf(const NbrdfNetwork& net, const HalfDiffAngles& a);
-
-struct NbrdfTabulation {
-  Table table;
-  std::size_t below_horizon = 0;   // cells masked: a direction at the cell centre is below
-  std::size_t clamped_values = 0;  // valid (cell, channel) outputs < 0 set to 0
-  std::size_t clamped_cells = 0;   // valid cells with at least one clamped channel
-};
-
-// Tabulates a network at the cell centres of a grid (core/table.h) following the README: cells
-// whose incident or outgoing direction is below the horizon are invalid, negative outputs are
-// clamped to 0 and counted. Batched with Eigen, one theta_h slice at a time, on `threads`
-// threads (results do not depend on the thread count). Throws InputError if an output is not
-// finite.
-NbrdfTabulation TabulateNbrdf(const NbrdfNetwork& net, const Grid& grid, int threads = 1);
 
 }  // namespace brdfit

@@ -12,7 +12,6 @@
 #include "pipeline/factor_export.h"
 #include "pipeline/inputs.h"
 #include "pipeline/rendered_views.h"
-#include "report/report_inputs.h"
 #include "report/report_slices.h"
 
 namespace brdfit::pipeline {
@@ -25,14 +24,14 @@ using report::Entry;
 // recorded and its text becomes a note.
 class Problems {
  public:
-  explicit Problems(bool keep_going) : keep_going_(keep_going) {}
+  Problems(bool keep_going, std::vector<std::string> all)
+      : keep_going_(keep_going), all_(std::move(all)) {}
   // Throws e unless keep-going; else records it and returns its text for a note.
   std::string Add(const InputError& e) {
     if (!keep_going_) throw e;
     all_.push_back(e.what());
     return e.what();
   }
-  std::vector<std::string>* Sink() { return keep_going_ ? &all_ : nullptr; }
   std::vector<std::string>& All() { return all_; }
 
  private:
@@ -137,10 +136,9 @@ void AddViews(const report::ReportSources& src, const ReportRequest& q, Problems
 
 }  // namespace
 
-BuiltReport BuildReport(const ReportRequest& q) {
-  const std::vector<fs::path> inputs(q.inputs.begin(), q.inputs.end());
-  Problems problems(q.keep_going);
-  report::ReportSources src = report::ReadReportInputs(inputs, problems.Sink());
+BuiltReport BuildReport(report::ReportSources src, std::vector<std::string> unreadable,
+                        const ReportRequest& q) {
+  Problems problems(q.keep_going, std::move(unreadable));
   report::Report& r = src.report;
   for (const std::string& p : problems.All()) r.notes.push_back("Left out (unreadable): " + p);
   if (!q.title.empty()) r.title = q.title;

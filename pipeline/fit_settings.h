@@ -23,9 +23,8 @@ struct FitSettings {
   int multistart = 1;
   int max_iterations = FitOptions{}.max_iterations;
   int threads = 1;
-  // The rendered polish (fit/rendered_polish.h): on by default, as it raises the rendered score of
-  // the chosen fit on every material of the study (docs/accuracy.md, "The rendered polish").
-  std::string polish = "rendered";
+  // The rendered polish (fit/rendered_polish.h); the default is FitOptions'.
+  std::string polish = ToString(FitOptions{}.polish);
 };
 
 // Throws InputError naming the option ("--cutoff must be in (0, 90]") for a bad value.

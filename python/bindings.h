@@ -21,7 +21,7 @@ void BindFactor(py::module_& m);    // python/py_factor.cc: factor, Factorizatio
 
 // A model's parameter vector from a dict {name: value} (qualified or unambiguous unqualified
 // names, the rest at their defaults) or a sequence of every value in order; checked as the
-// readers check parameters (io/model_params.h CheckModelParams). Throws InputError.
+// readers check parameters (core/model_params.h CheckModelParams). Throws InputError.
 std::vector<double> ParamsOf(const ModelInfo& model, py::handle params);
 
 // Unit directions from an (N, 3) or (3,) array; rows of zero length or non-finite entries are

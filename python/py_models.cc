@@ -7,8 +7,8 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/model_params.h"
 #include "core/synth.h"
-#include "io/model_params.h"
 #include "python/bindings.h"
 
 namespace brdfit::python {

@@ -13,11 +13,11 @@
 #include <unordered_set>
 
 #include "core/error.h"
+#include "core/model_params.h"
 #include "io/factor_io.h"
 #include "io/fit_params_json.h"
 #include "io/fit_report.h"
 #include "io/image_io.h"
-#include "io/model_params.h"
 #include "io/nbrdf.h"
 #include "io/result_json.h"
 #include "io/table_io.h"

@@ -22,15 +22,6 @@
 
 namespace brdfit::report {
 
-struct ReportSources {
-  Report report;
-  std::map<std::string, std::filesystem::path> tables;  // material -> table, for slices
-  std::vector<FactorRef> factors;                       // for slices (pipeline/factor_export.h)
-  // Tables the results name but that are not there to load (missing, a device, a folder):
-  // material -> the path named. The caller says so; a material in `tables` is not here.
-  std::map<std::string, std::filesystem::path> unloadable_tables;
-};
-
 // Throws InputError naming the file when an input is missing, not a regular file or folder,
 // unreadable, of no known kind, or holds a member out of its range (io/result_json.h); with
 // `skipped`, such an input is left out and its error appended there instead.

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -171,5 +172,16 @@ int BestEntry(const std::vector<Entry>& entries);
 // itself may differ: a chosen entry.) The metrics table's row order, and what the report draws
 // when it draws only a material's first few results.
 std::vector<std::size_t> RankEntries(const std::vector<Entry>& entries);
+
+// A report as its inputs give it (report/report_inputs.h ReadReportInputs): the report, and
+// the files beside it that its slices and renders need.
+struct ReportSources {
+  Report report;
+  std::map<std::string, std::filesystem::path> tables;  // material -> table, for slices
+  std::vector<FactorRef> factors;                       // for slices (pipeline/factor_export.h)
+  // Tables the results name but that are not there to load (missing, a device, a folder):
+  // material -> the path named. The caller says so; a material in `tables` is not here.
+  std::map<std::string, std::filesystem::path> unloadable_tables;
+};
 
 }  // namespace brdfit::report

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "io/model_params.h"
+#include "core/model_params.h"
 #include "core/synth.h"
 #include "core/table.h"
 #include "fit/model_ops.h"

@@ -111,7 +111,7 @@ TEST_P(OwnTable, ModelFitsItsOwnTable) {
   std::mt19937 rng(12 + static_cast<unsigned>(m.name.size()));
   const std::vector<double> truth = RandomParams(m, rng);
   const Table t = SynthModel(m.name, truth, Grid{24, 24, 48, ThetaHMapping::kSqrt});
-  const FitResult r = FitTable(m.name, t, SampleOptions{}, FitOptions{});
+  const FitResult r = FitTable(m.name, t, SampleOptions{}, LogLossUnpolished());
   EXPECT_FALSE(r.Failed()) << m.name << ": " << r.message;
   EXPECT_LT(r.metrics.log_rmse, 1e-4) << m.name << " " << ::testing::PrintToString(truth)
                                       << " fitted " << ::testing::PrintToString(r.params);
@@ -135,7 +135,7 @@ INSTANTIATE_TEST_SUITE_P(Catalog, OwnTable, ::testing::ValuesIn(CatalogNames()),
 
 TEST(Failure, AllInvalidTableGivesFailedStatusAndFiniteFields) {
   const Table t = Table::Empty(SmallGrid());
-  const FitResult r = FitTable("lambert+ggx", t, SampleOptions{}, FitOptions{});
+  const FitResult r = FitTable("lambert+ggx", t, SampleOptions{}, LogLossUnpolished());
   EXPECT_EQ(r.status, FitStatus::kFailed);
   EXPECT_FALSE(r.message.empty());
   EXPECT_EQ(r.params.size(), 7u);
@@ -147,23 +147,23 @@ TEST(Failure, EverythingBeyondCutoffFails) {
   const Table t = SynthModel("lambert", Params("lambert", {}), SmallGrid());
   SampleOptions so;
   so.cutoff_deg = 0.5;  // no cell centre is that close to the normal on both sides
-  const FitResult r = FitTable("lambert", t, so, FitOptions{});
+  const FitResult r = FitTable("lambert", t, so, LogLossUnpolished());
   EXPECT_EQ(r.status, FitStatus::kFailed);
 }
 
 TEST(Failure, UnknownModelIsAnInputError) {
   const Table t = SynthModel("lambert", Params("lambert", {}), SmallGrid());
-  EXPECT_THROW(FitTable("glossy", t, SampleOptions{}, FitOptions{}), InputError);
+  EXPECT_THROW(FitTable("glossy", t, SampleOptions{}, LogLossUnpolished()), InputError);
 }
 
 TEST(Fit, DeterministicAndMultistartNoWorse) {
   const std::vector<double> truth = Params("lambert+ggx", {"ggx.alpha=0.04"});
   const Table t = SynthModel("lambert+ggx", truth, SmallGrid(), 0.05, 0.3, 4);
-  const FitResult a = FitTable("lambert+ggx", t, SampleOptions{}, FitOptions{});
-  const FitResult b = FitTable("lambert+ggx", t, SampleOptions{}, FitOptions{});
+  const FitResult a = FitTable("lambert+ggx", t, SampleOptions{}, LogLossUnpolished());
+  const FitResult b = FitTable("lambert+ggx", t, SampleOptions{}, LogLossUnpolished());
   EXPECT_EQ(a.params, b.params);
   EXPECT_EQ(a.metrics.log_rmse, b.metrics.log_rmse);
-  FitOptions multi;
+  FitOptions multi = LogLossUnpolished();
   multi.multistart = 4;
   const FitResult c = FitTable("lambert+ggx", t, SampleOptions{}, multi);
   EXPECT_EQ(c.starts, 4);

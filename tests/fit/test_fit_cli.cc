@@ -153,9 +153,15 @@ TEST_F(FitCli, FailedFitExitsOneAndBadInputTwo) {
 
 TEST(FitReport, RoundTripKeepsEveryField) {
   const Table t = SynthModel("lambert+ggx", Params("lambert+ggx", {}), SmallGrid(), 0.05, 0.1, 2);
-  FitReportEntry e{"dir/t.binary", "t", "{\"loss\":\"log\"}",
-                   FitTable("lambert+ggx", t, SampleOptions{}, FitOptions{}), true,
-                   "best rendered score", TableContentHash(t), false, std::nullopt};
+  FitReportEntry e{"dir/t.binary",
+                   "t",
+                   "{\"loss\":\"log\"}",
+                   FitTable("lambert+ggx", t, SampleOptions{}, LogLossUnpolished()),
+                   true,
+                   "best rendered score",
+                   TableContentHash(t),
+                   false,
+                   std::nullopt};
   e.result.times.load = 12.5;
   const fs::path p =
       fs::temp_directory_path() / ("brdfit_report_" + std::to_string(::getpid()) + ".h5");

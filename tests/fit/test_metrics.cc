@@ -193,7 +193,7 @@ TEST(Metrics, FitCostEqualsMetricForMatchingLoss) {
   const Table t =
       SynthModel("lambert+ggx", Params("lambert+ggx", {"ggx.alpha=0.2"}), SmallGrid(), 0.1, 0.0, 5);
   for (const LossKind loss : {LossKind::kLog, LossKind::kCbrt}) {
-    FitOptions fo;
+    FitOptions fo = LogLossUnpolished();
     fo.loss = loss;
     const FitResult r = FitTable("lambert+ggx", t, SampleOptions{}, fo);
     ASSERT_FALSE(r.Failed()) << r.message;

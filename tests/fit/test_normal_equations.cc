@@ -89,7 +89,7 @@ TEST(NormalEquations, CompressedBlocksMatchPlainProblem) {
     for (const LossKind loss :
          {LossKind::kLog, LossKind::kCbrt, LossKind::kRel, LossKind::kL2, LossKind::kLogRatio}) {
       for (const RobustKind robust : {RobustKind::kNone, RobustKind::kHuber, RobustKind::kCauchy}) {
-        FitOptions o;
+        FitOptions o = LogLossUnpolished();
         o.loss = loss;
         o.robust = robust;
         o.robust_scale = 0.02;

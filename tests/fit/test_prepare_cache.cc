@@ -137,7 +137,7 @@ TEST(PrepareCache, PlanOfOneTableServesAnotherBitForBit) {
       so.budget = Budget::Parse(budget);
       so.pair_mirrors = pair;
       so.weighting = pair ? Weighting::kBinMeasure : Weighting::kUniform;
-      FitOptions fo;
+      FitOptions fo = LogLossUnpolished();
       fo.loss = LossKind::kRel;
       SCOPED_TRACE(std::string(budget) + (pair ? " paired" : " unpaired"));
       PrepareCache cache;

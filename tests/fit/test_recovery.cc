@@ -153,7 +153,7 @@ TEST_P(Recovery, NoiseFreeMerlGrid) {
   const Table table = SynthModel(c.model, truth, Grid::Merl());
   SampleOptions so;
   so.budget = Budget::Parse(GetParam().spec == "ggx" ? "full" : "random:16384");
-  const FitResult r = FitTable(c.model, table, so, FitOptions{});
+  const FitResult r = FitTable(c.model, table, so, LogLossUnpolished());
   ExpectRecovered(r, truth, 1e-4, c.model + " alpha " + std::to_string(alpha));
   EXPECT_LT(r.metrics.log_rmse, 1e-6);
 }
@@ -165,7 +165,7 @@ TEST_P(Recovery, NoisyWithHolesMerlGrid) {
   const Table table = SynthModel(c.model, truth, Grid::Merl(), 0.05, 0.30, 11);
   SampleOptions so;
   so.budget = Budget::Parse("stride:4");
-  const FitResult r = FitTable(c.model, table, so, FitOptions{});
+  const FitResult r = FitTable(c.model, table, so, LogLossUnpolished());
   ExpectRecovered(r, truth, 0.03, c.model + " noisy alpha " + std::to_string(alpha));
 }
 
@@ -183,11 +183,11 @@ TEST(RecoveryThreeLobes, LambertGgxSheen) {
                      "sheen.alpha=0.15"});
   SampleOptions so;
   so.budget = Budget::Parse("random:16384");
-  ExpectRecovered(FitTable(model, SynthModel(model, truth, Grid::Merl()), so, FitOptions{}),
+  ExpectRecovered(FitTable(model, SynthModel(model, truth, Grid::Merl()), so, LogLossUnpolished()),
                   truth, 1e-4, model);
   so.budget = Budget::Parse("stride:4");
   ExpectRecovered(FitTable(model, SynthModel(model, truth, Grid::Merl(), 0.05, 0.30, 11), so,
-                           FitOptions{}),
+                           LogLossUnpolished()),
                   truth, 0.03, model + " noisy");
 }
 

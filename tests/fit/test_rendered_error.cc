@@ -403,7 +403,7 @@ TEST(RenderedError, Deterministic) {
 TEST(RenderedError, EveryFitCarriesItThroughReportAndJson) {
   const std::vector<double> truth = Params("lambert+ggx", {"ggx.alpha=0.2"});
   const Table t = SynthModel("lambert+ggx", truth, SmallGrid(), 0.05, 0.0);
-  const FitResult r = FitTable("lambert+ggx", t, SampleOptions{}, FitOptions{});
+  const FitResult r = FitTable("lambert+ggx", t, SampleOptions{}, LogLossUnpolished());
   ASSERT_FALSE(r.Failed()) << r.message;
   const RenderedError& e = r.metrics.rendered;
   ASSERT_TRUE(e.ok) << e.problem;

@@ -127,7 +127,7 @@ struct PlainAndPolished {
   FitResult plain, polished;
 };
 PlainAndPolished FitBoth(const std::string& model, const Table& t) {
-  FitOptions o;
+  FitOptions o = LogLossUnpolished();
   o.loss = LossKind::kRel;
   PlainAndPolished r{PrepareTable(t, SampleOptions{}, o), {}, {}};
   r.plain = FitPrepared(model, r.prepared, o);
@@ -161,10 +161,10 @@ TEST(RenderedPolish, RaisesTheRenderedScoreOfAMismatchedFit) {
       ScoreRendered(prepared.rendered, ModelBrdf(*FindModel("lambert+ggx"), polished.params));
   EXPECT_DOUBLE_EQ(RenderedScoreDb(again), s1);
   // And the options say so (reports key fits by them).
-  FitOptions o;
+  FitOptions o = LogLossUnpolished();
   o.polish = PolishKind::kRendered;
   EXPECT_NE(OptionsJson(SampleOptions{}, o).find("\"polish\":\"rendered\""), std::string::npos);
-  EXPECT_EQ(OptionsJson(SampleOptions{}, FitOptions{}).find("polish"), std::string::npos);
+  EXPECT_EQ(OptionsJson(SampleOptions{}, LogLossUnpolished()).find("polish"), std::string::npos);
 }
 
 // On a table of the model itself the fit is the truth: it is not polished (fit/fit_engine.cc),
@@ -216,7 +216,7 @@ struct PolishStart {
 
 PolishStart TwoLobeTableFit() {
   const Table t = TwoLobeTable();
-  FitOptions fo;
+  FitOptions fo = LogLossUnpolished();
   fo.loss = LossKind::kRel;
   PolishStart s;
   s.prepared = PrepareTable(t, SampleOptions{}, fo);
@@ -312,7 +312,7 @@ TEST(RenderedPolish, TwoStagesNeverScoreBelowTheFrontAlone) {
 TEST(RenderedPolish, SameBitsForAnyThreadCount) {
   const Table t = SynthModel("lambert+ggx+ggx",
                              Params("lambert+ggx+ggx", {"ggx1.alpha=0.06", "ggx2.alpha=0.3"}), kGrid);
-  FitOptions o;
+  FitOptions o = LogLossUnpolished();
   o.loss = LossKind::kRel;
   o.polish = PolishKind::kRendered;
   const PreparedTable prepared = PrepareTable(t, SampleOptions{}, o);

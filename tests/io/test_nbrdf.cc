@@ -12,8 +12,8 @@
 #include <random>
 
 #include "core/error.h"
+#include "core/nbrdf_forward.h"
 #include "io/nbrdf.h"
-#include "io/nbrdf_forward.h"
 
 namespace brdfit {
 namespace {

@@ -15,6 +15,7 @@
 #include "io/table_io.h"
 #include "models/registry.h"
 #include "pipeline/batch_fit.h"
+#include "pipeline/fit_settings.h"
 #include "tests/fit/fit_test_util.h"
 #include "tests/io/io_test_util.h"
 
@@ -94,6 +95,21 @@ TEST(ModelNames, JsonNamesTheParametersOnABound) {
     if (entries[0].result.at_bound[i]) h5.insert(entries[0].result.param_names[i]);
   }
   EXPECT_EQ(got, h5);
+}
+
+// One set of defaults: `brdfit fit` and Python turn FitSettings{} into the library's
+// FitOptions{} (fit/options.h defines them once); of the samples, only the budget differs
+// (the library's SampleOptions{} fits every cell, the CLI's default budget is a stride).
+TEST(FitSettingsDefaults, AreTheLibrarysFitOptions) {
+  SampleOptions samples;
+  FitOptions fit = LogLossUnpolished();  // every default below must be set by the settings
+  pipeline::ApplyFitSettings(pipeline::FitSettings{}, &samples, &fit);
+  EXPECT_EQ(fit, FitOptions{});
+  SampleOptions library;
+  library.budget = DefaultFitBudget();
+  EXPECT_EQ(OptionsJson(samples, fit), OptionsJson(library, FitOptions{}));
+  EXPECT_EQ(FitOptions{}.loss, LossKind::kRel);
+  EXPECT_EQ(FitOptions{}.polish, PolishKind::kRendered);
 }
 
 }  // namespace

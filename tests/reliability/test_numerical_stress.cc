@@ -76,7 +76,7 @@ void IncidentOutgoingDeg(const Grid& g, std::size_t idx, double* ti, double* to)
 bool Finite(double v) { return std::isfinite(v); }
 
 FitOptions StressOptions() {
-  FitOptions o;
+  FitOptions o = LogLossUnpolished();
   o.max_iterations = 50;
   return o;
 }

@@ -2,12 +2,12 @@
 
 #include <cmath>
 
-#include "io/model_params.h"
+#include "core/model_params.h"
+#include "core/synth.h"
+#include "io/image_io.h"
+#include "models/registry.h"
 #include "pipeline/rendered_views.h"
 #include "report/report_slices.h"
-#include "core/synth.h"
-#include "models/registry.h"
-#include "io/image_io.h"
 
 namespace brdfit::testing {
 

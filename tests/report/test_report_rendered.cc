@@ -10,16 +10,16 @@
 #include <string>
 #include <vector>
 
+#include "core/model_params.h"
 #include "core/synth.h"
 #include "io/image_io.h"
-#include "io/model_params.h"
 #include "models/registry.h"
 #include "pipeline/rendered_views.h"
 #include "report/bench_csv.h"
 #include "report/compare.h"
 #include "report/html_report.h"
-#include "report/report_charts.h"
 #include "report/rendered_colors.h"
+#include "report/report_charts.h"
 #include "report/report_model.h"
 #include "tests/report/report_fixture.h"
 #include "tests/scratch_dir.h"

@@ -10,17 +10,17 @@
 #include <random>
 #include <regex>
 
-#include "report/bench_csv.h"
-#include "report/compare.h"
 #include "core/error.h"
-#include "report/html_report.h"
+#include "core/model_params.h"
+#include "core/synth.h"
 #include "io/factor_io.h"
 #include "io/image_io.h"
-#include "io/model_params.h"
+#include "models/registry.h"
+#include "report/bench_csv.h"
+#include "report/compare.h"
+#include "report/html_report.h"
 #include "report/report_inputs.h"
 #include "report/report_slices.h"
-#include "core/synth.h"
-#include "models/registry.h"
 #include "tests/report/report_fixture.h"
 #include "tests/scratch_dir.h"
 

@@ -1,4 +1,4 @@
-// Model parameters by name at the CLI boundary (synth, later fit/report): "name=value" with
+// Model parameters by name (synth, Python, fit reports, render caches): "name=value" with
 // qualified names ("ggx.alpha", "lambert.kd_r") or unqualified ones ("alpha") when exactly one
 // parameter of the model has that name. Errors list the valid names.
 #pragma once

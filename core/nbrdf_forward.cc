@@ -1,4 +1,4 @@
-#include "io/nbrdf_forward.h"
+#include "core/nbrdf_forward.h"
 
 #include <algorithm>
 #include <vector>
@@ -30,8 +30,8 @@ constexpr std::size_t kCells = 4 * kVectors;
 // One unit of a dense layer for the 16 cells: acc[v] = bias + sum_j w[j] in[j] (lanes of vector
 // v), summed in input order by fused multiply-adds; in holds kCells values per input unit.
 __attribute__((target("avx2,fma"))) inline void DenseUnit(const double* w, double bias,
-                                                         const double* in, int n_in,
-                                                         __m256d* acc) {
+                                                          const double* in, int n_in,
+                                                          __m256d* acc) {
   for (int v = 0; v < kVectors; ++v) acc[v] = _mm256_set1_pd(bias);
   for (int j = 0; j < n_in; ++j) {
     const __m256d wj = _mm256_set1_pd(w[j]);
@@ -54,9 +54,8 @@ __attribute__((target("avx2,fma"))) void SixteenCells(const NbrdfForwardArgs& a,
       // Four consecutive rows (most of a slice) in one load; any other four (the padded last
       // block repeats its last row) one by one.
       const bool consecutive = q[1] == q[0] + 1 && q[2] == q[0] + 2 && q[3] == q[0] + 3;
-      const __m256d x = consecutive
-                            ? _mm256_loadu_pd(col + q[0])
-                            : _mm256_set_pd(col[q[3]], col[q[2]], col[q[1]], col[q[0]]);
+      const __m256d x = consecutive ? _mm256_loadu_pd(col + q[0])
+                                    : _mm256_set_pd(col[q[3]], col[q[2]], col[q[1]], col[q[0]]);
       _mm256_storeu_pd(h1 + kCells * j + 4 * v, _mm256_max_pd(_mm256_add_pd(x, hp), zero));
     }
   }

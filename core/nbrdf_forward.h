@@ -1,9 +1,9 @@
 // The NBRDF network's forward pass after its first layer's matrix product, sixteen cells at a
-// time with AVX2 and FMA (io/nbrdf.cc's TabulateNbrdf uses it where the CPU has both; Eigen's GEMM
-// elsewhere). Per cell: h1 = ReLU(p + hpart), h2 = ReLU(h1 K2 + b2), y = h2 K3 + b3 (Sztrajman et
-// al. 2021, "Neural BRDF Representation and Importance Sampling", Sec. 3: two hidden ReLU layers,
-// log-space output). The sums run in input order with fused multiply-adds: the values agree with
-// Eigen's to ~1e-15 relative (tested), not bit for bit.
+// time with AVX2 and FMA (core/nbrdf_network.cc's TabulateNbrdf uses it where the CPU has
+// both; Eigen's GEMM elsewhere). Per cell: h1 = ReLU(p + hpart), h2 = ReLU(h1 K2 + b2), y = h2 K3 +
+// b3 (Sztrajman et al. 2021, "Neural BRDF Representation and Importance Sampling", Sec. 3: two
+// hidden ReLU layers, log-space output). The sums run in input order with fused multiply-adds: the
+// values agree with Eigen's to ~1e-15 relative (tested), not bit for bit.
 #pragma once
 
 #include <cstddef>

@@ -1,9 +1,9 @@
-// Parameter names at the CLI boundary (io/model_params.h).
+// Parameter names at the CLI boundary (core/model_params.h).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "io/model_params.h"
+#include "core/model_params.h"
 
 namespace brdfit {
 namespace {

@@ -1,4 +1,4 @@
-#include "io/model_params.h"
+#include "core/model_params.h"
 
 #include <fmt/core.h>
 
@@ -32,8 +32,7 @@ std::string CheckModelParams(const std::string& model, const std::vector<double>
   const ModelInfo* info = FindModel(model);
   if (!info) return "unknown model '" + model + "'";
   if (params.size() != info->params.size()) {
-    return fmt::format("{} parameters, model {} has {}", params.size(), model,
-                       info->params.size());
+    return fmt::format("{} parameters, model {} has {}", params.size(), model, info->params.size());
   }
   for (std::size_t k = 0; k < params.size(); ++k) {
     const ParamSpec& s = info->params[k];
