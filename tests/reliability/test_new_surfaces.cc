@@ -255,6 +255,14 @@ TEST_F(NewSurfaces, RenderRefusesACameraOutsideItsRange) {
   EXPECT_FALSE(fs::exists(dir_ / "far.png"));
 }
 
+// A fits JSON's text with its first fit edited (ordered: the parameters keep the model's order).
+std::string FirstFitEdited(const std::string& text,
+                           const std::function<void(nlohmann::ordered_json&)>& edit) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::parse(text);
+  edit(j["fits"][0]);
+  return j.dump();
+}
+
 // A fits JSON whose member has another type than the reader expects is refused naming the file
 // and the fit (it was the JSON library's bare type_error); control characters in a name are
 // escaped in the message, never sent to the terminal.
@@ -290,17 +298,13 @@ TEST_F(NewSurfaces, FitsJsonOfTheWrongTypeNamesTheFileAndMessagesEscapeControls)
 TEST_F(NewSurfaces, ExportAndReportReadAFitsJsonWithOneStrictness) {
   const fs::path json = FitParamsJson();
   const std::string text = ReadAll(json);
-  const auto edited = [&](const std::function<void(nlohmann::ordered_json&)>& edit) {
-    nlohmann::ordered_json j = nlohmann::ordered_json::parse(text);
-    edit(j["fits"][0]);
-    return j.dump();
-  };
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {edited([](auto& f) { f["metrics"].erase("log_rmse"); }),
+      {FirstFitEdited(text, [](auto& f) { f["metrics"].erase("log_rmse"); }),
        "fits[0].metrics.log_rmse is missing"},
-      {edited([](auto& f) { f.erase("metrics"); }), "fits[0].metrics is missing"},
-      {edited([](auto& f) { f["status"] = "great"; }), "fits[0].status is 'great', not"},
-      {edited([](auto& f) { f["metrics"]["rendered"]["psnr_db"] = nullptr; }),
+      {FirstFitEdited(text, [](auto& f) { f.erase("metrics"); }), "fits[0].metrics is missing"},
+      {FirstFitEdited(text, [](auto& f) { f["status"] = "great"; }),
+       "fits[0].status is 'great', not"},
+      {FirstFitEdited(text, [](auto& f) { f["metrics"]["rendered"]["psnr_db"] = nullptr; }),
        "fits[0].metrics.rendered.psnr_db is null, not a number"},
   };
   for (const auto& [bad, problem] : cases) {
@@ -327,11 +331,6 @@ TEST_F(NewSurfaces, ExportAndReportReadAFitsJsonWithOneStrictness) {
 TEST_F(NewSurfaces, FitsJsonMembersAndInputIdentityAreChecked) {
   const fs::path json = FitParamsJson();
   const std::string text = ReadAll(json);
-  const auto edited = [&](const std::function<void(nlohmann::ordered_json&)>& edit) {
-    nlohmann::ordered_json j = nlohmann::ordered_json::parse(text);
-    edit(j["fits"][0]);
-    return j.dump();
-  };
   // Whole-file damage too: numbers JSON cannot hold, invalid UTF-8, two chosen fits of a
   // material.
   nlohmann::ordered_json two = nlohmann::ordered_json::parse(text);
@@ -339,14 +338,17 @@ TEST_F(NewSurfaces, FitsJsonMembersAndInputIdentityAreChecked) {
   two["fits"].push_back(two["fits"][0]);
   two["fits"][1]["params"]["ggx.alpha"] = 0.5;
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {edited([](auto& f) { f["metrics"]["log_rmse"] = -1; }),
+      {FirstFitEdited(text, [](auto& f) { f["metrics"]["log_rmse"] = -1; }),
        "fits[0].metrics.log_rmse is -1, below 0"},
-      {edited([](auto& f) { f["at_bound"] = "ggx.alpha"; }), "fits[0].at_bound is not an array"},
-      {edited([](auto& f) { f["at_bound"] = nlohmann::ordered_json::array({1}); }),
+      {FirstFitEdited(text, [](auto& f) { f["at_bound"] = "ggx.alpha"; }),
+       "fits[0].at_bound is not an array"},
+      {FirstFitEdited(text, [](auto& f) { f["at_bound"] = nlohmann::ordered_json::array({1}); }),
        "fits[0].at_bound holds a non-name"},
-      {edited([](auto& f) { f["metrics"] = "good"; }), "fits[0].metrics is not an object"},
-      {edited([](auto& f) { f["choice"] = 3; }), "fits[0].choice is number, not a string"},
-      {edited([](auto& f) { f["metrics"]["rendered"]["ok"] = "yes"; }),
+      {FirstFitEdited(text, [](auto& f) { f["metrics"] = "good"; }),
+       "fits[0].metrics is not an object"},
+      {FirstFitEdited(text, [](auto& f) { f["choice"] = 3; }),
+       "fits[0].choice is number, not a string"},
+      {FirstFitEdited(text, [](auto& f) { f["metrics"]["rendered"]["ok"] = "yes"; }),
        "fits[0].metrics.rendered.ok is string, not true or false"},
       // A key twice: the text itself, nlohmann would keep the last.
       {std::string(text).insert(text.find("\"model\""), "\"model\": \"ward\", "),
