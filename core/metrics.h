@@ -111,7 +111,9 @@ struct FitMetrics {
 // charts, the CLI's tables and the Python dicts. Adding an error metric is a member of
 // FitMetrics, one row of kErrorMetrics and its computation (fit/metrics.cc); adding a number of
 // the rendered summary is a member of RenderedError, one row of kRenderedSummary and its
-// computation (fit/rendered_error.cc).
+// computation (fit/rendered_error.cc). The entry's other numbers have their tables in
+// core/result.h (kFitNumbers, kSampleCountFields, kFitTimeFields), the bench CSV's row in
+// report/bench_csv.cc (kBenchColumns).
 
 // An error metric of FitMetrics over the table's cells: a number >= 0, lower is better,
 // required in a result whose metrics are ok (a reader refuses one without it) and read as 0 when

@@ -2,6 +2,7 @@
 // status kFailed, a message, and zeros), so every writer can output it as is.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,58 @@ struct FitResult {
   FitTimes times;
 
   bool Failed() const { return status == FitStatus::kFailed; }
+};
+
+// ---- The fit entry's numbers -----------------------------------------------------------------
+// The fit report (io/fit_report.h: HDF5 attributes of the entry, its samples and timing groups)
+// and the Python dict (python/py_fit.cc) iterate these instead of naming the members; the error
+// metrics have their own tables (core/metrics.h). Adding a number is its member and one row.
+
+// The solver's numbers of a FitResult, attributes of the entry in this order: integers >= 0
+// (an int member: at most INT_MAX) or finite doubles >= 0. One member pointer of each row is set.
+struct FitNumberField {
+  const char* name;
+  const char* doc;
+  int FitResult::*small = nullptr;
+  std::size_t FitResult::*count = nullptr;
+  double FitResult::*value = nullptr;
+};
+inline constexpr FitNumberField kFitNumbers[] = {
+    {"iterations", "Levenberg-Marquardt iterations, all stages and starts", &FitResult::iterations},
+    {"starts", "Levenberg-Marquardt runs (multi-start)", &FitResult::starts},
+    {"init_cost", "loss at the initializer's best point (its subset)", nullptr, nullptr,
+     &FitResult::init_cost},
+    {"final_cost", "loss at the result on the fit samples", nullptr, nullptr,
+     &FitResult::final_cost},
+    {"fit_samples", "model evaluation points of the final stage", nullptr, &FitResult::fit_samples},
+    {"fit_cells", "observations of the final stage", nullptr, &FitResult::fit_cells},
+};
+
+// SampleCounts, the entry's samples group: integers >= 0.
+struct SampleCountField {
+  const char* name;
+  std::size_t SampleCounts::*value;
+};
+inline constexpr SampleCountField kSampleCountFields[] = {
+    {"cells", &SampleCounts::cells},
+    {"valid", &SampleCounts::valid},
+    {"nonfinite", &SampleCounts::nonfinite},
+    {"negative", &SampleCounts::negative},
+    {"beyond_cutoff", &SampleCounts::beyond_cutoff},
+    {"eligible", &SampleCounts::eligible},
+    {"selected", &SampleCounts::selected},
+};
+
+// FitTimes, the entry's timing group and the Python dict's "timings": milliseconds >= 0.
+struct FitTimeField {
+  const char* name;
+  double FitTimes::*value;
+};
+inline constexpr FitTimeField kFitTimeFields[] = {
+    {"load_ms", &FitTimes::load},           {"prepare_ms", &FitTimes::prepare},
+    {"init_ms", &FitTimes::init},           {"solve_ms", &FitTimes::solve},
+    {"metrics_ms", &FitTimes::metrics},     {"init_cpu_ms", &FitTimes::init_cpu},
+    {"solve_cpu_ms", &FitTimes::solve_cpu}, {"metrics_cpu_ms", &FitTimes::metrics_cpu},
 };
 
 }  // namespace brdfit

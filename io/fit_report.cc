@@ -106,12 +106,13 @@ void WriteEntry(const H5::Group& g, const FitReportEntry& e, bool timings) {
   WriteIntAttr(g, "chosen", e.chosen ? 1 : 0);
   WriteStringAttr(g, "choice", e.choice);
   if (!e.source_hash.empty()) WriteStringAttr(g, "source_hash", e.source_hash);
-  WriteIntAttr(g, "iterations", r.iterations);
-  WriteIntAttr(g, "starts", r.starts);
-  DoubleAttr(g, "init_cost", r.init_cost);
-  DoubleAttr(g, "final_cost", r.final_cost);
-  WriteIntAttr(g, "fit_samples", static_cast<std::int64_t>(r.fit_samples));
-  WriteIntAttr(g, "fit_cells", static_cast<std::int64_t>(r.fit_cells));
+  for (const FitNumberField& n : kFitNumbers) {
+    if (n.value) {
+      DoubleAttr(g, n.name, r.*n.value);
+    } else {
+      WriteIntAttr(g, n.name, n.small ? r.*n.small : static_cast<std::int64_t>(r.*n.count));
+    }
+  }
 
   DoubleArray(g, "params", r.params);
   {
@@ -148,13 +149,9 @@ void WriteEntry(const H5::Group& g, const FitReportEntry& e, bool timings) {
 
   const SampleCounts& c = r.sample_counts;
   H5::Group sg = MakeGroup(g, "samples");
-  WriteIntAttr(sg, "cells", static_cast<std::int64_t>(c.cells));
-  WriteIntAttr(sg, "valid", static_cast<std::int64_t>(c.valid));
-  WriteIntAttr(sg, "nonfinite", static_cast<std::int64_t>(c.nonfinite));
-  WriteIntAttr(sg, "negative", static_cast<std::int64_t>(c.negative));
-  WriteIntAttr(sg, "beyond_cutoff", static_cast<std::int64_t>(c.beyond_cutoff));
-  WriteIntAttr(sg, "eligible", static_cast<std::int64_t>(c.eligible));
-  WriteIntAttr(sg, "selected", static_cast<std::int64_t>(c.selected));
+  for (const SampleCountField& s : kSampleCountFields) {
+    WriteIntAttr(sg, s.name, static_cast<std::int64_t>(c.*s.value));
+  }
 
   if (e.factorization) {
     const FactorizationRef& f = *e.factorization;
@@ -167,14 +164,7 @@ void WriteEntry(const H5::Group& g, const FitReportEntry& e, bool timings) {
 
   if (timings) {
     H5::Group tg = MakeGroup(g, "timing");
-    DoubleAttr(tg, "load_ms", r.times.load);
-    DoubleAttr(tg, "prepare_ms", r.times.prepare);
-    DoubleAttr(tg, "init_ms", r.times.init);
-    DoubleAttr(tg, "solve_ms", r.times.solve);
-    DoubleAttr(tg, "metrics_ms", r.times.metrics);
-    DoubleAttr(tg, "init_cpu_ms", r.times.init_cpu);
-    DoubleAttr(tg, "solve_cpu_ms", r.times.solve_cpu);
-    DoubleAttr(tg, "metrics_cpu_ms", r.times.metrics_cpu);
+    for (const FitTimeField& t : kFitTimeFields) DoubleAttr(tg, t.name, r.times.*t.value);
   }
 }
 
@@ -333,12 +323,15 @@ class Reader : public hdf5::Reader {
     }
     if (g.attrExists("choice")) e.choice = String(g, where, "choice");
     if (g.attrExists("source_hash")) e.source_hash = String(g, where, "source_hash");
-    r.iterations = SmallCount(g, where, "iterations");
-    r.starts = SmallCount(g, where, "starts");
-    r.init_cost = NonNegative(g, where, "init_cost");
-    r.final_cost = NonNegative(g, where, "final_cost");
-    r.fit_samples = Count(g, where, "fit_samples");
-    r.fit_cells = Count(g, where, "fit_cells");
+    for (const FitNumberField& n : kFitNumbers) {
+      if (n.value) {
+        r.*n.value = NonNegative(g, where, n.name);
+      } else if (n.small) {
+        r.*n.small = SmallCount(g, where, n.name);
+      } else {
+        r.*n.count = Count(g, where, n.name);
+      }
+    }
 
     r.params = Doubles(g, where, "params", kMaxParams);
     const std::string names = String(g.openDataSet("params"), where + "/params", "names");
@@ -404,26 +397,15 @@ class Reader : public hdf5::Reader {
     const std::string sw = where + "/samples";
     const H5::Group sg = Group(g, where, "samples");
     SampleCounts& c = r.sample_counts;
-    c.cells = Count(sg, sw, "cells");
-    c.valid = Count(sg, sw, "valid");
-    c.nonfinite = Count(sg, sw, "nonfinite");
-    c.negative = Count(sg, sw, "negative");
-    c.beyond_cutoff = Count(sg, sw, "beyond_cutoff");
-    c.eligible = Count(sg, sw, "eligible");
-    c.selected = Count(sg, sw, "selected");
+    for (const SampleCountField& s : kSampleCountFields) c.*s.value = Count(sg, sw, s.name);
 
     if (g.nameExists("timing")) {
       e.timed = true;
       const std::string tw = where + "/timing";
       const H5::Group tg = Group(g, where, "timing");
-      r.times.load = NonNegative(tg, tw, "load_ms");
-      r.times.prepare = NonNegative(tg, tw, "prepare_ms");
-      r.times.init = NonNegative(tg, tw, "init_ms");
-      r.times.solve = NonNegative(tg, tw, "solve_ms");
-      r.times.metrics = NonNegative(tg, tw, "metrics_ms");
-      r.times.init_cpu = NonNegative(tg, tw, "init_cpu_ms");
-      r.times.solve_cpu = NonNegative(tg, tw, "solve_cpu_ms");
-      r.times.metrics_cpu = NonNegative(tg, tw, "metrics_cpu_ms");
+      for (const FitTimeField& t : kFitTimeFields) {
+        r.times.*t.value = NonNegative(tg, tw, t.name);
+      }
     }
     return e;
   }

@@ -82,14 +82,7 @@ PyFitResult Fit(const Table& table, const std::string& source, const std::string
 
 py::dict Timings(const FitTimes& t) {
   py::dict d;
-  d["load_ms"] = t.load;
-  d["prepare_ms"] = t.prepare;
-  d["init_ms"] = t.init;
-  d["solve_ms"] = t.solve;
-  d["metrics_ms"] = t.metrics;
-  d["init_cpu_ms"] = t.init_cpu;
-  d["solve_cpu_ms"] = t.solve_cpu;
-  d["metrics_cpu_ms"] = t.metrics_cpu;
+  for (const FitTimeField& f : kFitTimeFields) d[f.name] = t.*f.value;
   return d;
 }
 

@@ -16,22 +16,104 @@
 
 namespace brdfit::report {
 
+namespace {
+
+// ---- The bench row's schema ----------------------------------------------------------------
+// One row per column in the order written, or per group of columns drawn from core/metrics.h's
+// tables (the error metrics, the rendered summary, the regions): the writer, the reader and the
+// header iterate it; adding a column is one row here (and its member of BenchPoint).
+enum class BenchKind {
+  kText,             // any string, RFC 4180 quoted
+  kMillis,           // a time in ms, >= 0; absent or empty reads as 0
+  kCount,            // an integer >= 0; absent reads as 0
+  kSmallCount,       // an integer in [0, INT_MAX]; absent reads as 0
+  kMetricOk,         // "1" or "0"; absent: the primary error metric is a number
+  kDegrees,          // an angle in [0, 90] degrees; absent or empty reads as 0
+  kErrorMetrics,     // core/metrics.h kErrorMetrics, one column each
+  kRenderedSummary,  // core/metrics.h kRenderedSummary, one column each; all or none
+  kRegions,          // REGION_psnr_db and REGION_median_rel_error per region; both or neither
+};
+struct BenchColumn {
+  const char* name;  // nullptr for a group
+  BenchKind kind;
+  bool required;  // a reader refuses a file without this column
+  std::string& (*text)(BenchPoint&) = nullptr;
+  double& (*number)(BenchPoint&) = nullptr;  // kMillis, kDegrees
+  std::size_t& (*count)(BenchPoint&) = nullptr;
+  int& (*small_count)(BenchPoint&) = nullptr;
+};
+constexpr BenchColumn kBenchColumns[] = {
+    {"material", BenchKind::kText, true, [](BenchPoint& b) -> std::string& { return b.material; }},
+    {"table", BenchKind::kText, false, [](BenchPoint& b) -> std::string& { return b.table; }},
+    {"model", BenchKind::kText, true, [](BenchPoint& b) -> std::string& { return b.model; }},
+    {"loss", BenchKind::kText, false, [](BenchPoint& b) -> std::string& { return b.loss; }},
+    {"budget", BenchKind::kText, true, [](BenchPoint& b) -> std::string& { return b.budget; }},
+    {"status", BenchKind::kText, false, [](BenchPoint& b) -> std::string& { return b.status; }},
+    {"time_ms", BenchKind::kMillis, true, nullptr,
+     [](BenchPoint& b) -> double& { return b.time_ms; }},
+    {"prepare_ms", BenchKind::kMillis, false, nullptr,
+     [](BenchPoint& b) -> double& { return b.prepare_ms; }},
+    {"init_ms", BenchKind::kMillis, false, nullptr,
+     [](BenchPoint& b) -> double& { return b.init_ms; }},
+    {"solve_ms", BenchKind::kMillis, false, nullptr,
+     [](BenchPoint& b) -> double& { return b.solve_ms; }},
+    {nullptr, BenchKind::kErrorMetrics, true},
+    {"metric_ok", BenchKind::kMetricOk, false},
+    {"metric_cells", BenchKind::kCount, false, nullptr, nullptr,
+     [](BenchPoint& b) -> std::size_t& { return b.metrics.cells; }},
+    {"weighting", BenchKind::kText, false,
+     [](BenchPoint& b) -> std::string& { return b.metrics.weighting; }},
+    {"cutoff_deg", BenchKind::kDegrees, false, nullptr,
+     [](BenchPoint& b) -> double& { return b.metrics.cutoff_deg; }},
+    {"fit_cells", BenchKind::kCount, false, nullptr, nullptr,
+     [](BenchPoint& b) -> std::size_t& { return b.fit_cells; }},
+    {"iterations", BenchKind::kSmallCount, false, nullptr, nullptr, nullptr,
+     [](BenchPoint& b) -> int& { return b.iterations; }},
+    {"message", BenchKind::kText, false, [](BenchPoint& b) -> std::string& { return b.message; }},
+    // Columns appended later: files written before them lack them.
+    {nullptr, BenchKind::kRenderedSummary, false},
+    {nullptr, BenchKind::kRegions, false},
+};
+
+std::string RegionColumn(int region, const char* quantity) {
+  return std::string(kRenderedRegionNames[region]) + "_" + quantity;
+}
+
+// The names of a row of kBenchColumns, in order.
+std::vector<std::string> ColumnNames(const BenchColumn& c) {
+  switch (c.kind) {
+    case BenchKind::kErrorMetrics: {
+      std::vector<std::string> names;
+      for (const ErrorMetricField& f : kErrorMetrics) names.push_back(f.name);
+      return names;
+    }
+    case BenchKind::kRenderedSummary: {
+      std::vector<std::string> names;
+      for (const RenderedSummaryField& f : kRenderedSummary) names.push_back(f.name);
+      return names;
+    }
+    case BenchKind::kRegions: {
+      std::vector<std::string> names;
+      for (int g = 0; g < kRenderedRegions; ++g) {
+        names.push_back(RegionColumn(g, "psnr_db"));
+        names.push_back(RegionColumn(g, "median_rel_error"));
+      }
+      return names;
+    }
+    default:
+      return {c.name};
+  }
+}
+
+}  // namespace
+
 const std::vector<std::string>& BenchCsvColumns() {
   static const std::vector<std::string> columns = [] {
-    std::vector<std::string> c = {"material", "table",   "model",      "loss",    "budget",
-                                  "status",   "time_ms", "prepare_ms", "init_ms", "solve_ms"};
-    for (const ErrorMetricField& f : kErrorMetrics) c.push_back(f.name);
-    c.insert(c.end(), {"metric_ok", "metric_cells", "weighting", "cutoff_deg", "fit_cells",
-                       "iterations", "message"});
-    // Appended with the rendered-image metric (docs/accuracy.md); empty when not computed.
-    for (const RenderedSummaryField& f : kRenderedSummary) c.push_back(f.name);
-    // Appended with the metric's regions (core/rendered_regions.h); empty for a region
-    // without lights and when the metric was not computed.
-    for (const char* region : kRenderedRegionNames) {
-      c.push_back(std::string(region) + "_psnr_db");
-      c.push_back(std::string(region) + "_median_rel_error");
+    std::vector<std::string> names;
+    for (const BenchColumn& c : kBenchColumns) {
+      for (std::string& n : ColumnNames(c)) names.push_back(std::move(n));
     }
-    return c;
+    return names;
   }();
   return columns;
 }
@@ -59,22 +141,43 @@ std::string BenchCsvText(const std::vector<BenchPoint>& points) {
   const auto& cols = BenchCsvColumns();
   for (std::size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + cols[i];
   out += "\n";
-  for (const BenchPoint& b : points) {
-    std::vector<std::string> fields = {
-        Quote(b.material), Quote(b.table), Quote(b.model),    Quote(b.loss),  Quote(b.budget),
-        Quote(b.status),   Num(b.time_ms), Num(b.prepare_ms), Num(b.init_ms), Num(b.solve_ms)};
-    for (const ErrorMetricField& f : kErrorMetrics) fields.push_back(Num(b.metrics.*f.value));
-    fields.insert(fields.end(),
-                  {b.metrics.ok ? "1" : "0", std::to_string(b.metrics.cells),
-                   Quote(b.metrics.weighting), Num(b.metrics.cutoff_deg),
-                   std::to_string(b.fit_cells), std::to_string(b.iterations), Quote(b.message)});
-    for (const RenderedSummaryField& f : kRenderedSummary) {
-      fields.push_back(Rendered(b.metrics.rendered, b.metrics.rendered.*f.value));
-    }
-    for (const RenderedRegionError& g : b.metrics.rendered.regions) {
-      const bool judged = b.metrics.rendered.ok && g.lights > 0;
-      fields.push_back(judged ? Num(g.psnr_db) : std::string());
-      fields.push_back(judged ? Num(g.median_rel_error) : std::string());
+  for (const BenchPoint& point : points) {
+    BenchPoint b = point;  // the table's accessors give references into a point
+    const RenderedError& re = b.metrics.rendered;
+    std::vector<std::string> fields;
+    for (const BenchColumn& c : kBenchColumns) {
+      switch (c.kind) {
+        case BenchKind::kText:
+          fields.push_back(Quote(c.text(b)));
+          break;
+        case BenchKind::kMillis:
+        case BenchKind::kDegrees:
+          fields.push_back(Num(c.number(b)));
+          break;
+        case BenchKind::kCount:
+          fields.push_back(std::to_string(c.count(b)));
+          break;
+        case BenchKind::kSmallCount:
+          fields.push_back(std::to_string(c.small_count(b)));
+          break;
+        case BenchKind::kMetricOk:
+          fields.push_back(b.metrics.ok ? "1" : "0");
+          break;
+        case BenchKind::kErrorMetrics:
+          for (const ErrorMetricField& f : kErrorMetrics) fields.push_back(Num(b.metrics.*f.value));
+          break;
+        case BenchKind::kRenderedSummary:
+          for (const RenderedSummaryField& f : kRenderedSummary)
+            fields.push_back(Rendered(re, re.*f.value));
+          break;
+        case BenchKind::kRegions:
+          for (const RenderedRegionError& g : re.regions) {
+            const bool judged = re.ok && g.lights > 0;
+            fields.push_back(judged ? Num(g.psnr_db) : std::string());
+            fields.push_back(judged ? Num(g.median_rel_error) : std::string());
+          }
+          break;
+      }
     }
     for (std::size_t i = 0; i < fields.size(); ++i) out += (i ? "," : "") + fields[i];
     out += "\n";
@@ -186,9 +289,14 @@ std::vector<BenchPoint> ReadBenchCsv(const std::filesystem::path& path) {
           path, fmt::format("line 1: column '{}' appears twice", PrintableExcerpt(header[i], 64)));
     }
   }
-  for (const char* required : {"material", "model", "budget", "time_ms", "log_rmse"}) {
-    if (!col.count(required)) {
-      throw InputError(path, fmt::format("not a brdfit bench CSV: no column '{}'", required));
+  for (const BenchColumn& c : kBenchColumns) {
+    if (!c.required) continue;
+    // Of the error metrics, the primary one: older files lack the later ones.
+    const std::string name = c.kind == BenchKind::kErrorMetrics
+                                 ? std::string(kErrorMetrics[kPrimaryErrorMetric].name)
+                                 : std::string(c.name);
+    if (!col.count(name)) {
+      throw InputError(path, fmt::format("not a brdfit bench CSV: no column '{}'", name));
     }
   }
   std::vector<BenchPoint> points;
@@ -205,102 +313,112 @@ std::vector<BenchPoint> ReadBenchCsv(const std::filesystem::path& path) {
       throw InputError(path, fmt::format("line {}: {} fields, the header has {}", line, f.size(),
                                          header.size()));
     }
-    auto get = [&](const char* name) -> std::string {
+    auto get = [&](const std::string& name) -> std::string {
       const auto it = col.find(name);
       return it == col.end() ? std::string() : f[it->second];
     };
-    auto num = [&](const char* name) {
+    // NaN for an absent column or an empty field.
+    auto num = [&](const std::string& name) {
       return col.count(name) ? ParseDouble(get(name), path, line, name) : NAN;
     };
-    auto count = [&](const char* name) {
+    auto count = [&](const std::string& name) {
       return col.count(name) ? ParseInt(get(name), path, line, name) : 0L;
     };
     BenchPoint b;
-    b.material = get("material");
-    b.table = get("table");
-    b.model = get("model");
-    b.loss = get("loss");
-    b.budget = get("budget");
-    b.status = get("status");
-    b.message = get("message");
-    b.time_ms = num("time_ms");
-    b.prepare_ms = num("prepare_ms");
-    b.init_ms = num("init_ms");
-    b.solve_ms = num("solve_ms");
-    for (const ErrorMetricField& f : kErrorMetrics) b.metrics.*f.value = num(f.name);
+    // Whether the error metrics are ok decides whether they must be numbers.
     if (col.count("metric_ok") && get("metric_ok") != "0" && get("metric_ok") != "1") {
       throw InputError(path, fmt::format("line {}: column metric_ok: '{}' is not 0 or 1", line,
                                          get("metric_ok")));
     }
     b.metrics.ok = col.count("metric_ok")
                        ? get("metric_ok") == "1"
-                       : std::isfinite(b.metrics.*kErrorMetrics[kPrimaryErrorMetric].value);
-    RequireNonNegative(b.time_ms, path, line, "time_ms");
-    for (const char* c : {"prepare_ms", "init_ms", "solve_ms"}) {
-      if (col.count(c)) RequireNonNegative(num(c), path, line, c);
-    }
-    if (b.metrics.ok) {
-      for (const ErrorMetricField& f : kErrorMetrics) {
-        if (col.count(f.name)) RequireNonNegative(b.metrics.*f.value, path, line, f.name);
-      }
-    }
-    // What a file does not record reads as 0, as in a fit report: no NaN leaves the reader
-    // (fuzz_bench_csv: an empty error of a failed point was written back as "nan" and refused).
-    for (double* v : {&b.prepare_ms, &b.init_ms, &b.solve_ms}) {
-      if (std::isnan(*v)) *v = 0;
-    }
-    for (const ErrorMetricField& f : kErrorMetrics) {
-      if (std::isnan(b.metrics.*f.value)) b.metrics.*f.value = 0;
-    }
-    b.metrics.cells = static_cast<std::size_t>(count("metric_cells"));
-    b.metrics.weighting = get("weighting");
-    b.metrics.cutoff_deg = num("cutoff_deg");
-    if (std::isnan(b.metrics.cutoff_deg)) b.metrics.cutoff_deg = 0;
-    if (b.metrics.cutoff_deg < 0 || b.metrics.cutoff_deg > 90) {
-      throw InputError(path, fmt::format("line {}: column cutoff_deg: {} is outside [0, 90]", line,
-                                         b.metrics.cutoff_deg));
-    }
-    b.fit_cells = static_cast<std::size_t>(count("fit_cells"));
-    const long iterations = count("iterations");
-    if (iterations > std::numeric_limits<int>::max()) {
-      throw InputError(
-          path, fmt::format("line {}: column iterations: {} is too large", line, iterations));
-    }
-    b.iterations = static_cast<int>(iterations);
-    // Files written before the rendered-image metric have none of its columns.
+                       : std::isfinite(num(kErrorMetrics[kPrimaryErrorMetric].name));
     RenderedError& re = b.metrics.rendered;
-    re.ok = true;
-    bool none = true;
-    for (const RenderedSummaryField& f : kRenderedSummary) {
-      re.*f.value = num(f.name);
-      re.ok = re.ok && std::isfinite(re.*f.value);
-      none = none && std::isnan(re.*f.value);
-    }
-    if (!re.ok && !none) {
-      throw InputError(path, fmt::format("line {}: the rendered-error columns are partly empty "
-                                         "(all {} or none)",
-                                         line, std::size(kRenderedSummary)));
-    }
-    for (const RenderedSummaryField& f : kRenderedSummary) {
-      if (re.ok && re.*f.value < f.min_value) {
-        throw InputError(path, fmt::format("line {}: column {}: {} is below {}", line, f.name,
-                                           re.*f.value, f.min_value));
+    for (const BenchColumn& c : kBenchColumns) {
+      switch (c.kind) {
+        case BenchKind::kText:
+          c.text(b) = get(c.name);
+          break;
+        case BenchKind::kMillis: {
+          // What a file does not record reads as 0, as in a fit report: no NaN leaves the
+          // reader (an empty time written back as "nan" would be refused).
+          const double v = num(c.name);
+          if (col.count(c.name)) RequireNonNegative(v, path, line, c.name);
+          c.number(b) = std::isnan(v) ? 0 : v;
+          break;
+        }
+        case BenchKind::kDegrees: {
+          const double v = num(c.name);
+          c.number(b) = std::isnan(v) ? 0 : v;
+          if (c.number(b) < 0 || c.number(b) > 90) {
+            throw InputError(path, fmt::format("line {}: column {}: {} is outside [0, 90]", line,
+                                               c.name, c.number(b)));
+          }
+          break;
+        }
+        case BenchKind::kCount:
+          c.count(b) = static_cast<std::size_t>(count(c.name));
+          break;
+        case BenchKind::kSmallCount: {
+          const long v = count(c.name);
+          if (v > std::numeric_limits<int>::max()) {
+            throw InputError(path,
+                             fmt::format("line {}: column {}: {} is too large", line, c.name, v));
+          }
+          c.small_count(b) = static_cast<int>(v);
+          break;
+        }
+        case BenchKind::kMetricOk:
+          break;  // read above
+        case BenchKind::kErrorMetrics:
+          // Required and >= 0 when the metrics are ok; 0 when absent or not computed.
+          for (const ErrorMetricField& m : kErrorMetrics) {
+            const double v = num(m.name);
+            if (b.metrics.ok && col.count(m.name)) RequireNonNegative(v, path, line, m.name);
+            b.metrics.*m.value = std::isnan(v) ? 0 : v;
+          }
+          break;
+        case BenchKind::kRenderedSummary: {
+          // Files written before the rendered-image metric have none of its columns.
+          re.ok = true;
+          bool none = true;
+          for (const RenderedSummaryField& m : kRenderedSummary) {
+            re.*m.value = num(m.name);
+            re.ok = re.ok && std::isfinite(re.*m.value);
+            none = none && std::isnan(re.*m.value);
+          }
+          if (!re.ok && !none) {
+            throw InputError(path, fmt::format("line {}: the rendered-error columns are partly "
+                                               "empty (all {} or none)",
+                                               line, std::size(kRenderedSummary)));
+          }
+          for (const RenderedSummaryField& m : kRenderedSummary) {
+            if (re.ok && re.*m.value < m.min_value) {
+              throw InputError(path, fmt::format("line {}: column {}: {} is below {}", line, m.name,
+                                                 re.*m.value, m.min_value));
+            }
+            if (!re.ok) re.*m.value = 0;
+          }
+          break;
+        }
+        case BenchKind::kRegions:
+          // Both numbers or neither, and only with the rendered summary (read before: it
+          // precedes this group). The CSV does not record how many lights a region had: 1
+          // marks it judged.
+          for (int g = 0; g < kRenderedRegions; ++g) {
+            const std::string psnr_col = RegionColumn(g, "psnr_db");
+            const std::string median_col = RegionColumn(g, "median_rel_error");
+            const double psnr = num(psnr_col), median = num(median_col);
+            if (std::isnan(psnr) && std::isnan(median)) continue;
+            if (!re.ok || !std::isfinite(psnr) || !(median >= 0) || !std::isfinite(median)) {
+              throw InputError(path, fmt::format("line {}: {} and {} must both be given, with "
+                                                 "the rendered-error columns, and the median >= 0",
+                                                 line, psnr_col, median_col));
+            }
+            re.regions[static_cast<std::size_t>(g)] = {1, psnr, median};
+          }
+          break;
       }
-      if (!re.ok) re.*f.value = 0;
-    }
-    // The regions (files written before them have none): both numbers or neither, and only
-    // with the metric. The CSV does not record how many lights a region had: 1 marks it judged.
-    for (int g = 0; g < kRenderedRegions; ++g) {
-      const std::string name = kRenderedRegionNames[g];
-      const std::string psnr_col = name + "_psnr_db", median_col = name + "_median_rel_error";
-      const double psnr = num(psnr_col.c_str()), median = num(median_col.c_str());
-      if (std::isnan(psnr) && std::isnan(median)) continue;
-      if (!re.ok || !std::isfinite(psnr) || !(median >= 0) || !std::isfinite(median)) {
-        throw InputError(path, fmt::format("line {}: {} and {} must both be given, with the "
-                                           "rendered-error columns, and the median >= 0",
-                                           line, psnr_col, median_col));
-      }
-      re.regions[static_cast<std::size_t>(g)] = {1, psnr, median};
     }
     points.push_back(std::move(b));
   }
