@@ -9,8 +9,11 @@
 // at 96 x 96 (the fit's judge renders 64 x 64, so a lobe narrower than a pixel cannot hide
 // between the judge's pixel centres).
 //   bench_light_regions [--nbrdf all|NAME,...] [--jobs N] [--model M] [--res N] [--verbose 1]
+//                       [--fits FITS.json]
 // --model: fit that candidate alone; --res: the held-out images' resolution; --verbose: each
-// chosen fit's judge numbers per light and region, and its parameters.
+// chosen fit's judge numbers per light and region, and its parameters; --fits: fit nothing,
+// score the chosen fits of a `brdfit fit --json` file of these tables instead (so that the
+// choices of two builds are scored by one scorer; "judge S" is then the file's).
 // One line per table and a summary: mean PSNR per region, materials at >= 30 dB and <= 15 %
 // median luminance error per region and in all three, the median of the medians.
 #include <fmt/core.h>
@@ -18,9 +21,14 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <cstdlib>
 #include <mutex>
 #include <thread>
+
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
 
 #include "bench/bench_tables.h"
 #include "core/model_choice.h"
@@ -53,7 +61,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> names = {"all"};
   int jobs = 2, res = 96;
   bool verbose = false;
-  std::string only_model;
+  std::string only_model, fits_json;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], v = argv[i + 1];
     if (a == "--nbrdf") names = bench::SplitList(v);
@@ -61,6 +69,31 @@ int main(int argc, char** argv) {
     if (a == "--model") only_model = v;
     if (a == "--res") res = std::atoi(v.c_str());
     if (a == "--verbose") verbose = v != "0";
+    if (a == "--fits") fits_json = v;
+  }
+  // The chosen fit per source of a fits JSON: its model and parameters in the model's order.
+  struct Given {
+    FitResult fit;
+    double score_db = 0;  // the file's S
+  };
+  std::map<std::string, Given> given;
+  if (!fits_json.empty()) {
+    std::ifstream in(fits_json);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    for (const auto& fit : j.at("fits")) {
+      if (!fit.value("chosen", false)) continue;
+      FitResult r;
+      r.model = fit.at("model").get<std::string>();
+      const ModelInfo* m = FindModel(r.model);
+      if (!m) continue;  // a factorization: not an analytic model
+      for (const std::string& name : m->param_names) {
+        r.param_names.push_back(name);
+        r.params.push_back(fit.at("params").at(name).get<double>());
+      }
+      const auto& re = fit.at("metrics").at("rendered");
+      given[fit.at("source").get<std::string>()] = {
+          r, re.contains("score_db") ? re.at("score_db").get<double>() : NAN};
+    }
   }
   const auto inputs = bench::NbrdfStudyInputs(names);
   std::mutex mu;
@@ -73,6 +106,31 @@ int main(int argc, char** argv) {
   auto worker = [&] {
     for (std::size_t i = next++; i < inputs.size(); i = next++) {
       const Table table = pipeline::LoadInput(inputs[i]);
+      if (!fits_json.empty()) {
+        const auto it = given.find(inputs[i]);
+        if (it == given.end()) continue;
+        const FitResult& f = it->second.fit;
+        Row row;
+        row.judge_s = it->second.score_db;
+        std::string line;
+        for (int r = 0; r < 3; ++r) {
+          RenderedErrorOptions o;
+          o.resolution = res;
+          o.light_angles_deg = kHeldOut[r];
+          const RenderedError e =
+              ComputeRenderedError(table, ModelBrdf(*FindModel(f.model), f.params), o);
+          row.psnr[r] = e.ok ? e.psnr_db : 0;
+          row.median[r] = e.ok ? e.median_rel_error : 1;
+          line += fmt::format("  {} {:5.1f} dB {:5.1f}%", kRegionNames[r], row.psnr[r],
+                              100 * row.median[r]);
+        }
+        std::lock_guard<std::mutex> lock(mu);
+        fmt::print("{:<28} {:<18} judge S {:6.2f}{}\n", inputs[i].substr(6), f.model, row.judge_s,
+                   line);
+        std::fflush(stdout);
+        rows.push_back(row);
+        continue;
+      }
       SampleOptions so;
       so.budget = DefaultFitBudget();
       std::vector<FitResult> fits;

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "fit/model_ops.h"
+#include "fit/narrow_peak.h"
 #include "fit/prepare_cache.h"
 #include "fit/sample_plan.h"
 #include "fit/threads.h"
@@ -54,12 +55,27 @@ namespace {
 // no stored sample plan (its rows are computed as they are applied: 15 MB less at the peak).
 struct Plans {
   std::shared_ptr<const SamplePlan> samples;
-  std::shared_ptr<const RenderedPlan> rendered;
+  std::shared_ptr<const RenderedPlan> rendered, rendered_check;
 };
 
+RenderedErrorOptions CheckLattice() {
+  RenderedErrorOptions o;
+  o.resolution = kRenderedCheckResolution;
+  return o;
+}
+
 Plans GetPlans(const Grid& grid, const SampleOptions& options, PrepareCache* cache) {
-  if (cache) return {cache->Samples(grid, options), cache->Rendered(grid)};
-  return {nullptr, std::make_shared<const RenderedPlan>(MakeRenderedPlan(grid))};
+  if (cache) {
+    return {cache->Samples(grid, options), cache->Rendered(grid),
+            cache->Rendered(grid, CheckLattice())};
+  }
+  return {nullptr, std::make_shared<const RenderedPlan>(MakeRenderedPlan(grid)),
+          std::make_shared<const RenderedPlan>(MakeRenderedPlan(grid, CheckLattice()))};
+}
+
+void PrepareRendered(const Table& table, const Plans& plans, PreparedTable* t) {
+  t->rendered = PrepareRenderedReference(table, *plans.rendered);
+  t->rendered_check = PrepareRenderedReference(table, *plans.rendered_check);
 }
 
 Samples PrepareWith(const Plans& plans, const Table& table, const SampleOptions& options,
@@ -74,7 +90,7 @@ PreparedTable PrepareTable(const Table& table, const SampleOptions& sample_optio
                            const FitOptions& fit_options, PrepareCache* cache) {
   const Plans plans = GetPlans(table.grid, sample_options, cache);
   PreparedTable t;
-  t.rendered = PrepareRenderedReference(table, *plans.rendered);
+  PrepareRendered(table, plans, &t);
   if (!SubSampled(sample_options)) {
     t.fit = PrepareWith(plans, table, sample_options);
   } else {
@@ -94,7 +110,7 @@ PreparedTable PrepareTable(Table&& table, const SampleOptions& sample_options,
   const Plans plans = GetPlans(table.grid, sample_options, cache);
   if (!SubSampled(sample_options)) {
     PreparedTable t;
-    t.rendered = PrepareRenderedReference(table, *plans.rendered);
+    PrepareRendered(table, plans, &t);
     t.fit = PrepareWith(plans, table, sample_options);
     table = Table{};  // released before the loss constants exist (36 MB for MERL)
     t.loss = PrepareLoss(t.fit, fit_options);
@@ -104,7 +120,7 @@ PreparedTable PrepareTable(Table&& table, const SampleOptions& sample_options,
   // set takes the table's values over (no copy) and the table is gone before the fit set and
   // the loss constants exist.
   PreparedTable t;
-  t.rendered = PrepareRenderedReference(table, *plans.rendered);
+  PrepareRendered(table, plans, &t);
   t.metric_own = plans.samples
                      ? PrepareMetricSamples(std::move(table), *plans.samples, sample_options)
                      : PrepareMetricSamples(std::move(table), sample_options);
@@ -132,6 +148,14 @@ FitResult FitPrepared(std::string_view model, const PreparedTable& table,
     const auto t0 = std::chrono::steady_clock::now();
     const double c0 = internal::ThreadCpuMs();
     r.metrics.rendered = ScoreRendered(table.rendered, ModelBrdf(*info, r.params));
+    r.times.metrics +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    r.times.metrics_cpu += internal::ThreadCpuMs() - c0;
+  }
+  if (info) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const double c0 = internal::ThreadCpuMs();
+    CheckNarrowPeak(*info, table.rendered_check, &r);
     r.times.metrics +=
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     r.times.metrics_cpu += internal::ThreadCpuMs() - c0;

@@ -33,6 +33,9 @@ struct PreparedTable {
   // The measured side of the rendered-image metric (fit/rendered_error.h); every fit of the
   // table is scored against it. Empty: no rendered metric (metrics.rendered.ok = false).
   RenderedReference rendered;
+  // The same at the second pixel lattice (fit/narrow_peak.h), against which fits with a peak
+  // narrower than a pixel are scored too. Empty exactly when `rendered` is.
+  RenderedReference rendered_check;
   const Samples& metric() const { return has_own_metric ? metric_own : fit; }
 };
 
