@@ -33,15 +33,15 @@ double PeakSharpness(const ModelInfo& model, const std::vector<double>& params, 
   return peak / off;
 }
 
-bool CheckNarrowPeak(const ModelInfo& model, const RenderedReference& check, FitResult* fit) {
-  if (fit->Failed() || !fit->metrics.rendered.ok || check.Empty()) return false;
+NarrowPeak CheckNarrowPeak(const ModelInfo& model, const RenderedReference& check, FitResult* fit) {
+  if (fit->Failed() || !fit->metrics.rendered.ok || check.Empty()) return NarrowPeak::kNone;
   const RenderedError& first = fit->metrics.rendered;
   const double sharpness = PeakSharpness(model, fit->params, first.resolution);
-  if (!(sharpness > kNarrowPeakRatio)) return false;
+  if (!(sharpness > kNarrowPeakRatio)) return NarrowPeak::kNone;
   RenderedError second = ScoreRendered(check, ModelBrdf(model, fit->params));
   const double s1 = RenderedScoreDb(first);
   const double s2 = second.ok ? RenderedScoreDb(second) : -std::numeric_limits<double>::infinity();
-  if (!(s2 < s1)) return true;
+  if (!(s2 < s1)) return NarrowPeak::kKept;
   const std::string note =
       second.ok ? fmt::format(
                       "a peak narrower than a pixel of the judge's images (f(0) / f(1 px) "
@@ -54,7 +54,7 @@ bool CheckNarrowPeak(const ModelInfo& model, const RenderedReference& check, Fit
                       sharpness, check.counts.resolution, second.problem);
   fit->message += (fit->message.empty() ? "" : "; ") + note;
   fit->metrics.rendered = std::move(second);
-  return true;
+  return NarrowPeak::kLowered;
 }
 
 }  // namespace brdfit

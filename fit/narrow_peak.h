@@ -35,11 +35,17 @@ inline constexpr double kNarrowPeakRatio = 4.0;
 // one pixel away is 0 and at the peak is not; 1 when both are 0.
 double PeakSharpness(const ModelInfo& model, const std::vector<double>& params, int resolution);
 
+// What CheckNarrowPeak found.
+enum class NarrowPeak {
+  kNone,     // no narrow peak (or nothing to check)
+  kKept,     // a narrow peak that the second lattice scores no worse
+  kLowered,  // a narrow peak, now scored by the second lattice's worse image
+};
+
 // Scores a fit of a narrow peak (PeakSharpness > kNarrowPeakRatio at the judge's resolution) at
 // the second lattice `check` too: when that scores lower (core/model_choice.h RenderedScoreDb)
 // or fails, fit->metrics.rendered becomes the second lattice's and fit->message says so. Does
-// nothing to a failed fit, one without a rendered error, or when `check` is empty. Returns
-// whether the fit had a narrow peak.
-bool CheckNarrowPeak(const ModelInfo& model, const RenderedReference& check, FitResult* fit);
+// nothing to a failed fit, one without a rendered error, or when `check` is empty.
+NarrowPeak CheckNarrowPeak(const ModelInfo& model, const RenderedReference& check, FitResult* fit);
 
 }  // namespace brdfit

@@ -102,11 +102,12 @@ TEST(NarrowPeak, ASpikeBetweenPixelCentresIsScoredAtTheSecondLattice) {
   EXPECT_EQ(unchecked->index, 1u);
 
   const RenderedError clean_before = clean.metrics.rendered;
-  EXPECT_FALSE(CheckNarrowPeak(c.clean_model, c.prepared.rendered_check, &clean));
+  EXPECT_EQ(CheckNarrowPeak(c.clean_model, c.prepared.rendered_check, &clean), NarrowPeak::kNone);
   EXPECT_EQ(clean.metrics.rendered.resolution, clean_before.resolution);
   EXPECT_TRUE(clean.message.empty());
 
-  EXPECT_TRUE(CheckNarrowPeak(c.spiky_model, c.prepared.rendered_check, &spiky));
+  EXPECT_EQ(CheckNarrowPeak(c.spiky_model, c.prepared.rendered_check, &spiky),
+            NarrowPeak::kLowered);
   ASSERT_TRUE(spiky.metrics.rendered.ok);
   EXPECT_EQ(spiky.metrics.rendered.resolution, kRenderedCheckResolution);
   // Found: far below the clean fit (the spike puts ~10^7 / sr on the centre pixel).
@@ -135,9 +136,9 @@ TEST(NarrowPeak, ATrueNarrowLobeKeepsItsScoreWhereTheSecondLatticeAgrees) {
   ASSERT_TRUE(r.metrics.rendered.ok);
   const RenderedError second = ScoreRendered(prepared.rendered_check, ModelBrdf(m, p));
   ASSERT_TRUE(second.ok);
-  EXPECT_TRUE(CheckNarrowPeak(m, prepared.rendered_check, &r));
-  const bool second_worse =
-      RenderedScoreDb(second) < RenderedScoreDb(ScoreRendered(prepared.rendered, ModelBrdf(m, p)));
+  const bool second_worse = RenderedScoreDb(second) < RenderedScoreDb(r.metrics.rendered);
+  EXPECT_EQ(CheckNarrowPeak(m, prepared.rendered_check, &r),
+            second_worse ? NarrowPeak::kLowered : NarrowPeak::kKept);
   EXPECT_EQ(r.metrics.rendered.resolution, second_worse ? kRenderedCheckResolution : 64);
   // Either way the fit of the true model stays near the cap: its images equal the table's up
   // to the lookup's interpolation.
