@@ -99,10 +99,27 @@ int main(int argc, char** argv) {
   std::mutex mu;
   std::atomic<std::size_t> next{0};
   struct Row {
-    std::array<double, 3> psnr{}, median{};
+    std::array<double, 3> psnr{}, median{}, body{};
     double judge_s = 0, solve_ms = 0;
   };
   std::vector<Row> rows;
+  // The fit under the held-out lights, region by region, into row; the line printed for it.
+  const auto score_held_out = [&](const Table& table, const FitResult& f, Row* row) {
+    std::string line;
+    for (int r = 0; r < 3; ++r) {
+      RenderedErrorOptions o;
+      o.resolution = res;
+      o.light_angles_deg = kHeldOut[r];
+      const RenderedError e =
+          ComputeRenderedError(table, ModelBrdf(*FindModel(f.model), f.params), o);
+      row->psnr[r] = e.ok ? e.psnr_db : 0;
+      row->median[r] = e.ok ? e.median_rel_error : 1;
+      row->body[r] = e.ok ? e.body_color_error : 1;
+      line += fmt::format("  {} {:5.1f} dB {:5.1f}% body {:4.0f}%", kRegionNames[r], row->psnr[r],
+                          100 * row->median[r], 100 * row->body[r]);
+    }
+    return line;
+  };
   auto worker = [&] {
     for (std::size_t i = next++; i < inputs.size(); i = next++) {
       const Table table = pipeline::LoadInput(inputs[i]);
@@ -112,18 +129,7 @@ int main(int argc, char** argv) {
         const FitResult& f = it->second.fit;
         Row row;
         row.judge_s = it->second.score_db;
-        std::string line;
-        for (int r = 0; r < 3; ++r) {
-          RenderedErrorOptions o;
-          o.resolution = res;
-          o.light_angles_deg = kHeldOut[r];
-          const RenderedError e =
-              ComputeRenderedError(table, ModelBrdf(*FindModel(f.model), f.params), o);
-          row.psnr[r] = e.ok ? e.psnr_db : 0;
-          row.median[r] = e.ok ? e.median_rel_error : 1;
-          line += fmt::format("  {} {:5.1f} dB {:5.1f}%", kRegionNames[r], row.psnr[r],
-                              100 * row.median[r]);
-        }
+        const std::string line = score_held_out(table, f, &row);
         std::lock_guard<std::mutex> lock(mu);
         fmt::print("{:<28} {:<18} judge S {:6.2f}{}\n", inputs[i].substr(6), f.model, row.judge_s,
                    line);
@@ -152,18 +158,7 @@ int main(int argc, char** argv) {
       Row row;
       row.judge_s = choice->score_db;
       row.solve_ms = solve_ms;
-      std::string line;
-      for (int r = 0; r < 3; ++r) {
-        RenderedErrorOptions o;
-        o.resolution = res;
-        o.light_angles_deg = kHeldOut[r];
-        const RenderedError e =
-            ComputeRenderedError(table, ModelBrdf(*FindModel(f.model), f.params), o);
-        row.psnr[r] = e.ok ? e.psnr_db : 0;
-        row.median[r] = e.ok ? e.median_rel_error : 1;
-        line += fmt::format("  {} {:5.1f} dB {:5.1f}%", kRegionNames[r], row.psnr[r],
-                            100 * row.median[r]);
-      }
+      const std::string line = score_held_out(table, f, &row);
       std::lock_guard<std::mutex> lock(mu);
       fmt::print("{:<28} {:<18} judge S {:6.2f}{}  solve cpu {:.0f} ms\n", inputs[i].substr(6),
                  f.model, row.judge_s, line, solve_ms);
@@ -194,31 +189,38 @@ int main(int argc, char** argv) {
   for (auto& t : pool) t.join();
   if (rows.empty()) return 0;
   const double n = static_cast<double>(rows.size());
-  int all_ok = 0;
+  int all_ok = 0, body_off = 0;
   std::vector<double> solve;
   for (const Row& row : rows) {
-    bool ok = true;
-    for (int r = 0; r < 3; ++r) ok = ok && row.psnr[r] >= 30 && row.median[r] <= 0.15;
+    bool ok = true, off = false;
+    for (int r = 0; r < 3; ++r) {
+      ok = ok && row.psnr[r] >= 30 && row.median[r] <= 0.15;
+      off = off || row.body[r] > kBodyColorTolerance;
+    }
     all_ok += ok;
+    body_off += off;
     solve.push_back(row.solve_ms);
   }
   for (int r = 0; r < 3; ++r) {
     double sum = 0;
-    int ge30 = 0, le15 = 0;
-    std::vector<double> med;
+    int ge30 = 0, le15 = 0, body_le = 0;
+    std::vector<double> med, body;
     for (const Row& row : rows) {
       sum += row.psnr[r];
       ge30 += row.psnr[r] >= 30;
       le15 += row.median[r] <= 0.15;
+      body_le += row.body[r] <= kBodyColorTolerance;
       med.push_back(row.median[r]);
+      body.push_back(row.body[r]);
     }
     fmt::print(
         "REGION {:<5} n {} | mean PSNR {:.2f} dB | >= 30 dB {} | median lum <= 15 % {} | "
-        "median of medians {:.1f} %\n",
-        kRegionNames[r], rows.size(), sum / n, ge30, le15, 100 * Median(med));
+        "median of medians {:.1f} % | body colour within {:.0f} % {} (median {:.1f} %)\n",
+        kRegionNames[r], rows.size(), sum / n, ge30, le15, 100 * Median(med),
+        100 * kBodyColorTolerance, body_le, 100 * Median(body));
   }
   fmt::print(
-      "ALL n {} | >= 30 dB and <= 15 % in every region {} | solve CPU per table median "
-      "{:.0f} ms\n",
-      rows.size(), all_ok, Median(solve));
+      "ALL n {} | >= 30 dB and <= 15 % in every region {} | body colour off in a region {} | "
+      "solve CPU per table median {:.0f} ms\n",
+      rows.size(), all_ok, body_off, Median(solve));
 }

@@ -81,6 +81,13 @@ struct RenderedError {
   std::size_t masked_pixels = 0;       // excluded: measured lookup invalid (never read as 0)
   std::size_t compared_pixels = 0;     // lit and Y_m above the floor
   std::size_t below_floor_pixels = 0;  // lit but Y_m at or below the floor: no relative error
+  // The body's colour (docs/accuracy.md, "The body's colour"): in the front and side regions,
+  // the RGB sums of the compared pixels at or below the region's median measured luminance, each
+  // divided by its luminance, approximation against measurement; the largest relative difference
+  // of a channel (a channel under 10 % of the brightest measured against that 10 %). A fit that
+  // zeroes a channel the body has scores ~1, one 3 times too bright ~2; brightness alone, 0. NaN
+  // in results read from files that predate it (not computed; never written).
+  double body_color_error = 0;
   std::array<RenderedLightError, kRenderedMaxLights> lights{};
   // Per region, pooled; lights == 0 everywhere in results read from files that predate them
   // (core/rendered_regions.h RenderedRegions then derives them from the lights).
@@ -144,6 +151,9 @@ struct RenderedSummaryField {
   double RenderedError::*value;
   double min_value;
   bool higher_is_better;
+  // Required when the summary is ok. An optional number absent from a file is read as NaN
+  // ("not computed") and a NaN one is not written (a column left empty).
+  bool required = true;
 };
 inline constexpr RenderedSummaryField kRenderedSummary[] = {
     {"psnr_db", "dB", "linear PSNR over all lit pixels of all light images",
@@ -154,6 +164,11 @@ inline constexpr RenderedSummaryField kRenderedSummary[] = {
      &RenderedError::median_rel_error, 0, false},
     {"p95_rel_error", "", "95th percentile of the relative luminance error",
      &RenderedError::p95_rel_error, 0, false},
+    {"body_color_error", "",
+     "largest relative error of a channel of the body's colour (front and side regions: the "
+     "pixels at or below the region's median measured luminance, summed per channel, over "
+     "their luminance)",
+     &RenderedError::body_color_error, 0, false, false},
 };
 
 // The metric definitions in one line, for reports (fit reports' metrics_definition, sidecars,

@@ -50,6 +50,11 @@ std::array<double, kRenderedRegions> RegionScoreWeights(const RenderedError& ren
   return Combine(RegionsOfNumbers(rendered)).region_weight;
 }
 
+bool BodyColorHolds(const RenderedError& rendered) {
+  // NaN (not computed: a report written before it) holds.
+  return !(rendered.body_color_error > kBodyColorTolerance);
+}
+
 std::optional<double> RenderedScoreDb(const FitResult& fit) {
   const RenderedError& re = fit.metrics.rendered;
   if (fit.Failed() || !re.ok) return std::nullopt;
@@ -64,6 +69,20 @@ std::optional<ModelChoice> ChooseCandidate(const std::vector<ChoiceCandidate>& c
   std::vector<std::optional<double>> score(candidates.size());
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     score[i] = RenderedScoreDb(*candidates[i].fit);
+  }
+  // Fits whose body colour is off take part only when every fit's is.
+  std::size_t set_aside = 0;
+  if (std::any_of(candidates.begin(), candidates.end(), [&](const ChoiceCandidate& c) {
+        return RenderedScoreDb(*c.fit) && BodyColorHolds(c.fit->metrics.rendered);
+      })) {
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      if (score[i] && !BodyColorHolds(candidates[i].fit->metrics.rendered)) {
+        score[i].reset();
+        ++set_aside;
+      }
+    }
+  }
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
     if (score[i] && (!best || *score[i] > *score[*best])) best = i;
   }
   if (!best) return std::nullopt;
@@ -98,6 +117,11 @@ std::optional<ModelChoice> ChooseCandidate(const std::vector<ChoiceCandidate>& c
         "{:.2f} dB (PSNR {:.2f} dB, median luminance error {:.1f} %)",
         c.parameters, b.parameters, b.name, *score[*best], options.tolerance_db, out.score_db,
         rc.psnr_db, 100 * rc.median_rel_error);
+  }
+  if (set_aside > 0) {
+    out.reason += fmt::format(
+        "; {} fit(s) set aside: the body's colour off by more than {:.0f} % in a channel",
+        set_aside, 100 * kBodyColorTolerance);
   }
   return out;
 }

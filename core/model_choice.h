@@ -22,7 +22,9 @@
 // The chosen fit is the one with the fewest parameters among those whose S is within
 // `tolerance_db` of the best S (ties: the higher S, then the name): a model with more
 // parameters must buy a visible improvement to be chosen. Fits that failed or have no
-// rendered error take no part; if none has one, nothing is chosen.
+// rendered error take no part; if none has one, nothing is chosen. Fits whose body colour is
+// off (BodyColorHolds below) take part only when no fit's holds: the score weighs luminance,
+// and a body that lost a channel can score well where that channel is dim.
 #pragma once
 
 #include <array>
@@ -71,6 +73,11 @@ inline constexpr double kWorstRegionWeight = 0.1;
 // d S / d S_r for each region at this rendered error (the weights the rendered polish gives each
 // region's terms, fit/rendered_polish.h); the worst region's includes m.
 std::array<double, kRenderedRegions> RegionScoreWeights(const RenderedError& rendered);
+// The body's colour (RenderedError::body_color_error): a fit whose body is off by more than this
+// in a channel takes part in the choice only when every fit's is (a zeroed channel scores 1, a
+// colour cast a user sees from about 0.25). True when within it or not computed.
+inline constexpr double kBodyColorTolerance = 0.25;
+bool BodyColorHolds(const RenderedError& rendered);
 // S of one fit, or nullopt when it failed or has no rendered error.
 std::optional<double> RenderedScoreDb(const FitResult& fit);
 

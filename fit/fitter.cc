@@ -1,11 +1,14 @@
 #include "fit/fitter.h"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <chrono>
 #include <memory>
 #include <optional>
 
 #include "core/error.h"
+#include "core/model_choice.h"
 #include "fit/model_ops.h"
 #include "fit/narrow_peak.h"
 #include "fit/prepare_cache.h"
@@ -156,6 +159,13 @@ FitResult FitPrepared(std::string_view model, const PreparedTable& table,
     const auto t0 = std::chrono::steady_clock::now();
     const double c0 = internal::ThreadCpuMs();
     CheckNarrowPeak(*info, table.rendered_check, &r);
+    // Said in the fit's message: a channel of the body lost or cast (core/model_choice.h
+    // BodyColorHolds; the choice then prefers a fit whose body holds).
+    if (r.metrics.rendered.ok && !BodyColorHolds(r.metrics.rendered)) {
+      r.message +=
+          fmt::format("{}the body's colour is off by {:.0f} % in a channel",
+                      r.message.empty() ? "" : "; ", 100 * r.metrics.rendered.body_color_error);
+    }
     r.times.metrics +=
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     r.times.metrics_cpu += internal::ThreadCpuMs() - c0;

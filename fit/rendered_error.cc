@@ -98,6 +98,7 @@ RenderedError Fail(RenderedError r, std::string problem) {
   r.ok = false;
   r.problem = std::move(problem);
   r.psnr_db = r.psnr_srgb_db = r.median_rel_error = r.p95_rel_error = r.peak = r.exposure = 0;
+  r.body_color_error = 0;
   for (RenderedLightError& le : r.lights) le.psnr_db = le.median_rel_error = le.p95_rel_error = 0;
   return r;
 }
@@ -220,6 +221,43 @@ std::vector<double> Radiances(const RenderedReference& ref, const BrdfFunction& 
   return radiance;
 }
 
+// The body's colour over one region's compared pixels (RenderedError::body_color_error): the
+// pixels at or below the median measured luminance (the body, away from the highlight), their
+// measured and approximated radiances summed per channel, each sum divided by its own
+// luminance (Rec. 709 weights): the body's colour without its brightness, which the median
+// luminance error already judges. The largest |a_c - m_c| / m_c over the channels; a channel
+// the body hardly has (m_c below 1 % of its brightest) is measured against that 1 %: its
+// relative error is noise, its absolute one is not. 0 without compared pixels or when either
+// body is black (a black approximation's error is the luminance's to judge).
+// L: 6 numbers per pixel (measured RGB, then approximated RGB).
+double BodyColorError(const double* L, const std::vector<std::size_t>& compared) {
+  if (compared.empty()) return 0;
+  std::vector<double> y(compared.size());
+  for (std::size_t j = 0; j < compared.size(); ++j) y[j] = Luminance(L + 6 * compared[j]);
+  std::vector<double> sorted = y;
+  const double median = Percentile(sorted, 50);
+  std::array<double, 3> m{}, a{};
+  for (std::size_t j = 0; j < compared.size(); ++j) {
+    if (y[j] > median) continue;
+    const double* p = L + 6 * compared[j];
+    for (int c = 0; c < 3; ++c) {
+      m[c] += p[c];
+      a[c] += p[3 + c];
+    }
+  }
+  const double ym = Luminance(m.data()), ya = Luminance(a.data());
+  if (!(ym > 0) || !(ya > 0)) return 0;
+  for (int c = 0; c < 3; ++c) {
+    m[c] /= ym;
+    a[c] /= ya;
+  }
+  const double floor = 0.1 * std::max({m[0], m[1], m[2]});
+  double worst = 0;
+  for (int c = 0; c < 3; ++c)
+    worst = std::max(worst, std::abs(a[c] - m[c]) / std::max(m[c], floor));
+  return worst;
+}
+
 // The metric from the radiances of Radiances(). *pixel_errors (optional): per lit pixel, in the
 // reference's order, the relative luminance error |Y_a - Y_m| / Y_m of the metric, NaN where
 // the pixel is at or below the floor (not compared).
@@ -239,6 +277,7 @@ RenderedError ScoreRadiances(const RenderedReference& ref, const std::vector<dou
     double sq = 0, peak = 0;
     std::size_t lit = 0;
     std::vector<double> errors;
+    std::vector<std::size_t> compared;  // pixel indices, for the body's colour
   };
   std::array<RegionSums, kRenderedRegions> region_sums;
   all_lum.reserve(r.lit_pixels);
@@ -267,6 +306,7 @@ RenderedError ScoreRadiances(const RenderedReference& ref, const std::vector<dou
       if (!(ym > ref.luminance_floor * peak_y)) continue;
       // |x| / y == |x / y| exactly for y > 0: the signed error's magnitude is the metric's.
       errors.push_back(std::abs(Luminance(m + 3) - ym) / ym);
+      region_sums[static_cast<std::size_t>(RegionOfLight(le.light_deg))].compared.push_back(i);
       if (pixel_errors) (*pixel_errors)[i] = (Luminance(m + 3) - ym) / ym;
     }
     le.compared_pixels = errors.size();
@@ -287,6 +327,11 @@ RenderedError ScoreRadiances(const RenderedReference& ref, const std::vector<dou
     RegionSums& rs = region_sums[g];
     r.regions[g].psnr_db = Psnr(rs.peak, rs.sq / (3.0 * static_cast<double>(rs.lit)));
     r.regions[g].median_rel_error = Percentile(rs.errors, 50);
+    // The rim's body is not the body's colour: at theta_d > 62.5 deg its dim pixels are grazing
+    // and whiten with the specular's Fresnel rise (docs/accuracy.md, "The body's colour").
+    if (g != static_cast<std::size_t>(LightRegion::kRim)) {
+      r.body_color_error = std::max(r.body_color_error, BodyColorError(L, rs.compared));
+    }
   }
   r.below_floor_pixels = r.lit_pixels - r.compared_pixels;
   r.psnr_db = Psnr(r.peak, sq_sum / (3.0 * static_cast<double>(r.lit_pixels)));
@@ -323,6 +368,7 @@ RenderedError ScoreRadiances(const RenderedReference& ref, const std::vector<dou
   for (const RenderedRegionError& g : r.regions) {
     finite = finite && std::isfinite(g.psnr_db) && std::isfinite(g.median_rel_error);
   }
+  finite = finite && std::isfinite(r.body_color_error);
   if (!finite) return Fail(r, "an error overflows (the approximation is too large)");
   r.ok = true;
   return r;

@@ -68,7 +68,10 @@ void WriteRendered(const H5::Group& mg, const RenderedError& e) {
   H5::Group rg = MakeGroup(mg, "rendered");
   WriteIntAttr(rg, "ok", e.ok ? 1 : 0);
   WriteStringAttr(rg, "problem", e.problem);
-  for (const RenderedSummaryField& f : kRenderedSummary) DoubleAttr(rg, f.name, e.*f.value);
+  for (const RenderedSummaryField& f : kRenderedSummary) {
+    if (!f.required && std::isnan(e.*f.value)) continue;  // not computed: not written
+    DoubleAttr(rg, f.name, e.*f.value);
+  }
   WriteIntAttr(rg, "resolution", e.resolution);
   WriteIntAttr(rg, "lit_pixels", static_cast<std::int64_t>(e.lit_pixels));
   WriteIntAttr(rg, "masked_pixels", static_cast<std::int64_t>(e.masked_pixels));
@@ -207,6 +210,10 @@ class Reader : public hdf5::Reader {
     e->ok = Int(rg, rw, "ok") != 0;
     e->problem = String(rg, rw, "problem");
     for (const RenderedSummaryField& f : kRenderedSummary) {
+      if (!f.required && !rg.attrExists(f.name)) {
+        e->*f.value = std::numeric_limits<double>::quiet_NaN();  // written before it existed
+        continue;
+      }
       e->*f.value = Double(rg, rw, f.name);
       if (e->*f.value < f.min_value)
         Fail(fmt::format("{}@{} is {}, below {}", rw, f.name, e->*f.value, f.min_value));

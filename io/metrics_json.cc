@@ -7,7 +7,10 @@ namespace brdfit {
 
 nlohmann::ordered_json RenderedErrorJson(const RenderedError& e) {
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
-  for (const RenderedSummaryField& f : kRenderedSummary) j[f.name] = e.*f.value;
+  for (const RenderedSummaryField& f : kRenderedSummary) {
+    if (!f.required && std::isnan(e.*f.value)) continue;  // not computed: not written
+    j[f.name] = e.*f.value;
+  }
   j["ok"] = e.ok;
   if (!e.ok) {
     j["problem"] = e.problem;

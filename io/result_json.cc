@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <cmath>
+#include <limits>
 
 #include "core/error.h"
 #include "io/metrics_json.h"
@@ -75,7 +76,9 @@ void RenderedFromJson(const json& parent, const JsonFields& f, FitMetrics* m) {
   e.problem = rf.String(r, "problem", "");
   if (e.ok) {
     for (const RenderedSummaryField& s : kRenderedSummary) {
-      e.*s.value = rf.Required(r, s.name, s.min_value);
+      e.*s.value =
+          s.required ? rf.Required(r, s.name, s.min_value)
+                     : rf.Number(r, s.name, std::numeric_limits<double>::quiet_NaN(), s.min_value);
     }
     if (const std::string bad = RenderedLightsFromJson(r, &e); !bad.empty()) {
       const std::size_t space = bad.find(' ');  // "member problem"

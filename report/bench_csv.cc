@@ -167,8 +167,10 @@ std::string BenchCsvText(const std::vector<BenchPoint>& points) {
           for (const ErrorMetricField& f : kErrorMetrics) fields.push_back(Num(b.metrics.*f.value));
           break;
         case BenchKind::kRenderedSummary:
-          for (const RenderedSummaryField& f : kRenderedSummary)
-            fields.push_back(Rendered(re, re.*f.value));
+          for (const RenderedSummaryField& f : kRenderedSummary) {
+            const bool absent = !f.required && std::isnan(re.*f.value);  // not computed
+            fields.push_back(absent ? std::string() : Rendered(re, re.*f.value));
+          }
           break;
         case BenchKind::kRegions:
           for (const RenderedRegionError& g : re.regions) {
@@ -379,25 +381,29 @@ std::vector<BenchPoint> ReadBenchCsv(const std::filesystem::path& path) {
           }
           break;
         case BenchKind::kRenderedSummary: {
-          // Files written before the rendered-image metric have none of its columns.
+          // Files written before the rendered-image metric have none of its columns; an
+          // optional number (core/metrics.h) may be empty alone: not computed, read as NaN.
           re.ok = true;
           bool none = true;
+          std::size_t required = 0;
           for (const RenderedSummaryField& m : kRenderedSummary) {
             re.*m.value = num(m.name);
+            if (!m.required) continue;
+            ++required;
             re.ok = re.ok && std::isfinite(re.*m.value);
             none = none && std::isnan(re.*m.value);
           }
           if (!re.ok && !none) {
             throw InputError(path, fmt::format("line {}: the rendered-error columns are partly "
                                                "empty (all {} or none)",
-                                               line, std::size(kRenderedSummary)));
+                                               line, required));
           }
           for (const RenderedSummaryField& m : kRenderedSummary) {
             if (re.ok && re.*m.value < m.min_value) {
               throw InputError(path, fmt::format("line {}: column {}: {} is below {}", line, m.name,
                                                  re.*m.value, m.min_value));
             }
-            if (!re.ok) re.*m.value = 0;
+            if (!re.ok) re.*m.value = m.required ? 0 : NAN;
           }
           break;
         }

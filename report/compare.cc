@@ -207,7 +207,10 @@ nlohmann::ordered_json MetricsJson(const FitMetrics& m) {
   const RenderedError& r = m.rendered;
   if (r.ok) {
     nlohmann::ordered_json& rj = j["rendered"];
-    for (const RenderedSummaryField& f : kRenderedSummary) rj[f.name] = Num(r.*f.value);
+    for (const RenderedSummaryField& f : kRenderedSummary) {
+      if (!f.required && std::isnan(r.*f.value)) continue;  // not computed
+      rj[f.name] = Num(r.*f.value);
+    }
     rj["regions"] = RenderedRegionsJson(r);
   }
   return j;

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -87,6 +88,34 @@ TEST(ModelChoice, FailedAndUnscoredFitsTakeNoPart) {
   fits.pop_back();
   EXPECT_FALSE(ChooseFit(Ptrs(fits)));
   EXPECT_FALSE(ChooseFit({}));
+}
+
+// A fit whose body is off in a channel (RenderedError::body_color_error above 0.25) is set
+// aside while another fit's body holds, whatever its S; when every fit's is off, the rule is the
+// plain one. Not computed (NaN, a report written before it) holds.
+TEST(ModelChoice, AFitWhoseBodyColourIsOffIsChosenOnlyWhenEveryFitsIs) {
+  std::vector<FitResult> fits = {Fit("zeroed", 7, 45, 0.05), Fit("holds", 9, 40, 0.08),
+                                 Fit("old", 4, 30, 0.3)};
+  fits[0].metrics.rendered.body_color_error = 1.0;
+  fits[1].metrics.rendered.body_color_error = 0.25;  // at the tolerance: holds
+  fits[2].metrics.rendered.body_color_error = std::nan("");
+  EXPECT_FALSE(BodyColorHolds(fits[0].metrics.rendered));
+  EXPECT_TRUE(BodyColorHolds(fits[1].metrics.rendered));
+  EXPECT_TRUE(BodyColorHolds(fits[2].metrics.rendered));
+  const auto c = ChooseFit(Ptrs(fits));
+  ASSERT_TRUE(c);
+  EXPECT_EQ(fits[c->index].model, "holds");
+  EXPECT_NE(c->reason.find("best rendered score of 3 fit(s)"), std::string::npos) << c->reason;
+  EXPECT_NE(c->reason.find("1 fit(s) set aside: the body's colour off by more than 25 %"),
+            std::string::npos)
+      << c->reason;
+  // Every body off: the best S again, and nothing said about bodies.
+  fits[1].metrics.rendered.body_color_error = 0.5;
+  fits.pop_back();
+  const auto all_off = ChooseFit(Ptrs(fits));
+  ASSERT_TRUE(all_off);
+  EXPECT_EQ(fits[all_off->index].model, "zeroed");
+  EXPECT_EQ(all_off->reason.find("set aside"), std::string::npos) << all_off->reason;
 }
 
 }  // namespace

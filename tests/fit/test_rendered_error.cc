@@ -48,9 +48,14 @@ struct RefRegion {  // docs/accuracy.md "Every light": its lights' images pooled
   double psnr = 0, median = 0, peak = 0, se = 0;
   std::size_t values = 0;
   std::vector<double> errors;
+  struct Body {
+    double ym;
+    Rgb m, a;
+  };
+  std::vector<Body> compared;  // for the body's colour
 };
 struct Ref {
-  double psnr = 0, psnr_srgb = 0, median = 0, p95 = 0, peak = 0;
+  double psnr = 0, psnr_srgb = 0, median = 0, p95 = 0, peak = 0, body = 0;
   std::size_t lit = 0, masked = 0, compared = 0;
   std::vector<RefLight> lights;
   std::array<RefRegion, 3> regions;  // front (<= 80 deg), side (<= 125), rim
@@ -117,12 +122,17 @@ Ref Reference(const Table& t, const LocalBrdf& approx, int n,
     }
     for (std::size_t p = 0; p < rl.lit; ++p) peak_y = std::max(peak_y, Y(&rl.lm[3 * p]));
     std::vector<double> e;
+    RefRegion& g = r.regions[deg <= 80 ? 0 : deg <= 125 ? 1 : 2];
     for (std::size_t p = 0; p < rl.lit; ++p) {
       const double ym = Y(&rl.lm[3 * p]);
       all_y.push_back(ym);
-      if (ym > 1e-4 * peak_y) e.push_back(std::abs(Y(&rl.la[3 * p]) - ym) / ym);
+      if (ym > 1e-4 * peak_y) {
+        e.push_back(std::abs(Y(&rl.la[3 * p]) - ym) / ym);
+        g.compared.push_back({ym,
+                              {rl.lm[3 * p], rl.lm[3 * p + 1], rl.lm[3 * p + 2]},
+                              {rl.la[3 * p], rl.la[3 * p + 1], rl.la[3 * p + 2]}});
+      }
     }
-    RefRegion& g = r.regions[deg <= 80 ? 0 : deg <= 125 ? 1 : 2];
     ++g.lights;
     g.peak = std::max(g.peak, peak);
     g.se += se;
@@ -145,6 +155,25 @@ Ref Reference(const Table& t, const LocalBrdf& approx, int n,
     if (g.lights == 0) continue;
     g.psnr = PsnrDb(g.peak, g.se / static_cast<double>(g.values));
     g.median = SortedAt(g.errors, 50);
+    // The body's colour (front and side): the compared pixels at or below the median measured
+    // luminance, summed per channel and divided by the sums' luminance; the largest relative
+    // channel error, a channel under 10 % of the brightest measured against that 10 %.
+    if (&g == &r.regions[2]) continue;
+    std::vector<double> ys;
+    for (const RefRegion::Body& b : g.compared) ys.push_back(b.ym);
+    const double median_y = SortedAt(ys, 50);
+    Rgb sm{}, sa{};
+    for (const RefRegion::Body& b : g.compared) {
+      if (b.ym > median_y) continue;
+      for (int c = 0; c < 3; ++c) sm[c] += b.m[c], sa[c] += b.a[c];
+    }
+    const double ym = Y(sm.data()), ya = Y(sa.data());
+    if (!(ym > 0) || !(ya > 0)) continue;
+    for (int c = 0; c < 3; ++c) sm[c] /= ym, sa[c] /= ya;
+    const double floor = 0.1 * std::max({sm[0], sm[1], sm[2]});
+    for (int c = 0; c < 3; ++c) {
+      r.body = std::max(r.body, std::abs(sa[c] - sm[c]) / std::max(sm[c], floor));
+    }
   }
   double se = 0;
   for (std::size_t i = 0; i < all_m.size(); ++i) se += std::pow(all_a[i] - all_m[i], 2);
@@ -180,6 +209,10 @@ void ExpectMatches(const RenderedError& got, const Ref& ref) {
   EXPECT_NEAR(got.psnr_srgb_db, ref.psnr_srgb, 1e-9);
   EXPECT_NEAR(got.median_rel_error, ref.median, 1e-9);
   EXPECT_NEAR(got.p95_rel_error, ref.p95, 1e-9);
+  // The body's pixels are those at or below the median luminance: mirror pixels tie there, and
+  // rounding (the reference rotates by its own frame) can move one of a pair across; one pixel
+  // of the ~1000 of a body moves its colour by far less than this.
+  EXPECT_NEAR(got.body_color_error, ref.body, 1e-4 + 1e-3 * ref.body);
   EXPECT_NEAR(got.peak, ref.peak, 1e-12 * ref.peak);
   EXPECT_EQ(got.lit_pixels, ref.lit);
   EXPECT_EQ(got.masked_pixels, ref.masked);
@@ -261,6 +294,7 @@ TEST(RenderedError, IdenticalImagesGiveThePsnrCapAndZeroError) {
   EXPECT_EQ(r.psnr_srgb_db, kRenderedPsnrCapDb);
   EXPECT_EQ(r.median_rel_error, 0.0);
   EXPECT_EQ(r.p95_rel_error, 0.0);
+  EXPECT_EQ(r.body_color_error, 0.0);
   for (int k = 0; k < r.num_lights; ++k) {
     EXPECT_EQ(r.lights[k].psnr_db, kRenderedPsnrCapDb);
     EXPECT_EQ(r.lights[k].median_rel_error, 0.0);
@@ -291,6 +325,7 @@ TEST(RenderedError, ScaledApproximationHasPredictableErrors) {
   ASSERT_TRUE(twice.ok) << twice.problem;
   EXPECT_EQ(twice.median_rel_error, 1.0);
   EXPECT_EQ(twice.p95_rel_error, 1.0);
+  EXPECT_EQ(twice.body_color_error, 0.0);  // twice as bright, the same colour
   for (int k = 0; k < twice.num_lights; ++k) EXPECT_EQ(twice.lights[k].median_rel_error, 1.0);
   // PSNR of 2x: MSE = mean(L_m^2).
   const Ref ref = Reference(t, TableBrdf(t), 64, kAngles);
@@ -307,8 +342,59 @@ TEST(RenderedError, ScaledApproximationHasPredictableErrors) {
     EXPECT_NEAR(tenth.lights[k].psnr_db - twice.lights[k].psnr_db, 20.0, 1e-9);
   }
   EXPECT_NEAR(tenth.median_rel_error, 0.1, 1e-12);
+  EXPECT_NEAR(tenth.body_color_error, 0.0, 1e-12);
+  // A colour cast: red 1.1 times, green and blue as measured.
+  const BrdfFunction same = TableBrdf(t);
+  const BrdfFunction red = [same](const Vec3& wi, const Vec3& wo) {
+    Rgb v = same(wi, wo);
+    v[0] *= 1.1;
+    return v;
+  };
+  const RenderedError redder = ComputeRenderedError(t, red);
+  ASSERT_TRUE(redder.ok);
+  EXPECT_GT(redder.body_color_error, 0.05);
+  EXPECT_LT(redder.body_color_error, 0.1);
+  ExpectMatches(redder, Reference(t, red, 64, kAngles));
   // Too dark by the same factor gives the same relative error.
   EXPECT_NEAR(ComputeRenderedError(t, scaled(-0.1)).median_rel_error, 0.1, 1e-12);
+}
+
+// The body's colour (RenderedError::body_color_error) on a dark, saturated table: a red body
+// (kd = 0.05, 0.02, 0.008) under a white, sharp lobe. The exact model scores ~0; one whose blue
+// body is zeroed (the lobe keeps the highlight) loses most of the body's blue and scores 0.75
+// (the lobe's tail gives the body's dimmer half a quarter of its blue), though its luminance
+// errors are small: blue is 7 % of luminance. One whose blue body is 3 times too bright scores
+// 1.4 (2 less the tail's share).
+TEST(RenderedError, BodyColourCatchesAZeroedChannelOfADarkSaturatedBody) {
+  const std::string model = "lambert+ggx";
+  const std::vector<double> truth = Params(
+      model,
+      {"kd_r=0.05", "kd_g=0.02", "kd_b=0.008", "ks_r=0.3", "ks_g=0.3", "ks_b=0.3", "alpha=0.05"});
+  const Table t = SynthModel(model, truth, SmallGrid());
+  const ModelInfo* info = FindModel(model);
+  ASSERT_NE(info, nullptr);
+  const RenderedError exact = ComputeRenderedError(t, ModelBrdf(*info, truth));
+  ASSERT_TRUE(exact.ok) << exact.problem;
+  // The table's trilinear lookup against the model itself: near 0, not exactly.
+  EXPECT_LT(exact.body_color_error, 0.02);
+  std::vector<double> no_blue = truth, blue3 = truth;
+  no_blue[2] = 0;
+  blue3[2] = 3 * truth[2];
+  const RenderedError zeroed = ComputeRenderedError(t, ModelBrdf(*info, no_blue));
+  ASSERT_TRUE(zeroed.ok);
+  EXPECT_GT(zeroed.body_color_error, 0.6);
+  EXPECT_LE(zeroed.body_color_error, 1.0);
+  // Its luminance hardly moves: blue weighs 0.0722 in Y, and the body is dark beside the lobe.
+  EXPECT_LT(zeroed.median_rel_error, 0.1);
+  const RenderedError bright = ComputeRenderedError(t, ModelBrdf(*info, blue3));
+  ASSERT_TRUE(bright.ok);
+  EXPECT_GT(bright.body_color_error, 1.2);
+  EXPECT_LE(bright.body_color_error, 2.0 + exact.body_color_error);
+  // The independent evaluation agrees on every number of all three.
+  for (const auto& p : {truth, no_blue, blue3}) {
+    ExpectMatches(ComputeRenderedError(t, ModelBrdf(*info, p)),
+                  Reference(t, Model(model, p), 64, kAngles));
+  }
 }
 
 // (d) Masked cells: a band of theta_h bins is masked (values set to NaN, which must never be
@@ -457,6 +543,40 @@ TEST(RenderedError, EveryFitCarriesItThroughReportAndJson) {
     EXPECT_EQ(a.regions[g].psnr_db, e.regions[g].psnr_db);
   }
   EXPECT_EQ(RenderedScoreDb(a), RenderedScoreDb(e));
+  // The body's colour: through HDF5 and JSON; optional (core/metrics.h), so a result that does
+  // not hold it (NaN: read from a file written before it) is written without it and read back
+  // as not computed by both.
+  EXPECT_EQ(b.body_color_error, e.body_color_error);
+  EXPECT_EQ(a.body_color_error, e.body_color_error);
+  EXPECT_EQ(j["fits"][0]["metrics"]["rendered"]["body_color_error"].get<double>(),
+            e.body_color_error);
+  auto old = back;
+  old[0].result.metrics.rendered.body_color_error = std::nan("");
+  WriteFitReport(old, dir / "old.h5", false);
+  const auto old_back = ReadFitReport(dir / "old.h5");
+  ASSERT_EQ(old_back.size(), 1u);
+  EXPECT_TRUE(std::isnan(old_back[0].result.metrics.rendered.body_color_error));
+  EXPECT_EQ(old_back[0].result.metrics.rendered.psnr_db, e.psnr_db);
+  const auto old_json = nlohmann::json::parse(FitParamsJson(old));
+  EXPECT_FALSE(old_json["fits"][0]["metrics"]["rendered"].contains("body_color_error"));
+  std::ofstream(dir / "old.json") << FitParamsJson(old);
+  const auto old_again = ReadFitParamsJson(dir / "old.json");
+  ASSERT_EQ(old_again.size(), 1u);
+  EXPECT_TRUE(std::isnan(old_again[0].result.metrics.rendered.body_color_error));
+  // A negative one is refused by name, as any number of the summary.
+  ASSERT_GT(e.body_color_error, 0);  // so that "-" makes it negative
+  std::string text = FitParamsJson(back);
+  const std::string key = "\"body_color_error\": ";
+  const std::size_t at = text.find(key);
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at + key.size(), "-");
+  std::ofstream(dir / "neg.json") << text;
+  try {
+    ReadFitParamsJson(dir / "neg.json");
+    ADD_FAILURE() << "a negative body_color_error was read";
+  } catch (const std::exception& ex) {
+    EXPECT_NE(std::string(ex.what()).find("body_color_error"), std::string::npos) << ex.what();
+  }
 }
 
 // The JSON layout shared by fit parameters and factorization sidecars (io/metrics_json.h): a

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -309,12 +310,12 @@ TEST(RenderedCompare, PsnrDropOrLuminanceRiseBeyondThresholdIsARegression) {
 TEST(RenderedBenchCsv, ColumnsAppendedAndReadBack) {
   const ScratchDir scratch("csvr");
   const auto& cols = BenchCsvColumns();
-  ASSERT_EQ(cols.size(), 30u);
-  // The columns before the metric keep their places; its four follow, then the regions'.
+  ASSERT_EQ(cols.size(), 31u);
+  // The columns before the metric keep their places; its five follow, then the regions'.
   EXPECT_EQ(cols[19], "message");
-  EXPECT_EQ(std::vector<std::string>(cols.begin() + 20, cols.begin() + 24),
+  EXPECT_EQ(std::vector<std::string>(cols.begin() + 20, cols.begin() + 25),
             (std::vector<std::string>{"psnr_db", "psnr_srgb_db", "median_rel_error",
-                                      "p95_rel_error"}));
+                                      "p95_rel_error", "body_color_error"}));
   EXPECT_EQ(std::vector<std::string>(cols.end() - 6, cols.end()),
             (std::vector<std::string>{"front_psnr_db", "front_median_rel_error", "side_psnr_db",
                                       "side_median_rel_error", "rim_psnr_db",
@@ -326,6 +327,7 @@ TEST(RenderedBenchCsv, ColumnsAppendedAndReadBack) {
   b.status = "converged";
   b.metrics = testing::Scored(0.01, 0.02, 0.1, 10);
   b.metrics.rendered = Rendered(33.41, 0.788);
+  b.metrics.rendered.body_color_error = 0.375;
   b.metrics.rendered.regions[0] = {6, 35.5, 0.5};
   b.metrics.rendered.regions[2] = {3, 21.25, 1.5};  // no side lights: its columns stay empty
   BenchPoint none = b;
@@ -338,6 +340,7 @@ TEST(RenderedBenchCsv, ColumnsAppendedAndReadBack) {
   EXPECT_EQ(back[0].metrics.rendered.psnr_srgb_db, b.metrics.rendered.psnr_srgb_db);
   EXPECT_EQ(back[0].metrics.rendered.median_rel_error, 0.788);
   EXPECT_EQ(back[0].metrics.rendered.p95_rel_error, b.metrics.rendered.p95_rel_error);
+  EXPECT_EQ(back[0].metrics.rendered.body_color_error, 0.375);
   EXPECT_EQ(back[0].metrics.rendered.regions[0].psnr_db, 35.5);
   EXPECT_EQ(back[0].metrics.rendered.regions[0].median_rel_error, 0.5);
   EXPECT_EQ(back[0].metrics.rendered.regions[1].lights, 0);
@@ -357,6 +360,16 @@ TEST(RenderedBenchCsv, ColumnsAppendedAndReadBack) {
               std::string::npos)
         << e.what();
   }
+  // The body's colour is optional (core/metrics.h): a row without it reads as not computed,
+  // and is written back without it.
+  BenchPoint no_body = b;
+  no_body.metrics.rendered.body_color_error = std::numeric_limits<double>::quiet_NaN();
+  WriteBenchCsv(scratch.path() / "nobody.csv", {no_body});
+  const auto nb = ReadBenchCsv(scratch.path() / "nobody.csv");
+  ASSERT_EQ(nb.size(), 1u);
+  EXPECT_TRUE(nb[0].metrics.rendered.ok);
+  EXPECT_TRUE(std::isnan(nb[0].metrics.rendered.body_color_error));
+  EXPECT_EQ(BenchCsvText(nb), BenchCsvText({no_body}));
   // A file written before the columns existed reads without them.
   std::ofstream(scratch.path() / "old.csv") << "material,model,budget,time_ms,log_rmse\na,b,full,1,0.1\n";
   const auto old = ReadBenchCsv(scratch.path() / "old.csv");
