@@ -1,5 +1,6 @@
 // `brdfit export FITS --format gltf|glb|mitsuba|pbrt|blender|threejs [--material NAME] [--model
-// NAME] -o OUT`: one fit of a fit report or JSON parameters (or a factorization, threejs) as a
+// NAME] -o OUT|DIR/`: one fit of a fit report or JSON parameters (or a factorization, threejs),
+// or with a folder one per material, as a
 // glTF 2.0 asset, a Mitsuba 3 scene, a pbrt-v4 scene, a Blender Python script or a three.js
 // module (export/, docs/exports.md). What the target cannot express exactly is said in the file
 // and on stderr.
@@ -52,6 +53,82 @@ int RunFactorExport(const ExportOptions& o, exports::Format format) {
   return kExitOk;
 }
 
+// -o names a folder: one that exists, or a name ending in '/'.
+bool NamesFolder(const std::string& out) {
+  return out.ends_with('/') || fs::is_directory(out);
+}
+
+// The chosen fit's note when a factorization was chosen and the analytic fit `e` is exported.
+void NoteChosenFactorization(const std::vector<FitReportEntry>& entries, const FitReportEntry& e,
+                             const ExportOptions& o) {
+  for (const FitReportEntry& c : entries) {
+    if (c.chosen && c.factorization && c.material == e.material && o.model.empty()) {
+      fmt::print(stderr,
+                 "brdfit: export: note: the approximation chosen for {} is a factorization ({}); "
+                 "this exports the analytic fit {} (the factorization: brdfit export {} "
+                 "--format threejs)\n",
+                 TerminalSafe(c.material), c.factorization->form, e.result.model,
+                 TerminalSafe(c.factorization->sidecar));
+    }
+  }
+}
+
+// Writes one entry and prints what was written.
+void WriteOne(const FitReportEntry& e, const ExportOptions& o, exports::Format format,
+              const fs::path& out) {
+  const std::string glsl =
+      format == exports::Format::kThreejs ? preview::AnalyticBrdfSource(e.result.model) : "";
+  const exports::ExportOutcome r = exports::WriteExport(e, o.fits, format, out, glsl);
+  for (const std::string& a : r.fidelity.approximations) {
+    fmt::print(stderr, "brdfit: export: approximate: {}: {}\n", TerminalSafe(e.material), a);
+  }
+  if (!o.quiet) {
+    std::string files;
+    for (const auto& p : r.written) files += (files.empty() ? "" : ", ") + p.string();
+    fmt::print("{} {} ({}) -> {} [{}]\n", TerminalSafe(e.material), e.result.model,
+               TerminalSafe(e.source), TerminalSafe(files),
+               r.fidelity.Exact() ? "exact" : "approximate");
+  }
+}
+
+// -o DIR: every material of the fits (or --material's), one file each named by
+// exports::MaterialFileNames. Every selection is made before anything is written: a material
+// with nothing to export stops the command with nothing written.
+int RunExportFolder(const ExportOptions& o, exports::Format format) {
+  if (IsFactorSidecar(o.fits)) {
+    throw InputError(o.fits + ": a factorization exports as one file: give -o NAME.mjs");
+  }
+  const fs::path dir = o.out;
+  CheckOutputFolder(dir, "-o");
+  const std::vector<FitReportEntry> entries = ReadFitsAnyFormat(o.fits);
+  std::vector<std::string> materials = exports::MaterialsOf(entries);
+  if (!o.material.empty()) materials = {o.material};
+  std::vector<const FitReportEntry*> chosen;
+  for (const std::string& m : materials) {
+    try {
+      chosen.push_back(&exports::SelectEntry(entries, m, o.model, format));
+    } catch (const InputError& err) {
+      if (!err.path().empty()) throw;
+      throw InputError(o.fits, err.what());
+    }
+  }
+  const std::vector<std::string> names = exports::MaterialFileNames(materials, format);
+  std::vector<PlannedOutput> outs;
+  for (const std::string& n : names) {
+    outs.push_back({dir / n, "-o"});
+    if (format == exports::Format::kGltf) {
+      outs.push_back({(dir / n).replace_extension(".bin"), "-o (its .bin)"});
+    }
+  }
+  MakeOutputFolder(dir);
+  CheckOutputs({o.fits}, outs);
+  for (std::size_t i = 0; i < chosen.size(); ++i) {
+    NoteChosenFactorization(entries, *chosen[i], o);
+    WriteOne(*chosen[i], o, format, dir / names[i]);
+  }
+  return kExitOk;
+}
+
 int RunExport(const ExportOptions& o) {
   const exports::Format format = exports::FormatFromString(o.format);
   if (o.out == "-") {
@@ -59,6 +136,7 @@ int RunExport(const ExportOptions& o) {
         "-o -: export writes files (a .gltf has its .bin beside it); give a file "
         "name");
   }
+  if (NamesFolder(o.out)) return RunExportFolder(o, format);
   if (IsFactorSidecar(o.fits)) return RunFactorExport(o, format);
   std::vector<PlannedOutput> outs = {{o.out, "-o"}};
   if (format == exports::Format::kGltf) {
@@ -74,28 +152,8 @@ int RunExport(const ExportOptions& o) {
       throw InputError(o.fits, err.what());  // which fits hold no such entry
     }
   }();
-  for (const FitReportEntry& c : entries) {
-    if (c.chosen && c.factorization && c.material == e.material && o.model.empty()) {
-      fmt::print(stderr,
-                 "brdfit: export: note: the approximation chosen for {} is a factorization ({}); "
-                 "this exports the analytic fit {} (the factorization: brdfit export {} "
-                 "--format threejs)\n",
-                 c.material, c.factorization->form, e.result.model, c.factorization->sidecar);
-    }
-  }
-  const std::string glsl =
-      format == exports::Format::kThreejs ? preview::AnalyticBrdfSource(e.result.model) : "";
-  const exports::ExportOutcome r = exports::WriteExport(e, o.fits, format, o.out, glsl);
-  for (const std::string& a : r.fidelity.approximations) {
-    fmt::print(stderr, "brdfit: export: approximate: {}\n", a);
-  }
-  if (!o.quiet) {
-    std::string files;
-    for (const auto& p : r.written) files += (files.empty() ? "" : ", ") + p.string();
-    fmt::print("{} {} ({}) -> {} [{}]\n", TerminalSafe(e.material), e.result.model,
-               TerminalSafe(e.source), TerminalSafe(files),
-               r.fidelity.Exact() ? "exact" : "approximate");
-  }
+  NoteChosenFactorization(entries, e, o);
+  WriteOne(e, o, format, o.out);
   return kExitOk;
 }
 
@@ -118,7 +176,11 @@ Registrar reg{
                      "fit to export (default: the one exact for the target, lambert+ggx-hc; "
                      "lambert+ggx for mitsuba and blender; else the chosen fit; threejs: any "
                      "model, the chosen fit)");
-      sub.add_option("-o,--out", o->out, "output file")->required();
+      sub.add_option("-o,--out", o->out,
+                     "output file; or a folder (one that exists, or a name ending in '/'): "
+                     "every material of the fits (or --material's), one file each, named "
+                     "after the material")
+          ->required();
       sub.add_flag("-q,--quiet", o->quiet, "no summary line");
       sub.footer(
           "Exit codes: 0 ok, 2 bad input or output. Exportable models: lambert+ggx-hc, "
@@ -126,7 +188,8 @@ Registrar reg{
           "docs/exports.md has the "
           "mappings.\n"
           "Examples:\n  brdfit fit gold.binary --model ggx-hc --json fits.json\n"
-          "  brdfit export fits.json --format glb -o gold.glb");
+          "  brdfit export fits.json --format glb -o gold.glb\n"
+          "  brdfit export fits.h5 --format pbrt -o scenes/");
       return [o] { return RunExport(*o); };
     }};
 

@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <cctype>
 #include <stdexcept>
 
 #include "core/error.h"
@@ -28,6 +29,62 @@ Format FormatFromString(const std::string& s) {
   if (s == "blender") return Format::kBlender;
   if (s == "threejs") return Format::kThreejs;
   throw InputError("--format '" + s + "': expected gltf, glb, mitsuba, pbrt, blender or threejs");
+}
+
+const char* FormatExtension(Format format) {
+  switch (format) {
+    case Format::kGltf:
+      return ".gltf";
+    case Format::kGlb:
+      return ".glb";
+    case Format::kMitsuba:
+      return ".xml";
+    case Format::kPbrt:
+      return ".pbrt";
+    case Format::kBlender:
+      return ".py";
+    case Format::kThreejs:
+      return ".mjs";
+  }
+  throw std::logic_error("FormatExtension: unknown format");
+}
+
+std::vector<std::string> MaterialsOf(const std::vector<FitReportEntry>& entries) {
+  std::vector<std::string> materials;
+  for (const auto& e : entries) {
+    if (std::find(materials.begin(), materials.end(), e.material) == materials.end()) {
+      materials.push_back(e.material);
+    }
+  }
+  return materials;
+}
+
+std::vector<std::string> MaterialFileNames(const std::vector<std::string>& materials,
+                                           Format format) {
+  constexpr std::size_t kMaxStem = 96;
+  auto lower = [](std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+  };
+  std::vector<std::string> names, taken;
+  for (const std::string& m : materials) {
+    std::string stem;
+    for (const char c : m) {
+      const bool ok =
+          std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-';
+      stem += ok && static_cast<unsigned char>(c) < 0x80 ? c : '_';
+      if (stem.size() == kMaxStem) break;
+    }
+    if (!stem.empty() && (stem[0] == '.' || stem[0] == '-')) stem[0] = '_';
+    if (stem.empty()) stem = "material";
+    std::string name = stem;
+    for (int k = 2; std::find(taken.begin(), taken.end(), lower(name)) != taken.end(); ++k) {
+      name = stem + "-" + std::to_string(k);
+    }
+    taken.push_back(lower(name));
+    names.push_back(name + FormatExtension(format));
+  }
+  return names;
 }
 
 const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,

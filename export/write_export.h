@@ -28,6 +28,21 @@ const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
                                   const std::string& material, const std::string& model,
                                   Format format);
 
+// The file extension of a format's main output: ".gltf", ".glb", ".xml" (Mitsuba 3), ".pbrt",
+// ".py" (Blender), ".mjs" (three.js).
+const char* FormatExtension(Format format);
+
+// The materials of `entries` in the order they first appear.
+std::vector<std::string> MaterialsOf(const std::vector<FitReportEntry>& entries);
+
+// One file name per material for `export -o DIR`: the name with every character outside
+// [A-Za-z0-9._-] replaced by '_' (no path separator, no shell or markup character), a leading
+// '.' or '-' replaced too (no hidden file, no option), at most 96 characters, "material" when
+// nothing is left; a name already given (case-insensitively: the file systems that fold case)
+// gets "-2", "-3", ...; then the format's extension. In the order given.
+std::vector<std::string> MaterialFileNames(const std::vector<std::string>& materials,
+                                           Format format);
+
 struct ExportOutcome {
   std::vector<std::filesystem::path> written;
   Fidelity fidelity;
