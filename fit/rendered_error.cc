@@ -162,6 +162,39 @@ RenderedReference PrepareRenderedReference(const Table& measured,
   return PrepareRenderedReference(measured, MakeRenderedPlan(measured.grid, options));
 }
 
+namespace {
+
+// The body's pixels of each region but the rim (RenderedReference::body): the compared pixels
+// (Y_m above luminance_floor times the peak Y_m of their light's image, as ScoreRadiances) at or
+// below the region's median Y_m (the upper median, as Percentile).
+std::array<std::vector<std::size_t>, kRenderedRegions> BodyPixels(const RenderedReference& ref) {
+  std::array<std::vector<std::size_t>, kRenderedRegions> compared, body;
+  for (int k = 0; k < ref.counts.num_lights; ++k) {
+    const auto g = static_cast<std::size_t>(RegionOfLight(ref.counts.lights[k].light_deg));
+    if (g == static_cast<std::size_t>(LightRegion::kRim)) continue;
+    double peak_y = 0;
+    for (std::size_t i = ref.begin[k]; i < ref.begin[k + 1]; ++i) {
+      peak_y = std::max(peak_y, Luminance(ref.pixels[i].measured.data()));
+    }
+    for (std::size_t i = ref.begin[k]; i < ref.begin[k + 1]; ++i) {
+      if (Luminance(ref.pixels[i].measured.data()) > ref.luminance_floor * peak_y) {
+        compared[g].push_back(i);
+      }
+    }
+  }
+  for (std::size_t g = 0; g < compared.size(); ++g) {
+    std::vector<double> y;
+    for (const std::size_t i : compared[g]) y.push_back(Luminance(ref.pixels[i].measured.data()));
+    const double median = Percentile(y, 50);
+    for (const std::size_t i : compared[g]) {
+      if (Luminance(ref.pixels[i].measured.data()) <= median) body[g].push_back(i);
+    }
+  }
+  return body;
+}
+
+}  // namespace
+
 RenderedReference PrepareRenderedReference(const Table& measured, const RenderedPlan& plan) {
   if (!(plan.grid == measured.grid)) {
     throw std::invalid_argument("rendered error: plan of another grid");
@@ -193,6 +226,7 @@ RenderedReference PrepareRenderedReference(const Table& measured, const Rendered
     r.lit_pixels += le.lit_pixels;
     r.masked_pixels += le.masked_pixels;
   }
+  ref.body = BodyPixels(ref);
   return ref;
 }
 
@@ -221,25 +255,19 @@ std::vector<double> Radiances(const RenderedReference& ref, const BrdfFunction& 
   return radiance;
 }
 
-// The body's colour over one region's compared pixels (RenderedError::body_color_error): the
-// pixels at or below the median measured luminance (the body, away from the highlight), their
-// measured and approximated radiances summed per channel, each sum divided by its own
-// luminance (Rec. 709 weights): the body's colour without its brightness, which the median
-// luminance error already judges. The largest |a_c - m_c| / m_c over the channels; a channel
-// the body hardly has (m_c below 1 % of its brightest) is measured against that 1 %: its
-// relative error is noise, its absolute one is not. 0 without compared pixels or when either
-// body is black (a black approximation's error is the luminance's to judge).
+// The body's colour over one region's body pixels (RenderedReference::body;
+// RenderedError::body_color_error): their measured and approximated radiances summed per
+// channel, each sum divided by its own luminance (Rec. 709 weights): the body's colour without
+// its brightness, which the median luminance error already judges. The largest
+// |a_c - m_c| / m_c over the channels; a channel the body hardly has (m_c below 10 % of its
+// brightest) is measured against that 10 %: a red body's blue of 0.02 against 0.03 is not a
+// colour a viewer sees. 0 without body pixels or when either body is black (a black
+// approximation's error is the luminance's to judge).
 // L: 6 numbers per pixel (measured RGB, then approximated RGB).
-double BodyColorError(const double* L, const std::vector<std::size_t>& compared) {
-  if (compared.empty()) return 0;
-  std::vector<double> y(compared.size());
-  for (std::size_t j = 0; j < compared.size(); ++j) y[j] = Luminance(L + 6 * compared[j]);
-  std::vector<double> sorted = y;
-  const double median = Percentile(sorted, 50);
+double BodyColorError(const double* L, const std::vector<std::size_t>& body) {
   std::array<double, 3> m{}, a{};
-  for (std::size_t j = 0; j < compared.size(); ++j) {
-    if (y[j] > median) continue;
-    const double* p = L + 6 * compared[j];
+  for (const std::size_t i : body) {
+    const double* p = L + 6 * i;
     for (int c = 0; c < 3; ++c) {
       m[c] += p[c];
       a[c] += p[3 + c];
@@ -277,7 +305,6 @@ RenderedError ScoreRadiances(const RenderedReference& ref, const std::vector<dou
     double sq = 0, peak = 0;
     std::size_t lit = 0;
     std::vector<double> errors;
-    std::vector<std::size_t> compared;  // pixel indices, for the body's colour
   };
   std::array<RegionSums, kRenderedRegions> region_sums;
   all_lum.reserve(r.lit_pixels);
@@ -306,7 +333,6 @@ RenderedError ScoreRadiances(const RenderedReference& ref, const std::vector<dou
       if (!(ym > ref.luminance_floor * peak_y)) continue;
       // |x| / y == |x / y| exactly for y > 0: the signed error's magnitude is the metric's.
       errors.push_back(std::abs(Luminance(m + 3) - ym) / ym);
-      region_sums[static_cast<std::size_t>(RegionOfLight(le.light_deg))].compared.push_back(i);
       if (pixel_errors) (*pixel_errors)[i] = (Luminance(m + 3) - ym) / ym;
     }
     le.compared_pixels = errors.size();
@@ -327,11 +353,9 @@ RenderedError ScoreRadiances(const RenderedReference& ref, const std::vector<dou
     RegionSums& rs = region_sums[g];
     r.regions[g].psnr_db = Psnr(rs.peak, rs.sq / (3.0 * static_cast<double>(rs.lit)));
     r.regions[g].median_rel_error = Percentile(rs.errors, 50);
-    // The rim's body is not the body's colour: at theta_d > 62.5 deg its dim pixels are grazing
-    // and whiten with the specular's Fresnel rise (docs/accuracy.md, "The body's colour").
-    if (g != static_cast<std::size_t>(LightRegion::kRim)) {
-      r.body_color_error = std::max(r.body_color_error, BodyColorError(L, rs.compared));
-    }
+    // ref.body holds no rim pixels: the rim's dim pixels are grazing and whiten with the
+    // specular's Fresnel rise (docs/accuracy.md, "The body's colour").
+    r.body_color_error = std::max(r.body_color_error, BodyColorError(L, ref.body[g]));
   }
   r.below_floor_pixels = r.lit_pixels - r.compared_pixels;
   r.psnr_db = Psnr(r.peak, sq_sum / (3.0 * static_cast<double>(r.lit_pixels)));

@@ -64,6 +64,10 @@ struct RenderedReference {
   std::vector<Pixel> pixels;           // light after light
   std::vector<Masked> masked;          // lit pixels whose measured lookup is invalid
   std::vector<std::size_t> begin;      // light k: pixels [begin[k], begin[k + 1])
+  // Per region, the body's pixels (RenderedError::body_color_error): those compared (Y_m above
+  // the floor of their light's image) at or below the region's median Y_m; empty for the rim.
+  // Measured quantities only, so fixed per table.
+  std::array<std::vector<std::size_t>, kRenderedRegions> body;
   double luminance_floor = 0, exposure_percentile = 0;
   bool Empty() const { return pixels.empty() && counts.num_lights == 0; }
 };
