@@ -181,7 +181,7 @@ int main(int argc, char** argv) {
     }
   }
   // Multi-lobe fits against their single lobe at the default budget (docs/fitting.md, "Speed
-  // against error": issue 18 asks for two- and three-lobe fits within 3x one lobe).
+  // against error": two- and three-lobe fits are to cost within 3x one lobe).
   for (const BenchTable& t : tables) {
     for (const char* m : {"lambert+lafortune", "lambert+lafortune+lafortune+lafortune",
                           "lambert+ggx+ggx"}) {

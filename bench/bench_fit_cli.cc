@@ -1,4 +1,4 @@
-// Whole-command time and peak memory of `brdfit fit` (issue 18): what a user waits for, from
+// Whole-command time and peak memory of `brdfit fit` (docs/scale.md): what a user waits for, from
 // process start to exit, with the report's stage breakdown (load, prepare, initializer, solve,
 // metrics) beside it.
 //

@@ -1,10 +1,10 @@
-// Speed of preparing a table for fitting (fit/fitter.h PrepareTable, issue 18 item 1) on the
+// Speed of preparing a table for fitting (fit/fitter.h PrepareTable, docs/fitting.md) on the
 // MERL grid (90 x 90 x 180), one thread, default sample options (stride:32, 80-degree cut-off,
 // bin-measure weights), split into its stages: the rendered metric's reference
 // (PrepareRenderedReference), the metric set (PrepareMetricSamples), the fit set (SelectBudget)
 // and the loss constants (PrepareLoss), and the whole PrepareTable without and with a warm
-// PrepareCache (fit/prepare_cache.h) (the second table of a batch). Table: the synthetic Lambert + GGX table of
-// bench_fit (10 % holes), so that the mask is not the grid's.
+// PrepareCache (fit/prepare_cache.h) (the second table of a batch). Table: the synthetic Lambert +
+// GGX table of bench_fit (10 % holes), so that the mask is not the grid's.
 #include <benchmark/benchmark.h>
 
 #include "bench/bench_tables.h"

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""A fit through Python against the same fit through the CLI (issue 16: "a fit through Python
-costs no more than through the CLI").
+"""A fit through Python against the same fit through the CLI (docs/python.md: a fit through
+Python costs no more than through the CLI).
 
   PYTHONPATH=build/python python3 bench/bench_python.py build/brdfit [nbrdf:NAME | table] [budget]
 

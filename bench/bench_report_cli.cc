@@ -1,5 +1,5 @@
 // Whole-command time of `brdfit report` and `brdfit compare` on one material with many fits
-// (issue 14 item 8: they grew faster than quadratically with the fits of a material).
+// (docs/reliability.md: both must grow no faster than linearly with the fits of a material).
 //
 //   bench_report_cli [--fits 300,600,3000] [--repeats 3] [--timeout 120] [--brdfit PATH]
 //                    [--keep DIR]   (write the inputs into DIR and keep them, for profiling)
