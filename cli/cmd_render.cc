@@ -46,6 +46,7 @@ struct RenderOptions {
   bool explain = false;
   bool compare = false;
   bool window = false;
+  bool quiet = false;
   int frames = 0;
 };
 
@@ -104,7 +105,7 @@ int RunWindow(const RenderOptions& o, const preview::Scene& scene,
                           r.last_screen.width > 0 ? r.last_screen : r.last_display);
   }
   if (o.explain) PrintExplain(*log);
-  if (!o.out.empty() && r.renders > 0) fmt::print("wrote {}\n", o.out);
+  if (!o.out.empty() && r.renders > 0 && !o.quiet) fmt::print("wrote {}\n", o.out);
   return kExitOk;
 }
 
@@ -156,7 +157,7 @@ int RunRender(RenderOptions o) {
   log.Add("note", fmt::format("materials {:.1f} ms, render {:.1f} ms ({}x{})", ms(t0, t1),
                               ms(t1, t2), scene.width, scene.height));
   if (o.explain) PrintExplain(log);
-  fmt::print("wrote {}\n", o.out);
+  if (!o.quiet) fmt::print("wrote {}\n", o.out);
   return kExitOk;
 }
 
@@ -183,6 +184,7 @@ Registrar reg{
           ->check(CLI::Range(0, std::numeric_limits<int>::max()));  // not a 300-digit bound
       sub.add_flag("--compare", opts->compare,
                    "measured | fitted | factored | error panels (scene 'comparison')");
+      sub.add_flag("-q,--quiet", opts->quiet, "no 'wrote' line (--explain still prints)");
       sub.footer(
           "Exit codes: 0 written, 2 bad scene or input (also a fit the scene needs that fails).\n"
           "Examples:\n  brdfit render data/scenes/ggx_directional.json -o ggx.png\n"

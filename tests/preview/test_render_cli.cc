@@ -196,6 +196,13 @@ TEST_F(RenderCli, CullsLightsThatReachNothing) {
   const Image img = ReadExr(dir_ / "out.exr");
   EXPECT_EQ(img.width, 32);
   EXPECT_GT(img.At(16, 16)[0], 0.0f);  // lit by 'near'
+  EXPECT_NE(r.out.find("wrote "), std::string::npos) << r.out;
+  // -q: the image, and no 'wrote' line.
+  const CliRun q = RunCli("render " + (dir_ / "scene.json").string() + " -o " +
+                          (dir_ / "q.png").string() + " -q");
+  ASSERT_EQ(q.code, 0) << q.out;
+  EXPECT_EQ(q.out.find("wrote"), std::string::npos) << q.out;
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "q.png"));
 }
 
 // What CI renders headless: a 512x512 four-panel comparison (measured | fit | factored |
