@@ -53,6 +53,27 @@ int RunFactorExport(const ExportOptions& o, exports::Format format) {
   return kExitOk;
 }
 
+// The files an export to `out` writes: it, and for glTF its .bin beside it.
+void AddPlannedOutputs(const fs::path& out, exports::Format format,
+                       std::vector<PlannedOutput>* outs) {
+  outs->push_back({out, "-o"});
+  if (format == exports::Format::kGltf) {
+    outs->push_back({fs::path(out).replace_extension(".bin"), "-o (its .bin)"});
+  }
+}
+
+// exports::SelectEntry, its error naming the fits file (which fits hold no such entry).
+const FitReportEntry& Select(const std::vector<FitReportEntry>& entries,
+                             const std::string& material, const ExportOptions& o,
+                             exports::Format format) {
+  try {
+    return exports::SelectEntry(entries, material, o.model, format);
+  } catch (const InputError& err) {
+    if (!err.path().empty()) throw;
+    throw InputError(o.fits, err.what());
+  }
+}
+
 // -o names a folder: one that exists, or a name ending in '/'.
 bool NamesFolder(const std::string& out) {
   return out.ends_with('/') || fs::is_directory(out);
@@ -104,22 +125,10 @@ int RunExportFolder(const ExportOptions& o, exports::Format format) {
   std::vector<std::string> materials = exports::MaterialsOf(entries);
   if (!o.material.empty()) materials = {o.material};
   std::vector<const FitReportEntry*> chosen;
-  for (const std::string& m : materials) {
-    try {
-      chosen.push_back(&exports::SelectEntry(entries, m, o.model, format));
-    } catch (const InputError& err) {
-      if (!err.path().empty()) throw;
-      throw InputError(o.fits, err.what());
-    }
-  }
+  for (const std::string& m : materials) chosen.push_back(&Select(entries, m, o, format));
   const std::vector<std::string> names = exports::MaterialFileNames(materials, format);
   std::vector<PlannedOutput> outs;
-  for (const std::string& n : names) {
-    outs.push_back({dir / n, "-o"});
-    if (format == exports::Format::kGltf) {
-      outs.push_back({(dir / n).replace_extension(".bin"), "-o (its .bin)"});
-    }
-  }
+  for (const std::string& n : names) AddPlannedOutputs(dir / n, format, &outs);
   MakeOutputFolder(dir);
   CheckOutputs({o.fits}, outs);
   for (std::size_t i = 0; i < chosen.size(); ++i) {
@@ -138,20 +147,11 @@ int RunExport(const ExportOptions& o) {
   }
   if (NamesFolder(o.out)) return RunExportFolder(o, format);
   if (IsFactorSidecar(o.fits)) return RunFactorExport(o, format);
-  std::vector<PlannedOutput> outs = {{o.out, "-o"}};
-  if (format == exports::Format::kGltf) {
-    outs.push_back({fs::path(o.out).replace_extension(".bin"), "-o (its .bin)"});
-  }
+  std::vector<PlannedOutput> outs;
+  AddPlannedOutputs(o.out, format, &outs);
   CheckOutputs({o.fits}, outs);
   const std::vector<FitReportEntry> entries = ReadFitsAnyFormat(o.fits);
-  const FitReportEntry& e = [&]() -> const FitReportEntry& {
-    try {
-      return exports::SelectEntry(entries, o.material, o.model, format);
-    } catch (const InputError& err) {
-      if (!err.path().empty()) throw;
-      throw InputError(o.fits, err.what());  // which fits hold no such entry
-    }
-  }();
+  const FitReportEntry& e = Select(entries, o.material, o, format);
   NoteChosenFactorization(entries, e, o);
   WriteOne(e, o, format, o.out);
   return kExitOk;

@@ -154,6 +154,8 @@ struct RenderedSummaryField {
   // Required when the summary is ok. An optional number absent from a file is read as NaN
   // ("not computed") and a NaN one is not written (a column left empty).
   bool required = true;
+  // An optional number that e does not hold: every writer leaves it out.
+  bool NotComputed(const RenderedError& e) const { return !required && std::isnan(e.*value); }
 };
 inline constexpr RenderedSummaryField kRenderedSummary[] = {
     {"psnr_db", "dB", "linear PSNR over all lit pixels of all light images",

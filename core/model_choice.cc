@@ -71,12 +71,13 @@ std::optional<ModelChoice> ChooseCandidate(const std::vector<ChoiceCandidate>& c
     score[i] = RenderedScoreDb(*candidates[i].fit);
   }
   // Fits whose body colour is off take part only when every fit's is.
+  auto holds = [&](std::size_t i) { return BodyColorHolds(candidates[i].fit->metrics.rendered); };
+  bool any_holds = false;
+  for (std::size_t i = 0; i < candidates.size(); ++i) any_holds |= score[i] && holds(i);
   std::size_t set_aside = 0;
-  if (std::any_of(candidates.begin(), candidates.end(), [&](const ChoiceCandidate& c) {
-        return RenderedScoreDb(*c.fit) && BodyColorHolds(c.fit->metrics.rendered);
-      })) {
+  if (any_holds) {
     for (std::size_t i = 0; i < candidates.size(); ++i) {
-      if (score[i] && !BodyColorHolds(candidates[i].fit->metrics.rendered)) {
+      if (score[i] && !holds(i)) {
         score[i].reset();
         ++set_aside;
       }

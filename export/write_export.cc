@@ -90,12 +90,7 @@ std::vector<std::string> MaterialFileNames(const std::vector<std::string>& mater
 const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
                                   const std::string& material, const std::string& model,
                                   Format format) {
-  std::vector<std::string> materials;
-  for (const auto& e : entries) {
-    if (std::find(materials.begin(), materials.end(), e.material) == materials.end()) {
-      materials.push_back(e.material);
-    }
-  }
+  const std::vector<std::string> materials = MaterialsOf(entries);
   std::string list;
   for (const auto& m : materials) list += (list.empty() ? "" : ", ") + m;
   if (material.empty() && materials.size() > 1) {

@@ -69,7 +69,7 @@ void WriteRendered(const H5::Group& mg, const RenderedError& e) {
   WriteIntAttr(rg, "ok", e.ok ? 1 : 0);
   WriteStringAttr(rg, "problem", e.problem);
   for (const RenderedSummaryField& f : kRenderedSummary) {
-    if (!f.required && std::isnan(e.*f.value)) continue;  // not computed: not written
+    if (f.NotComputed(e)) continue;
     DoubleAttr(rg, f.name, e.*f.value);
   }
   WriteIntAttr(rg, "resolution", e.resolution);

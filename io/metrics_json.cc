@@ -8,7 +8,7 @@ namespace brdfit {
 nlohmann::ordered_json RenderedErrorJson(const RenderedError& e) {
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   for (const RenderedSummaryField& f : kRenderedSummary) {
-    if (!f.required && std::isnan(e.*f.value)) continue;  // not computed: not written
+    if (f.NotComputed(e)) continue;
     j[f.name] = e.*f.value;
   }
   j["ok"] = e.ok;

@@ -168,8 +168,7 @@ std::string BenchCsvText(const std::vector<BenchPoint>& points) {
           break;
         case BenchKind::kRenderedSummary:
           for (const RenderedSummaryField& f : kRenderedSummary) {
-            const bool absent = !f.required && std::isnan(re.*f.value);  // not computed
-            fields.push_back(absent ? std::string() : Rendered(re, re.*f.value));
+            fields.push_back(f.NotComputed(re) ? std::string() : Rendered(re, re.*f.value));
           }
           break;
         case BenchKind::kRegions:

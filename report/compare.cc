@@ -208,7 +208,7 @@ nlohmann::ordered_json MetricsJson(const FitMetrics& m) {
   if (r.ok) {
     nlohmann::ordered_json& rj = j["rendered"];
     for (const RenderedSummaryField& f : kRenderedSummary) {
-      if (!f.required && std::isnan(r.*f.value)) continue;  // not computed
+      if (f.NotComputed(r)) continue;
       rj[f.name] = Num(r.*f.value);
     }
     rj["regions"] = RenderedRegionsJson(r);

@@ -10,7 +10,6 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
-#include <sstream>
 #include <string>
 
 #include "cli_process.h"
@@ -22,19 +21,13 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using testing_cli::CliRun;
+using testing_cli::ReadAll;
 
 std::set<std::string> FilesIn(const fs::path& dir) {
   std::set<std::string> names;
   if (!fs::exists(dir)) return names;
   for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
   return names;
-}
-
-std::string Slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 // tests/export/data/fits.json (two materials, four fits each) with its second material's fits
@@ -76,8 +69,8 @@ TEST(ExportFolder, EveryMaterialOneFileNamedSafely) {
   // Nothing outside the folder but the inputs and logs.
   EXPECT_EQ(FilesIn(dir.path()), (std::set<std::string>{"fits.json", "scenes", "a.log"}));
   // Each file is its material's scene: the source and material are named inside.
-  EXPECT_THAT(Slurp(out / "red-phenolic.pbrt"), HasSubstr("red-phenolic"));
-  EXPECT_THAT(Slurp(out / "gold-metallic-paint.pbrt"), HasSubstr("gold-metallic-paint"));
+  EXPECT_THAT(ReadAll(out / "red-phenolic.pbrt"), HasSubstr("red-phenolic"));
+  EXPECT_THAT(ReadAll(out / "gold-metallic-paint.pbrt"), HasSubstr("gold-metallic-paint"));
   EXPECT_THAT(r.log, HasSubstr("-> " + (out / "_rf.pbrt").string()));
 
   // glTF: each .gltf with its own .bin; an existing folder needs no trailing '/'.
@@ -102,7 +95,7 @@ TEST(ExportFolder, EveryMaterialOneFileNamedSafely) {
 TEST(ExportFolder, AMaterialWithNothingToExportStopsBeforeAnythingIsWritten) {
   ScratchDir dir;
   fs::path fits = FitsWithMaterials(dir.path(), {"broken"});
-  nlohmann::ordered_json j = nlohmann::ordered_json::parse(Slurp(fits));
+  nlohmann::ordered_json j = nlohmann::ordered_json::parse(ReadAll(fits));
   for (auto& f : j["fits"]) {
     if (f["material"] == "broken") f["status"] = "failed";
   }
