@@ -5,6 +5,9 @@
 //   front  a in {10, 40, 55, 75}      theta_d  5 - 37.5 deg
 //   side   a in {88, 100, 112, 122}   theta_d 44 - 61 deg
 //   rim    a in {130, 142, 155, 168}  theta_d 65 - 84 deg (light from behind the sphere)
+//   environment: the judge's sky with another sun (35 deg from the view, to the right and up,
+//          irradiance 6) and other directions (seed 7), at half the resolution
+//          (fit/rendered_environment.h)
 // each region's four images pooled (one PSNR, one median relative luminance error), rendered
 // at 96 x 96 (the fit's judge renders 64 x 64, so a lobe narrower than a pixel cannot hide
 // between the judge's pixel centres).
@@ -43,7 +46,8 @@ using namespace brdfit;
 
 namespace {
 
-constexpr const char* kRegionNames[3] = {"front", "side", "rim"};
+constexpr int kRegions = 4;
+const char* const* kRegionNames = kRenderedRegionNames;
 const std::array<std::vector<double>, 3> kHeldOut = {std::vector<double>{10, 40, 55, 75},
                                                      std::vector<double>{88, 100, 112, 122},
                                                      std::vector<double>{130, 142, 155, 168}};
@@ -99,22 +103,34 @@ int main(int argc, char** argv) {
   std::mutex mu;
   std::atomic<std::size_t> next{0};
   struct Row {
-    std::array<double, 3> psnr{}, median{}, body{};
+    std::array<double, kRegions> psnr{}, median{}, body{};
     double judge_s = 0, solve_ms = 0;
   };
   std::vector<Row> rows;
   // The fit under the held-out lights, region by region, into row; the line printed for it.
   const auto score_held_out = [&](const Table& table, const FitResult& f, Row* row) {
     std::string line;
-    for (int r = 0; r < 3; ++r) {
+    for (int r = 0; r < kRegions; ++r) {
       RenderedErrorOptions o;
       o.resolution = res;
-      o.light_angles_deg = kHeldOut[r];
+      const bool env = r == static_cast<int>(LightRegion::kEnvironment);
+      o.light_angles_deg = env ? std::vector<double>{0} : kHeldOut[r];
+      if (env) {
+        o.environment.sun_polar_deg = 35;
+        o.environment.sun_azimuth_deg = 40;
+        o.environment.sun_irradiance = 6;
+        o.environment.seed = 7;
+        o.environment.resolution = std::max(8, res / 2);
+      } else {
+        o.environment.samples = 0;
+      }
       const RenderedError e =
           ComputeRenderedError(table, ModelBrdf(*FindModel(f.model), f.params), o);
-      row->psnr[r] = e.ok ? e.psnr_db : 0;
-      row->median[r] = e.ok ? e.median_rel_error : 1;
-      row->body[r] = e.ok ? e.body_color_error : 1;
+      const RenderedRegionError& g = e.regions[static_cast<std::size_t>(r)];
+      row->psnr[r] = e.ok ? (env ? g.psnr_db : e.psnr_db) : 0;
+      row->median[r] = e.ok ? (env ? g.median_rel_error : e.median_rel_error) : 1;
+      // The body's colour is the directional images' (core/metrics.h): none for the environment.
+      row->body[r] = e.ok ? (env ? 0 : e.body_color_error) : 1;
       line += fmt::format("  {} {:5.1f} dB {:5.1f}% body {:4.0f}%", kRegionNames[r], row->psnr[r],
                           100 * row->median[r], 100 * row->body[r]);
     }
@@ -193,7 +209,7 @@ int main(int argc, char** argv) {
   std::vector<double> solve;
   for (const Row& row : rows) {
     bool ok = true, off = false;
-    for (int r = 0; r < 3; ++r) {
+    for (int r = 0; r < kRegions; ++r) {
       ok = ok && row.psnr[r] >= 30 && row.median[r] <= 0.15;
       off = off || row.body[r] > kBodyColorTolerance;
     }
@@ -201,7 +217,7 @@ int main(int argc, char** argv) {
     body_off += off;
     solve.push_back(row.solve_ms);
   }
-  for (int r = 0; r < 3; ++r) {
+  for (int r = 0; r < kRegions; ++r) {
     double sum = 0;
     int ge30 = 0, le15 = 0, body_le = 0;
     std::vector<double> med, body;
@@ -214,7 +230,7 @@ int main(int argc, char** argv) {
       body.push_back(row.body[r]);
     }
     fmt::print(
-        "REGION {:<5} n {} | mean PSNR {:.2f} dB | >= 30 dB {} | median lum <= 15 % {} | "
+        "REGION {:<11} n {} | mean PSNR {:.2f} dB | >= 30 dB {} | median lum <= 15 % {} | "
         "median of medians {:.1f} % | body colour within {:.0f} % {} (median {:.1f} %)\n",
         kRegionNames[r], rows.size(), sum / n, ge30, le15, 100 * Median(med),
         100 * kBodyColorTolerance, body_le, 100 * Median(body));

@@ -69,8 +69,8 @@ std::string LossOf(const FitReportEntry& e) {
 }
 
 void PrintTable(std::FILE* out, const std::vector<FitReportEntry>& entries) {
-  fmt::print(out, "  {:<28} {:<26} {:<8} {:>6} {:>7} {:>7} {:>17} {:>9} {:>5} {:>9} {}\n",
-             "material", "model", "loss", "S_dB", "psnr_dB", "med_lum", "front/side/rim_dB",
+  fmt::print(out, "  {:<28} {:<26} {:<8} {:>6} {:>7} {:>7} {:>22} {:>9} {:>5} {:>9} {}\n",
+             "material", "model", "loss", "S_dB", "psnr_dB", "med_lum", "front/side/rim/env_dB",
              "log_rmse", "iter", "solve_ms", "status");
   bool any_chosen = false;
   for (const FitReportEntry& e : entries) {
@@ -85,7 +85,7 @@ void PrintTable(std::FILE* out, const std::vector<FitReportEntry>& entries) {
                  (g.lights > 0 ? fmt::format("{:.1f}", g.psnr_db) : std::string("-"));
     }
     any_chosen = any_chosen || e.chosen;
-    fmt::print(out, "{} {:<28} {:<26} {:<8} {:>6} {:>7} {:>7} {:>17} {:>9.5f} {:>5} {:>9.1f} {}\n",
+    fmt::print(out, "{} {:<28} {:<26} {:<8} {:>6} {:>7} {:>7} {:>22} {:>9.5f} {:>5} {:>9.1f} {}\n",
                e.chosen ? "*" : " ", TerminalSafe(e.material), r.model, LossOf(e), score, psnr, lum,
                re.ok ? regions : "-", r.metrics.log_rmse, r.iterations,
                r.times.init + r.times.solve, ToString(r.status));
@@ -99,7 +99,7 @@ void PrintTable(std::FILE* out, const std::vector<FitReportEntry>& entries) {
   if (any_chosen) {
     fmt::print(out,
                "* the fit chosen for its table by rendered error S over front, side and rim "
-               "light (docs/accuracy.md)\n");
+               "light and an environment (docs/accuracy.md)\n");
   }
 }
 

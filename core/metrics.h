@@ -56,11 +56,13 @@ struct RenderedLightError {
 };
 
 // The metric over one region of the domain (core/rendered_regions.h): its lights' images
-// pooled, as the whole metric pools every image.
-inline constexpr int kRenderedRegions = 3;
-inline constexpr const char* kRenderedRegionNames[kRenderedRegions] = {"front", "side", "rim"};
+// pooled, as the whole metric pools every image; the environment region is the image lit by the
+// metric's environment (fit/rendered_environment.h), which the pooled numbers leave out.
+inline constexpr int kRenderedRegions = 4;
+inline constexpr const char* kRenderedRegionNames[kRenderedRegions] = {"front", "side", "rim",
+                                                                       "environment"};
 struct RenderedRegionError {
-  int lights = 0;               // 0: no light of the metric in this region
+  int lights = 0;               // images of the region (0: not judged); 1 for the environment
   double psnr_db = 0;           // linear PSNR over the region's lit pixels, peak over its images
   double median_rel_error = 0;  // over the region's compared pixels
 };
@@ -68,7 +70,7 @@ struct RenderedRegionError {
 struct RenderedError {
   bool ok = false;  // false: see problem; the numbers are then zeros
   std::string problem;
-  double psnr_db = 0;           // linear PSNR over all lit pixels of all light images
+  double psnr_db = 0;           // linear PSNR over all lit pixels of all directional-light images
   double psnr_srgb_db = 0;      // tone-mapped (exposure, clamp, sRGB OETF) PSNR, peak 1
   double median_rel_error = 0;  // relative luminance error over all compared pixels
   double p95_rel_error = 0;

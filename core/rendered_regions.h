@@ -7,6 +7,9 @@
 //   side   80 < a <= 125 deg    theta_d 40 - 62.5 deg: light from the side
 //   rim    a > 125 deg          theta_d > 62.5 deg: light from behind, a crescent at the rim;
 //                               grazing Fresnel, sheen and retro-reflection live here
+// and a fourth region, the environment: the sphere lit by a sky and a sun from every direction
+// at once (fit/rendered_environment.h), theta_d over its whole range in one image, weighted as a
+// scene weighs it.
 // The front is what the metric judged alone before (six lights at 0 - 80 deg); side and rim
 // split the rest of theta_d's range, each lit by three lights (fit/rendered_error.h).
 //
@@ -20,11 +23,12 @@
 
 namespace brdfit {
 
-enum class LightRegion : int { kFront = 0, kSide = 1, kRim = 2 };
+enum class LightRegion : int { kFront = 0, kSide = 1, kRim = 2, kEnvironment = 3 };
 inline constexpr int kLightRegions = kRenderedRegions;
 
+// The region of a directional light: front, side or rim (never the environment).
 LightRegion RegionOfLight(double light_deg);
-const char* RegionName(LightRegion region);  // "front", "side", "rim"
+const char* RegionName(LightRegion region);  // "front", "side", "rim", "environment"
 
 struct RegionError {
   int lights = 0;  // lights of the metric in this region (0: not judged)

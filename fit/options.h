@@ -111,8 +111,11 @@ std::string OptionsJson(const SampleOptions& samples, const FitOptions& fit);
 // fits keys on it (pipeline/material_loader.cc), so a newer brdfit never reuses an older one's
 // fit. 1: until 2026-12-03; 2: the polish's rounds go on while S rises (fit/rendered_polish.h).
 // 3: the rendered judge lights the whole domain (front, side, rim; core/rendered_regions.h).
-inline constexpr int kFitEngineRevision = 3;
-// The rendered judge's name in OptionsJson: "front+side+rim" since revision 3.
-inline constexpr const char* kRenderedJudge = "front+side+rim";
+// 4: and an environment (fit/rendered_environment.h); the body's colour and narrow peaks in the
+// choice (core/model_choice.h, fit/narrow_peak.h).
+inline constexpr int kFitEngineRevision = 4;
+// The rendered judge's name in OptionsJson: "front+side+rim" in revision 3,
+// "front+side+rim+environment" since revision 4.
+inline constexpr const char* kRenderedJudge = "front+side+rim+environment";
 
 }  // namespace brdfit

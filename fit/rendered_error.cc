@@ -120,6 +120,7 @@ void CheckOptions(const RenderedErrorOptions& o) {
   if (!(o.exposure_percentile > 0 && o.exposure_percentile <= 100)) {
     bad("exposure_percentile must be in (0, 100]");
   }
+  CheckEnvironmentOptions(o.environment);
 }
 
 bool Finite3(const std::array<double, 3>& v) {
@@ -129,7 +130,8 @@ bool Finite3(const std::array<double, 3>& v) {
 }  // namespace
 
 std::size_t RenderedPlan::Bytes() const {
-  return sizeof(Pixel) * lit.size();
+  return sizeof(Pixel) * lit.size() + sizeof(EnvPixel) * env_pixels.size() +
+         sizeof(EnvSample) * env_samples.size();
 }
 
 RenderedPlan MakeRenderedPlan(const Grid& grid, const RenderedErrorOptions& options) {
@@ -152,6 +154,20 @@ RenderedPlan MakeRenderedPlan(const Grid& grid, const RenderedErrorOptions& opti
       const Vec3 wi{Dot(l, p.t), Dot(l, p.b), cos_l};
       plan.lit.push_back({wi, p.wo, cos_l, static_cast<int>(k), p.x, p.y,
                           grid.TrilinearTapsAt(RenderedLookupAngles(wi, p.wo))});
+    }
+  }
+  const EnvironmentOptions& env = options.environment;
+  if (env.samples > 0) {
+    std::size_t env_sphere = 0;
+    for (const SpherePixel& p : SpherePixels(env.resolution, options.min_cos, &env_sphere)) {
+      RenderedPlan::EnvPixel ep{p.wo, plan.env_samples.size(), 0, p.x, p.y};
+      for (const EnvironmentSample& s :
+           EnvironmentSamples(env, p.x, p.y, p.n, p.t, p.b, p.wo, options.min_cos)) {
+        plan.env_samples.push_back(
+            {s.wi, s.weight, grid.TrilinearTapsAt(RenderedLookupAngles(s.wi, p.wo))});
+      }
+      ep.end = plan.env_samples.size();
+      if (ep.end > ep.begin) plan.env_pixels.push_back(ep);
     }
   }
   return plan;
@@ -227,6 +243,21 @@ RenderedReference PrepareRenderedReference(const Table& measured, const Rendered
     r.masked_pixels += le.masked_pixels;
   }
   ref.body = BodyPixels(ref);
+  for (const RenderedPlan::EnvPixel& ep : plan.env_pixels) {
+    RenderedReference::EnvPixel out{ep.wo, {0, 0, 0}, ref.env_samples.size(), 0, ep.x, ep.y};
+    for (std::size_t j = ep.begin; j < ep.end; ++j) {
+      const RenderedPlan::EnvSample& s = plan.env_samples[j];
+      const auto m = measured.LookupTaps(s.taps);
+      if (!m || !Finite3(*m)) {
+        ++ref.env_masked_samples;
+        continue;
+      }
+      for (int c = 0; c < 3; ++c) out.measured[c] += (*m)[c] * s.weight;
+      ref.env_samples.push_back({s.wi, s.weight});
+    }
+    out.end = ref.env_samples.size();
+    if (out.end > out.begin) ref.env_pixels.push_back(out);
+  }
   return ref;
 }
 
@@ -251,6 +282,21 @@ std::vector<double> Radiances(const RenderedReference& ref, const BrdfFunction& 
       for (int c = 0; c < 3; ++c) radiance.push_back(p.measured[c]);
       for (int c = 0; c < 3; ++c) radiance.push_back(f[c] * p.cos_l);
     }
+  }
+  for (const RenderedReference::EnvPixel& p : ref.env_pixels) {
+    std::array<double, 3> sum{};
+    for (std::size_t j = p.begin; j < p.end; ++j) {
+      const RenderedReference::EnvSample& s = ref.env_samples[j];
+      const std::array<double, 3> f = approx(s.wi, p.wo);
+      if (!Finite3(f)) {
+        *problem = "the approximation is not finite at pixel (" + std::to_string(p.x) + ", " +
+                   std::to_string(p.y) + ") of the environment's image";
+        return {};
+      }
+      for (int c = 0; c < 3; ++c) sum[c] += f[c] * s.weight;
+    }
+    for (int c = 0; c < 3; ++c) radiance.push_back(p.measured[c]);
+    for (int c = 0; c < 3; ++c) radiance.push_back(sum[c]);
   }
   return radiance;
 }
@@ -356,6 +402,32 @@ RenderedError ScoreRadiances(const RenderedReference& ref, const std::vector<dou
     // ref.body holds no rim pixels: the rim's dim pixels are grazing and whiten with the
     // specular's Fresnel rise (docs/accuracy.md, "The body's colour").
     r.body_color_error = std::max(r.body_color_error, BodyColorError(L, ref.body[g]));
+  }
+  // The environment's image (its pixels follow the lights'): a region of its own, judged as the
+  // lights' regions are; not pooled into the whole metric.
+  if (!ref.env_pixels.empty()) {
+    const double* E = L + 6 * ref.pixels.size();
+    const std::size_t n = ref.env_pixels.size();
+    double peak = 0, peak_y = 0, sq = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* m = E + 6 * i;
+      for (int c = 0; c < 3; ++c) {
+        peak = std::max(peak, m[c]);
+        sq += (m[3 + c] - m[c]) * (m[3 + c] - m[c]);
+      }
+      peak_y = std::max(peak_y, Luminance(m));
+    }
+    if (!(peak > 0) || !(peak_y > 0)) return Fail(r, "the environment's measured image is black");
+    std::vector<double> errors;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* m = E + 6 * i;
+      const double ym = Luminance(m);
+      if (ym > ref.luminance_floor * peak_y) errors.push_back(std::abs(Luminance(m + 3) - ym) / ym);
+    }
+    RenderedRegionError& g = r.regions[static_cast<std::size_t>(LightRegion::kEnvironment)];
+    g.lights = 1;
+    g.psnr_db = Psnr(peak, sq / (3.0 * static_cast<double>(n)));
+    g.median_rel_error = Percentile(errors, 50);
   }
   r.below_floor_pixels = r.lit_pixels - r.compared_pixels;
   r.psnr_db = Psnr(r.peak, sq_sum / (3.0 * static_cast<double>(r.lit_pixels)));

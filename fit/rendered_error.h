@@ -17,6 +17,7 @@
 
 #include "core/metrics.h"
 #include "core/table.h"
+#include "fit/rendered_environment.h"
 #include "models/geometry.h"
 #include "models/registry.h"
 
@@ -43,6 +44,10 @@ struct RenderedErrorOptions {
   // The tone-mapped PSNR's exposure maps this percentile of the measured luminance (pooled
   // over the lit pixels of every image) to 1.
   double exposure_percentile = 99.0;
+  // The image of the environment region (fit/rendered_environment.h): its own resolution and
+  // directions; samples = 0 leaves it out. Not pooled into the whole metric's numbers (psnr_db,
+  // the medians, the tone-mapped PSNR), which stay the directional lights'.
+  EnvironmentOptions environment;
   bool operator==(const RenderedErrorOptions&) const = default;
 };
 
@@ -68,6 +73,22 @@ struct RenderedReference {
   // the floor of their light's image) at or below the region's median Y_m; empty for the rim.
   // Measured quantities only, so fixed per table.
   std::array<std::vector<std::size_t>, kRenderedRegions> body;
+  // The environment's image: per pixel its measured radiance and its directions
+  // env_samples[begin, end). A direction whose measured lookup is masked is left out of both
+  // images (counted in env_masked_samples); a pixel left without one is left out.
+  struct EnvSample {
+    Vec3 wi;
+    double weight = 0;  // EnvironmentSample::weight
+  };
+  struct EnvPixel {
+    Vec3 wo;
+    std::array<double, 3> measured;  // sum of f_m(wi, wo) weight over its directions
+    std::size_t begin = 0, end = 0;
+    int x = 0, y = 0;
+  };
+  std::vector<EnvPixel> env_pixels;
+  std::vector<EnvSample> env_samples;
+  std::size_t env_masked_samples = 0;
   double luminance_floor = 0, exposure_percentile = 0;
   bool Empty() const { return pixels.empty() && counts.num_lights == 0; }
 };
@@ -86,6 +107,19 @@ struct RenderedPlan {
   RenderedErrorOptions options;
   RenderedError counts;  // resolution, lights and their angles, sphere pixels; nothing per table
   std::vector<Pixel> lit;
+  // The environment's pixels and their directions (RenderedReference::EnvPixel).
+  struct EnvSample {
+    Vec3 wi;
+    double weight = 0;
+    TrilinearTaps taps;
+  };
+  struct EnvPixel {
+    Vec3 wo;
+    std::size_t begin = 0, end = 0;
+    int x = 0, y = 0;
+  };
+  std::vector<EnvPixel> env_pixels;
+  std::vector<EnvSample> env_samples;
   std::size_t Bytes() const;
 };
 // Throws std::invalid_argument on options outside the ranges above.

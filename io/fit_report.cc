@@ -85,7 +85,7 @@ void WriteRendered(const H5::Group& mg, const RenderedError& e) {
   DoubleArray(rg, "light_deg", deg);
   DoubleArray(rg, "light_psnr_db", psnr);
   DoubleArray(rg, "light_median_rel_error", median);
-  // Per region (core/rendered_regions.h: front, side, rim), pooled; lights 0 where none.
+  // Per region (core/rendered_regions.h: front, side, rim, environment); lights 0 where none.
   std::vector<double> region_lights, region_psnr, region_median;
   for (const RenderedRegionError& g : e.regions) {
     region_lights.push_back(g.lights);
@@ -240,14 +240,16 @@ class Reader : public hdf5::Reader {
       const std::vector<double> lights = Doubles(rg, rw, "region_lights", kRenderedRegions);
       const std::vector<double> rpsnr = Doubles(rg, rw, "region_psnr_db", kRenderedRegions);
       const std::vector<double> rmed = Doubles(rg, rw, "region_median_rel_error", kRenderedRegions);
-      if (lights.size() != kRenderedRegions || rpsnr.size() != kRenderedRegions ||
-          rmed.size() != kRenderedRegions) {
+      // Reports written before the environment region hold the three directional ones.
+      const std::size_t n = lights.size();
+      if ((n != kRenderedRegions && n != kRenderedRegions - 1) || rpsnr.size() != n ||
+          rmed.size() != n) {
         Fail(
             fmt::format("{}: region_lights, region_psnr_db and region_median_rel_error must hold "
-                        "{} values",
-                        rw, kRenderedRegions));
+                        "{} values (or {}, without the environment)",
+                        rw, kRenderedRegions, kRenderedRegions - 1));
       }
-      for (int g = 0; g < kRenderedRegions; ++g) {
+      for (std::size_t g = 0; g < n; ++g) {
         if (!(lights[g] >= 0 && lights[g] <= kRenderedMaxLights) ||
             lights[g] != std::floor(lights[g]) || rmed[g] < 0) {
           Fail(fmt::format("{}: region {} holds {} lights and median {}", rw, g, lights[g],

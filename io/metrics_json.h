@@ -16,7 +16,7 @@ namespace brdfit {
 // The rendered-image metric (docs/accuracy.md) as written under "metrics"/"rendered":
 //   {the numbers of core/metrics.h kRenderedSummary, "ok"}
 // plus "problem" when ok is false (the numbers are then zeros, as RenderedError holds them),
-// and when ok: "score_db" (S, core/model_choice.h), "regions" ({"front"|"side"|"rim":
+// and when ok: "score_db" (S, core/model_choice.h), "regions" ({"front"|"side"|"rim"|"environment":
 // {"lights", "psnr_db", "median_rel_error", "score_db"}}, the regions with lights;
 // core/rendered_regions.h) and "lights" ([{"light_deg", "psnr_db", "median_rel_error"}]).
 nlohmann::ordered_json RenderedErrorJson(const RenderedError& e);

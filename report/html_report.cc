@@ -179,7 +179,7 @@ std::string LumPct(const Entry& e) {
   return HasRendered(e) ? fmt::format("{:.1f} %", 100 * e.metrics.rendered.median_rel_error) : "–";
 }
 
-// The rendered metric's PSNR per region of the domain ("48.9 · 36.0 · 23.7", "–" for a
+// The rendered metric's PSNR per region of the domain ("48.9 · 36.0 · 23.7 · 40.2", "–" for a
 // region without lights; core/rendered_regions.h), or "–" without a rendered error.
 std::string RegionsText(const Entry& e) {
   if (!HasRendered(e)) return "–";
@@ -602,7 +602,7 @@ class Page {
     body_ +=
         "<div class=\"scroll\"><table><tr><th class=\"l\">approximation</th>"
         "<th>PSNR (dB)</th><th class=\"wrap\">median lum. err.</th>"
-        "<th class=\"wrap\">front · side · rim (dB)</th>"
+        "<th class=\"wrap\">front · side · rim · environment (dB)</th>"
         "<th class=\"l\">loss</th><th class=\"l\">budget</th><th class=\"l\">status</th>" +
         ErrorMetricHeaders() +
         "<th>cells</th>"
@@ -649,8 +649,9 @@ class Page {
     body_ += "</table></div>\n<p class=\"muted\">★ " + HtmlEscape(BestRule(pick.by)) + why +
              "; bold: best of each column; ◆ on the Pareto front of time against log_rmse. "
              "PSNR and lum. err.: the rendered-image metric (– : not computed); front, side, rim: "
-             "its PSNR under light near the camera, from the side and from behind "
-             "(docs/accuracy.md, \"Every light\"). Time: from the "
+             "its PSNR under light near the camera, from the side and from behind; environment: "
+             "lit by a sky and a sun at once (docs/accuracy.md, \"Every light\", \"The "
+             "environment\"). Time: from the "
              "loaded table to the result (fits: preparation, initializer and solve; "
              "factorizations: the whole solve). Memory: a factorization's float32 RGB textures "
              "and diffuse value; fetches: its texture reads per light, and per shaded fragment "

@@ -41,9 +41,10 @@ def test_fit_recovers_the_synthesized_parameters(small_table):
         assert abs(r.params[name] - truth) < 1e-3 * max(truth, 1), (name, r.params[name], truth)
     assert r.metrics["log_rmse"] < 1e-4
     # The rendered metric per region of the domain (docs/accuracy.md, "Every light"): an exact
-    # model renders near the PSNR cap under light from the front, the side and behind.
+    # model renders near the PSNR cap under light from the front, the side and behind, and in
+    # the environment (docs/accuracy.md, "The environment").
     regions = r.metrics["rendered"]["regions"]
-    assert set(regions) == {"front", "side", "rim"}
+    assert set(regions) == {"front", "side", "rim", "environment"}
     for name, region in regions.items():
         assert region["lights"] >= 1, name
         assert region["psnr_db"] > 40, (name, region)

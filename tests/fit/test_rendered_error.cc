@@ -24,6 +24,7 @@
 #include "fit_test_util.h"
 #include "io/fit_params_json.h"
 #include "io/fit_report.h"
+#include "io/hdf5_util.h"
 #include "io/metrics_json.h"
 #include "models/registry.h"
 #include "tests/scratch_dir.h"
@@ -563,6 +564,43 @@ TEST(RenderedError, EveryFitCarriesItThroughReportAndJson) {
   const auto old_again = ReadFitParamsJson(dir / "old.json");
   ASSERT_EQ(old_again.size(), 1u);
   EXPECT_TRUE(std::isnan(old_again[0].result.metrics.rendered.body_color_error));
+  // A report written before the environment region holds three regions: read with the
+  // environment not judged, and S is the directional regions' as it was.
+  {
+    std::filesystem::copy_file(report, dir / "three.h5");
+    H5::H5File f((dir / "three.h5").string(), H5F_ACC_RDWR);
+    std::vector<std::string> groups;
+    H5Lvisit(
+        f.getId(), H5_INDEX_NAME, H5_ITER_NATIVE,
+        [](hid_t, const char* name, const H5L_info_t*, void* out) -> herr_t {
+          const std::string n = name;
+          const std::string tail = "metrics/rendered";
+          if (n.size() >= tail.size() &&
+              n.compare(n.size() - tail.size(), tail.size(), tail) == 0) {
+            static_cast<std::vector<std::string>*>(out)->push_back(n);
+          }
+          return 0;
+        },
+        &groups);
+    ASSERT_EQ(groups.size(), 1u);
+    H5::Group rg = f.openGroup(groups[0]);
+    for (const char* name : {"region_lights", "region_psnr_db", "region_median_rel_error"}) {
+      std::vector<double> v(kRenderedRegions);
+      rg.openDataSet(name).read(v.data(), H5::PredType::NATIVE_DOUBLE);
+      v.pop_back();
+      rg.unlink(name);
+      hdf5::WriteDoubles(rg, name, v);
+    }
+  }
+  const auto three = ReadFitReport(dir / "three.h5");
+  ASSERT_EQ(three.size(), 1u);
+  const RenderedError& t3 = three[0].result.metrics.rendered;
+  EXPECT_EQ(t3.regions[kRenderedRegions - 1].lights, 0);
+  for (int g = 0; g + 1 < kRenderedRegions; ++g)
+    EXPECT_EQ(t3.regions[g].psnr_db, e.regions[g].psnr_db);
+  RenderedError directional = e;
+  directional.regions[kRenderedRegions - 1] = {};
+  EXPECT_EQ(RenderedScoreDb(t3), RenderedScoreDb(directional));
   // A negative one is refused by name, as any number of the summary.
   ASSERT_GT(e.body_color_error, 0);  // so that "-" makes it negative
   std::string text = FitParamsJson(back);

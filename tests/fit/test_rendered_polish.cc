@@ -227,6 +227,7 @@ PolishStart TwoLobeTableFit() {
   for (std::size_t i = 0; i < s.x0.size(); ++i) s.x0[i] = s.ops.layout.ToOpt(i, plain.params[i]);
   RenderedErrorOptions front_lights;
   front_lights.light_angles_deg = {0, 30, 45, 60, 70, 80};
+  front_lights.environment.samples = 0;  // the front region alone
   s.front = PrepareRenderedReference(t, front_lights);
   return s;
 }

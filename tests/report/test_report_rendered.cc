@@ -310,16 +310,17 @@ TEST(RenderedCompare, PsnrDropOrLuminanceRiseBeyondThresholdIsARegression) {
 TEST(RenderedBenchCsv, ColumnsAppendedAndReadBack) {
   const ScratchDir scratch("csvr");
   const auto& cols = BenchCsvColumns();
-  ASSERT_EQ(cols.size(), 31u);
+  ASSERT_EQ(cols.size(), 33u);
   // The columns before the metric keep their places; its five follow, then the regions'.
   EXPECT_EQ(cols[19], "message");
   EXPECT_EQ(std::vector<std::string>(cols.begin() + 20, cols.begin() + 25),
             (std::vector<std::string>{"psnr_db", "psnr_srgb_db", "median_rel_error",
                                       "p95_rel_error", "body_color_error"}));
-  EXPECT_EQ(std::vector<std::string>(cols.end() - 6, cols.end()),
-            (std::vector<std::string>{"front_psnr_db", "front_median_rel_error", "side_psnr_db",
-                                      "side_median_rel_error", "rim_psnr_db",
-                                      "rim_median_rel_error"}));
+  EXPECT_EQ(
+      std::vector<std::string>(cols.end() - 8, cols.end()),
+      (std::vector<std::string>{"front_psnr_db", "front_median_rel_error", "side_psnr_db",
+                                "side_median_rel_error", "rim_psnr_db", "rim_median_rel_error",
+                                "environment_psnr_db", "environment_median_rel_error"}));
   BenchPoint b;
   b.material = "gold";
   b.model = "lambert+ggx";
