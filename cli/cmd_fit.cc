@@ -81,8 +81,8 @@ void PrintTable(std::FILE* out, const std::vector<FitReportEntry>& entries) {
     const std::string lum = re.ok ? fmt::format("{:.1f}%", 100 * re.median_rel_error) : "-";
     std::string regions;
     for (const RegionError& g : RenderedRegions(re)) {
-      regions += (regions.empty() ? "" : "/") +
-                 (g.lights > 0 ? fmt::format("{:.1f}", g.psnr_db) : std::string("-"));
+      if (!regions.empty()) regions += '/';
+      regions += g.lights > 0 ? fmt::format("{:.1f}", g.psnr_db) : std::string("-");
     }
     any_chosen = any_chosen || e.chosen;
     fmt::print(out, "{} {:<28} {:<26} {:<8} {:>6} {:>7} {:>7} {:>22} {:>9.5f} {:>5} {:>9.1f} {}\n",
