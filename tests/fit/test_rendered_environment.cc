@@ -105,7 +105,9 @@ TEST(RenderedEnvironment, LambertianPixelsAreTheIrradianceIntegral) {
     std::printf("K=%d: %zu pixels, mean ratio %.4f, worst %.4f\n", k, ref.env_pixels.size(), mean,
                 worst);
     EXPECT_NEAR(mean, 1.0, k == 3000 ? 0.002 : 0.015);
-    if (k == 3000) EXPECT_LT(worst, 0.01);
+    if (k == 3000) {
+      EXPECT_LT(worst, 0.01);
+    }
   }
 }
 
