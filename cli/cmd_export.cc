@@ -79,9 +79,17 @@ bool NamesFolder(const std::string& out) {
   return out.ends_with('/') || fs::is_directory(out);
 }
 
-// The chosen fit's note when a factorization was chosen and the analytic fit `e` is exported.
-void NoteChosenFactorization(const std::vector<FitReportEntry>& entries, const FitReportEntry& e,
-                             const ExportOptions& o) {
+// The chosen fit's note when a factorization was chosen and the analytic fit `e` is exported,
+// or when the chosen analytic fit is not what the format takes exactly.
+void NoteChoice(const std::vector<FitReportEntry>& entries, const FitReportEntry& e,
+                const ExportOptions& o, exports::Format format) {
+  if (o.model.empty()) {
+    const std::string note = exports::SelectionNote(entries, e, format);
+    if (!note.empty()) {
+      fmt::print(stderr, "brdfit: export: note: {}: {}\n", TerminalSafe(e.material),
+                 TerminalSafe(note));
+    }
+  }
   for (const FitReportEntry& c : entries) {
     if (c.chosen && c.factorization && c.material == e.material && o.model.empty()) {
       fmt::print(stderr,
@@ -132,7 +140,7 @@ int RunExportFolder(const ExportOptions& o, exports::Format format) {
   MakeOutputFolder(dir);
   CheckOutputs({o.fits}, outs);
   for (std::size_t i = 0; i < chosen.size(); ++i) {
-    NoteChosenFactorization(entries, *chosen[i], o);
+    NoteChoice(entries, *chosen[i], o, format);
     WriteOne(*chosen[i], o, format, dir / names[i]);
   }
   return kExitOk;
@@ -152,7 +160,7 @@ int RunExport(const ExportOptions& o) {
   CheckOutputs({o.fits}, outs);
   const std::vector<FitReportEntry> entries = ReadFitsAnyFormat(o.fits);
   const FitReportEntry& e = Select(entries, o.material, o, format);
-  NoteChosenFactorization(entries, e, o);
+  NoteChoice(entries, e, o, format);
   WriteOne(e, o, format, o.out);
   return kExitOk;
 }
@@ -173,9 +181,10 @@ Registrar reg{
           ->required();
       sub.add_option("--material", o->material, "material to export (when the fits hold several)");
       sub.add_option("--model", o->model,
-                     "fit to export (default: the one exact for the target, lambert+ggx-hc; "
-                     "lambert+ggx for mitsuba and blender; else the chosen fit; threejs: any "
-                     "model, the chosen fit)");
+                     "fit to export (default: the chosen fit when the format expresses it "
+                     "exactly, else the best-scored fit it does, else the best exportable; a "
+                     "note says how far it is from the chosen fit; threejs: any model, the "
+                     "chosen fit)");
       sub.add_option("-o,--out", o->out,
                      "output file; or a folder (one that exists, or a name ending in '/'): "
                      "every material of the fits (or --material's), one file each, named "
@@ -184,7 +193,8 @@ Registrar reg{
       sub.add_flag("-q,--quiet", o->quiet, "no summary line");
       sub.footer(
           "Exit codes: 0 ok, 2 bad input or output. Exportable models: lambert+ggx-hc, "
-          "lambert+ggx, lambert+ggx-f0, ue4, lambert+ggx+sheen (threejs: any analytic model); "
+          "lambert+ggx, lambert+ggx-f0, ue4, lambert+ggx+sheen, lambert+ggx+ggx (threejs: any "
+          "analytic model); "
           "docs/exports.md has the "
           "mappings.\n"
           "Examples:\n  brdfit fit gold.binary --model ggx-hc --json fits.json\n"

@@ -58,6 +58,16 @@ def exact_material():
     add = tree.nodes.new("ShaderNodeAddShader")
     tree.links.new(diffuse.outputs["BSDF"], add.inputs[0])
     tree.links.new(glossy.outputs["BSDF"], add.inputs[1])
+    if "second_glossy_color" in EXACT:
+        # + a second Glossy BSDF (GGX): the fit's second lobe, added.
+        glossy2 = tree.nodes.new("ShaderNodeBsdfGlossy")
+        glossy2.distribution = "GGX"
+        glossy2.inputs["Color"].default_value = rgba(EXACT["second_glossy_color"])
+        glossy2.inputs["Roughness"].default_value = EXACT["second_roughness"]
+        add2 = tree.nodes.new("ShaderNodeAddShader")
+        tree.links.new(add.outputs["Shader"], add2.inputs[0])
+        tree.links.new(glossy2.outputs["BSDF"], add2.inputs[1])
+        add = add2
     tree.links.new(add.outputs["Shader"], out.inputs["Surface"])
     return mat
 
@@ -178,6 +188,7 @@ std::string BlenderScript(const BlenderMaterial& m, const Provenance& p) {
       "#\n# brdfit-material (on the sphere): Add Shader(Diffuse BSDF roughness 0, Glossy BSDF "
       "GGX)\n"
       "#   = kd / pi + ks D G1 G1 / (4 cos_i cos_o)  (Cycles 3.4: Lambert; GGX, separable Smith)\n"
+      "#   (+ a second Glossy BSDF when EXACT has second_glossy_color: the fit's second lobe)\n"
       "# brdfit-principled: Principled BSDF (GGX), roughness sqrt(alpha), metallic 0 with base "
       "colour\n"
       "#   kd and cspec0 = 0.08 specular ((1 - tint) + tint kd / lum(kd)) nearest to ks, or\n"
@@ -185,9 +196,13 @@ std::string BlenderScript(const BlenderMaterial& m, const Provenance& p) {
       "# Render: blender -b --factory-startup --python-exit-code 1 -P this.py -- --render out.png\n"
       "#   [--material exact|principled] [--size 256] [--samples 16] [--save scene.blend]\n"
       "# (docs/exports.md, \"Blender\")\n";
-  s += fmt::format(
-      "\nEXACT = {{\"diffuse_color\": {}, \"glossy_color\": {}, \"roughness\": {:.9g}}}\n",
-      Tuple3(m.diffuse_color), Tuple3(m.glossy_color), m.roughness);
+  s += fmt::format("\nEXACT = {{\"diffuse_color\": {}, \"glossy_color\": {}, \"roughness\": {:.9g}",
+                   Tuple3(m.diffuse_color), Tuple3(m.glossy_color), m.roughness);
+  if (m.second) {
+    s += fmt::format(",\n         \"second_glossy_color\": {}, \"second_roughness\": {:.9g}",
+                     Tuple3(m.second->glossy_color), m.second->roughness);
+  }
+  s += "}\n";
   s += fmt::format(
       "PRINCIPLED = {{\"base_color\": {}, \"metallic\": {:.9g}, \"roughness\": {:.9g},\n"
       "              \"specular\": {:.9g}, \"specular_tint\": {:.9g}}}  # cspec0 = {}\n",

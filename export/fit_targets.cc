@@ -1,7 +1,6 @@
 #include "export/fit_targets.h"
 
 #include "core/error.h"
-#include "export/lobe_material.h"
 
 namespace brdfit::exports {
 
@@ -20,13 +19,14 @@ const std::vector<FitTarget>& Targets() {
        "three.js ShaderMaterial running brdfit's GLSL: every model exact"},
       {"blender",
        Format::kBlender,
-       {"lambert+ggx"},
-       "Blender 3.4 Cycles Diffuse + Glossy (GGX, separable masking) node tree: exact; its "
-       "Principled BSDF material is approximate"},
+       {"lambert+ggx", "lambert+ggx+ggx"},
+       "Blender 3.4 Cycles Diffuse + Glossy (GGX, separable masking) node tree, one Glossy BSDF "
+       "per lobe: exact; its Principled BSDF material is approximate"},
       {"mitsuba",
        Format::kMitsuba,
-       {"lambert+ggx"},
-       "Mitsuba 3 blendbsdf of diffuse and roughconductor (separable masking): exact"},
+       {"lambert+ggx", "lambert+ggx+ggx"},
+       "Mitsuba 3 blendbsdf of diffuse and roughconductor (separable masking), a nested "
+       "blendbsdf for two lobes: exact"},
       {"pbrt",
        Format::kPbrt,
        {"lambert+ggx-hc"},
@@ -52,26 +52,7 @@ const FitTarget& FitTargetOf(const std::string& name) {
 }
 
 Fidelity ExportFidelity(const FitResult& fit, const FitTarget& target) {
-  if (target.format == Format::kThreejs) return {};
-  if (!IsExportable(fit.model)) {
-    return {{"the " + std::string(target.name) + " export takes only " +
-             std::string(ExportableModels()) + ", not " + fit.model}};
-  }
-  const LobeMaterial m = FromFit(fit);
-  switch (target.format) {
-    case Format::kGltf:
-    case Format::kGlb:
-      return ToGltf(m).fidelity;
-    case Format::kMitsuba:
-      return ToMitsuba(m).fidelity;
-    case Format::kPbrt:
-      return ToPbrt(m).fidelity;
-    case Format::kBlender:
-      return ToBlender(m).fidelity;
-    case Format::kThreejs:
-      break;
-  }
-  return {};
+  return FidelityOf(fit, target.format);
 }
 
 }  // namespace brdfit::exports

@@ -15,7 +15,8 @@ namespace brdfit::exports {
 struct FitTarget {
   const char* name;                 // "gltf", ...
   Format format;                    // the export it is checked with
-  std::vector<std::string> models;  // fitted when --model is not given; empty: any (threejs)
+  // fitted when --model is not given, the first the one-lobe form; empty: any (threejs)
+  std::vector<std::string> models;
   const char* note;                 // what the target is, for --help and messages
 };
 

@@ -1,5 +1,6 @@
 #include "export/lobe_material.h"
 
+#include <algorithm>
 #include <string_view>
 
 #include "core/error.h"
@@ -19,15 +20,19 @@ Rgb Triple(const FitResult& fit, const std::string& prefix) {
   return {Param(fit, prefix + "_r"), Param(fit, prefix + "_g"), Param(fit, prefix + "_b")};
 }
 
+double MaxOf(const Rgb& v) {
+  return std::max({v[0], v[1], v[2]});
+}
+
 }  // namespace
 
 const char* ExportableModels() {
-  return "lambert+ggx-hc, lambert+ggx, lambert+ggx-f0, ue4, lambert+ggx+sheen";
+  return "lambert+ggx-hc, lambert+ggx, lambert+ggx-f0, ue4, lambert+ggx+sheen, lambert+ggx+ggx";
 }
 
 bool IsExportable(const std::string& model) {
   return model == "lambert+ggx-hc" || model == "lambert+ggx" || model == "lambert+ggx-f0" ||
-         model == "ue4" || model == "lambert+ggx+sheen";
+         model == "ue4" || model == "lambert+ggx+sheen" || model == "lambert+ggx+ggx";
 }
 
 LobeMaterial FromFit(const FitResult& fit) {
@@ -57,6 +62,15 @@ LobeMaterial FromFit(const FitResult& fit) {
     m.alpha = Param(fit, "ggx-f0.alpha");
     m.masking = Masking::kHeightCorrelated;
     m.fresnel = LobeFresnel::kSchlick;
+  } else if (fit.model == "lambert+ggx+ggx") {
+    // models/sum.h qualifies repeated lobes by their index: ggx1, ggx2.
+    Rgb ks[2] = {Triple(fit, "ggx1.ks"), Triple(fit, "ggx2.ks")};
+    double alpha[2] = {Param(fit, "ggx1.alpha"), Param(fit, "ggx2.alpha")};
+    const int first = MaxOf(ks[1]) > MaxOf(ks[0]) ? 1 : 0;
+    m.spec = ks[first];
+    m.alpha = alpha[first];
+    m.second = LobeMaterial::SecondLobe{ks[1 - first], alpha[1 - first]};
+    m.masking = Masking::kSeparable;
   } else {
     const std::string lobe = fit.model == "lambert+ggx-hc" ? "ggx-hc" : "ggx";
     m.spec = Triple(fit, lobe + ".ks");
@@ -64,9 +78,9 @@ LobeMaterial FromFit(const FitResult& fit) {
     m.masking = lobe == "ggx" ? Masking::kSeparable : Masking::kHeightCorrelated;
   }
   if (fit.model == "lambert+ggx+sheen") {
-    m.sheen = true;
     m.sheen_color = Triple(fit, "sheen.sheen");
     m.sheen_alpha = Param(fit, "sheen.alpha");
+    m.sheen = MaxOf(m.sheen_color) > 0;
   }
   return m;
 }

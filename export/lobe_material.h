@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 
 #include "core/result.h"
@@ -34,7 +35,16 @@ struct LobeMaterial {
   bool ue4 = false;  // then base and metallic hold its own parameters
   Rgb base{};
   double metallic = 0;
-  // lambert+ggx+sheen: + sheen D_Charlie(sheen_alpha) V_Neubelt, added (models/sheen.h).
+  // lambert+ggx+ggx: a second GGX lobe of the same form (separable masking, ks a constant
+  // weight), added: + ks2 D_GGX(alpha2) G / (4 cos_i cos_o) (models/sum.h). FromFit puts the
+  // lobe with the larger max ks first, so that a target with one lobe keeps the stronger.
+  struct SecondLobe {
+    Rgb spec{};
+    double alpha = 0;
+  };
+  std::optional<SecondLobe> second;
+  // lambert+ggx+sheen: + sheen D_Charlie(sheen_alpha) V_Neubelt, added (models/sheen.h). A
+  // fitted sheen colour of 0 in every channel is no sheen: `sheen` stays false.
   bool sheen = false;
   Rgb sheen_color{};
   double sheen_alpha = 0;  // glTF sheenRoughness = sqrt(sheen_alpha)

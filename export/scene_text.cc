@@ -33,15 +33,28 @@ std::string Rgb3(const Rgb& v, const char* sep) {
   return fmt::format("{:.9g}{}{:.9g}{}{:.9g}", v[0], sep, v[1], sep, v[2]);
 }
 
+// A Mitsuba 3 roughconductor element (GGX, no Fresnel: material "none"), indented by `in`.
+std::string RoughConductor(double alpha, const Rgb& reflectance, const std::string& in) {
+  return fmt::format(
+      "{0}<bsdf type=\"roughconductor\">\n"
+      "{0}  <string name=\"distribution\" value=\"ggx\"/>\n"
+      "{0}  <float name=\"alpha\" value=\"{1:.9g}\"/>\n"
+      "{0}  <string name=\"material\" value=\"none\"/>\n"
+      "{0}  <rgb name=\"specular_reflectance\" value=\"{2}\"/>\n{0}</bsdf>\n",
+      in, alpha, Rgb3(reflectance, ", "));
+}
+
 }  // namespace
 
 std::string MitsubaScene(const MitsubaBlend& b, const Provenance& p) {
   std::string s = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<!--\n";
   for (const std::string& line : p.Lines()) s += "  " + CommentSafe(line) + "\n";
-  s +=
-      "  Material: blendbsdf(weight w) of diffuse(R) and roughconductor(ggx, alpha,\n"
-      "  material=none, specular_reflectance S) = (1 - w) R / pi + w S D G1 G1 / (4 cos_i cos_o).\n"
-      "  Render: mitsuba -m scalar_rgb this.xml (docs/exports.md)\n-->\n";
+  s += "  Material: blendbsdf(weight w) of diffuse(R) and roughconductor(ggx, alpha,\n"
+       "  material=none, specular_reflectance S) = (1 - w) R / pi + w S D G1 G1 / (4 cos_i cos_o)";
+  s += b.second ? ";\n  two lobes: the roughconductor is a blendbsdf(v) of two, (1 - w) R / pi +\n"
+                  "  w ((1 - v) S lobe + v S2 lobe2).\n"
+                : ".\n";
+  s += "  Render: mitsuba -m scalar_rgb this.xml (docs/exports.md)\n-->\n";
   s += "<scene version=\"3.0.0\">\n";
   s += "  <integrator type=\"path\">\n    <integer name=\"max_depth\" value=\"3\"/>\n"
        "  </integrator>\n";
@@ -56,13 +69,18 @@ std::string MitsubaScene(const MitsubaBlend& b, const Provenance& p) {
   s += fmt::format(
       "  <bsdf type=\"blendbsdf\" id=\"brdfit-material\">\n"
       "    <float name=\"weight\" value=\"{:.9g}\"/>\n"
-      "    <bsdf type=\"diffuse\">\n      <rgb name=\"reflectance\" value=\"{}\"/>\n    </bsdf>\n"
-      "    <bsdf type=\"roughconductor\">\n"
-      "      <string name=\"distribution\" value=\"ggx\"/>\n"
-      "      <float name=\"alpha\" value=\"{:.9g}\"/>\n"
-      "      <string name=\"material\" value=\"none\"/>\n"
-      "      <rgb name=\"specular_reflectance\" value=\"{}\"/>\n    </bsdf>\n  </bsdf>\n",
-      b.weight, Rgb3(b.diffuse_reflectance, ", "), b.alpha, Rgb3(b.specular_reflectance, ", "));
+      "    <bsdf type=\"diffuse\">\n      <rgb name=\"reflectance\" value=\"{}\"/>\n    </bsdf>\n",
+      b.weight, Rgb3(b.diffuse_reflectance, ", "));
+  if (b.second) {
+    s += fmt::format(
+        "    <bsdf type=\"blendbsdf\">\n      <float name=\"weight\" value=\"{:.9g}\"/>\n"
+        "{}{}    </bsdf>\n",
+        b.second->weight, RoughConductor(b.alpha, b.specular_reflectance, "      "),
+        RoughConductor(b.second->alpha, b.second->specular_reflectance, "      "));
+  } else {
+    s += RoughConductor(b.alpha, b.specular_reflectance, "    ");
+  }
+  s += "  </bsdf>\n";
   s += "  <shape type=\"sphere\">\n    <ref id=\"brdfit-material\"/>\n  </shape>\n";
   s += "  <emitter type=\"directional\">\n    <vector name=\"direction\" value=\"-1, -1, -1\"/>\n"
        "    <rgb name=\"irradiance\" value=\"3, 3, 3\"/>\n  </emitter>\n";
@@ -74,8 +92,12 @@ std::string PbrtScene(const PbrtMix& m, const Provenance& p, const std::string& 
   std::string s;
   for (const std::string& line : p.Lines()) s += "# " + CommentSafe(line) + "\n";
   s += "# Material: mix(amount a) of diffuse(R) and conductor(reflectance r, roughness alpha,\n"
-       "# remaproughness false) = (1 - a) R / pi + a F_r D G / (4 cos_i cos_o).\n"
-       "# Render: pbrt this.pbrt (docs/exports.md)\n\n";
+       "# remaproughness false) = (1 - a) R / pi + a F_r D G / (4 cos_i cos_o)";
+  s += m.second ? ";\n# two lobes: brdfit-specular is a mix(amount v) of two conductors, (1 - a) R "
+                  "/ pi +\n"
+                  "# a ((1 - v) F_r D G / (4 cos_i cos_o) + v F_r2 D2 G2 / (4 cos_i cos_o)).\n"
+                : ".\n";
+  s += "# Render: pbrt this.pbrt (docs/exports.md)\n\n";
   s += "LookAt 0 0 4.2  0 0 0  0 1 0\n";
   s += "Camera \"perspective\" \"float fov\" [ 30 ]\n";
   s += fmt::format(
@@ -91,11 +113,24 @@ std::string PbrtScene(const PbrtMix& m, const Provenance& p, const std::string& 
       "MakeNamedMaterial \"brdfit-diffuse\" \"string type\" [ \"diffuse\" ]\n"
       "    \"rgb reflectance\" [ {} ]\n",
       Rgb3(m.diffuse_reflectance, " "));
-  s += fmt::format(
-      "MakeNamedMaterial \"brdfit-specular\" \"string type\" [ \"conductor\" ]\n"
-      "    \"rgb reflectance\" [ {} ]\n"
-      "    \"float roughness\" [ {:.9g} ] \"bool remaproughness\" [ false ]\n",
-      Rgb3(m.conductor_reflectance, " "), m.roughness);
+  const auto conductor = [](const char* name, const Rgb& r, double roughness) {
+    return fmt::format(
+        "MakeNamedMaterial \"{}\" \"string type\" [ \"conductor\" ]\n"
+        "    \"rgb reflectance\" [ {} ]\n"
+        "    \"float roughness\" [ {:.9g} ] \"bool remaproughness\" [ false ]\n",
+        name, Rgb3(r, " "), roughness);
+  };
+  if (m.second) {
+    s += conductor("brdfit-specular-1", m.conductor_reflectance, m.roughness);
+    s += conductor("brdfit-specular-2", m.second->conductor_reflectance, m.second->roughness);
+    s += fmt::format(
+        "MakeNamedMaterial \"brdfit-specular\" \"string type\" [ \"mix\" ]\n"
+        "    \"string materials\" [ \"brdfit-specular-1\" \"brdfit-specular-2\" ]\n"
+        "    \"float amount\" [ {:.9g} ]\n",
+        m.second->amount);
+  } else {
+    s += conductor("brdfit-specular", m.conductor_reflectance, m.roughness);
+  }
   s += fmt::format(
       "MakeNamedMaterial \"brdfit-material\" \"string type\" [ \"mix\" ]\n"
       "    \"string materials\" [ \"brdfit-diffuse\" \"brdfit-specular\" ]\n"

@@ -85,6 +85,16 @@ void NoteSheenDropped(const LobeMaterial& m, const char* target_name, Fidelity* 
       target_name, Fmt3(m.sheen_color), m.sheen_alpha));
 }
 
+// A target with one GGX lobe: the fit's second lobe is left out, and said.
+void NoteSecondLobeDropped(const LobeMaterial& m, const char* target_name, const char* why,
+                           Fidelity* f) {
+  if (!m.second) return;
+  f->approximations.push_back(fmt::format(
+      "{} has one GGX lobe{}: the fit's weaker lobe (ks {}, alpha {:.4g}) is left out, so the "
+      "material is darker (Blender's node tree, Mitsuba 3, pbrt-v4 and three.js carry it)",
+      target_name, why, Fmt3(m.second->spec), m.second->alpha));
+}
+
 // KHR_materials_sheen: the sheen lobe over the base layer, which the extension dims by its
 // albedo scaling min(1 - max(sheenColor) E(cos_o), 1 - max(sheenColor) E(cos_i)) (E the sheen's
 // directional albedo); the fit adds the lobe to an undimmed body.
@@ -108,6 +118,10 @@ GltfPbr ToGltf(const LobeMaterial& m) {
   g.roughness = std::sqrt(std::max(m.alpha, 0.0));
   Fidelity& f = g.fidelity;
   SheenToGltf(m, &g);
+  NoteSecondLobeDropped(m, "glTF 2.0",
+                        " (KHR_materials_clearcoat's coat has the Fresnel of ior 1.5 and dims the "
+                        "layer below: not an added lobe)",
+                        &f);
   if (m.ue4) {
     // Karis 2013 is glTF's own parameterization: base colour, metallic, roughness = sqrt(alpha).
     g.base_color = m.base;
@@ -168,12 +182,25 @@ MitsubaBlend ToMitsuba(const LobeMaterial& m) {
   NoteMasking(m, Masking::kSeparable, "Mitsuba 3 roughconductor", &f);
   const Rgb ks = ConstantWeight(m, "Mitsuba 3", &f);
   // (1 - w) R / pi + w S lobe with R = kd / (1 - w), S = ks / w; w splits the two so that both
-  // reflectances stay in [0, 1] when kd + ks <= 1.
+  // reflectances stay in [0, 1] when kd + ks <= 1. A second lobe shares w with the first by the
+  // inner weight v = max ks2 / (max ks + max ks2): S = ks / (w (1 - v)), S2 = ks2 / (w v), every
+  // reflectance's largest channel max kd + max ks + max ks2.
   const double kd_max = Max(m.kd), ks_max = Max(ks);
-  b.weight = ks_max + kd_max > 0 ? ks_max / (ks_max + kd_max) : 0.5;
-  for (int c = 0; c < 3; ++c) b.specular_reflectance[c] = b.weight > 0 ? ks[c] / b.weight : 0;
+  const double ks2_max = m.second ? Max(m.second->spec) : 0, lobes = ks_max + ks2_max;
+  b.weight = lobes + kd_max > 0 ? lobes / (lobes + kd_max) : 0.5;
+  const double v = m.second ? (lobes > 0 ? ks2_max / lobes : 0.5) : 0;
+  const double w1 = b.weight * (1 - v), w2 = b.weight * v;
+  for (int c = 0; c < 3; ++c) b.specular_reflectance[c] = w1 > 0 ? ks[c] / w1 : 0;
+  if (m.second) {
+    MitsubaBlend::Second s2;
+    s2.weight = v;
+    s2.alpha = m.second->alpha;
+    for (int c = 0; c < 3; ++c) s2.specular_reflectance[c] = w2 > 0 ? m.second->spec[c] / w2 : 0;
+    b.second = s2;
+  }
   b.diffuse_reflectance = DiffuseOver(m.kd, b.weight, "Mitsuba diffuse reflectance", &f);
-  if (Max(b.specular_reflectance) > 1) {
+  if (std::max(Max(b.specular_reflectance), b.second ? Max(b.second->specular_reflectance) : 0) >
+      1) {
     f.approximations.push_back(
         "kd + ks exceeds 1: the specular_reflectance is above 1 (exact in Mitsuba's RGB "
         "variants, clipped by its spectral ones)");
@@ -189,21 +216,36 @@ PbrtMix ToPbrt(const LobeMaterial& m) {
   NoteMasking(m, Masking::kHeightCorrelated, "pbrt-v4 conductor", &f);
   const Rgb ks = ConstantWeight(m, "pbrt-v4", &f);
   // The conductor's Fresnel is at most 1: its reflectance is ks / max ks (pbrt clamps to
-  // 0.9999, so F >= 0.9999 for a grey ks) and the mix amount carries max ks.
-  double a = Max(ks);
+  // 0.9999, so F >= 0.9999 for a grey ks) and the mix amount carries max ks. A second lobe:
+  // amount max ks + max ks2, shared by the inner mix's v = max ks2 / (max ks + max ks2).
+  const double ks_max = Max(ks), ks2_max = m.second ? Max(m.second->spec) : 0;
+  double a = ks_max + ks2_max;
   if (a > 1) {
-    f.approximations.push_back(
-        fmt::format("max ks = {:.4g} > 1: pbrt-v4's mix amount is clipped to 1", a));
+    f.approximations.push_back(fmt::format("{} = {:.4g} > 1: pbrt-v4's mix amount is clipped to 1",
+                                           m.second ? "max ks + max ks2" : "max ks", a));
     a = 1;
   }
   p.amount = a;
-  for (int c = 0; c < 3; ++c) p.conductor_reflectance[c] = a > 0 ? std::min(ks[c] / a, 1.0) : 1.0;
-  if (!Grey(ks)) {
-    f.approximations.push_back(fmt::format(
-        "coloured ks = {}: pbrt-v4's conductor Fresnel (eta = 1, k from reflectance) rises to "
-        "white at grazing, so the channels below the largest are exact at normal incidence only "
-        "(up to {:.4g} times too bright at grazing)",
-        Fmt3(ks), GrazingFactor(ks)));
+  const double v = m.second ? (a > 0 ? ks2_max / (ks_max + ks2_max) : 0.5) : 0;
+  const auto reflectance = [&](const Rgb& k, double weight) {
+    Rgb r{};
+    for (int c = 0; c < 3; ++c) r[c] = weight > 0 ? std::min(k[c] / weight, 1.0) : 1.0;
+    if (!Grey(k)) {
+      f.approximations.push_back(fmt::format(
+          "coloured ks = {}: pbrt-v4's conductor Fresnel (eta = 1, k from reflectance) rises to "
+          "white at grazing, so the channels below the largest are exact at normal incidence "
+          "only (up to {:.4g} times too bright at grazing)",
+          Fmt3(k), GrazingFactor(k)));
+    }
+    return r;
+  };
+  p.conductor_reflectance = reflectance(ks, a * (1 - v));
+  if (m.second) {
+    PbrtMix::Second s2;
+    s2.amount = v;
+    s2.roughness = m.second->alpha;
+    s2.conductor_reflectance = reflectance(m.second->spec, a * v);
+    p.second = s2;
   }
   p.diffuse_reflectance = DiffuseOver(m.kd, a, "pbrt-v4 diffuse reflectance", &f);
   return p;
@@ -253,10 +295,15 @@ BlenderMaterial ToBlender(const LobeMaterial& m) {
   const Rgb ks = ConstantWeight(m, "Blender", &f);
   b.diffuse_color = m.kd;
   b.glossy_color = ks;
+  if (m.second) {
+    b.second = BlenderMaterial::Second{m.second->spec, std::sqrt(std::max(m.second->alpha, 0.0))};
+  }
 
   // The Principled BSDF, metallic 0: base colour kd, cspec0 = A + B kd nearest to ks.
   Fidelity& p = b.principled_fidelity;
   NoteSheenDropped(m, "Cycles 3.4's Principled BSDF (its Sheen is Burley's, not Charlie's)", &p);
+  NoteSecondLobeDropped(m, "Cycles 3.4's Principled BSDF", " (its Clearcoat has a fixed Fresnel)",
+                        &p);
   b.base_color = m.kd;
   const auto [a, slope] = GreyPlusTint(ks, m.kd);
   const double lum = CyclesTintLuminance(m.kd);

@@ -3,6 +3,7 @@
 // targets' documented BSDFs).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,11 +41,19 @@ GltfPbr ToGltf(const LobeMaterial& m);
 
 // Mitsuba 3: blendbsdf(weight) of diffuse(reflectance) and roughconductor(ggx, alpha,
 // material="none", specular_reflectance): (1 - w) R / pi + w S D G1 G1 / (4 cos_i cos_o).
+// A second lobe: the roughconductor becomes blendbsdf(second->weight = v) of the two
+// roughconductors, (1 - w) R / pi + w ((1 - v) S lobe + v S2 lobe2).
 struct MitsubaBlend {
   double weight = 0;
   Rgb diffuse_reflectance{};
   Rgb specular_reflectance{};
   double alpha = 0;
+  struct Second {
+    double weight = 0;  // v, the inner blend's weight
+    Rgb specular_reflectance{};
+    double alpha = 0;
+  };
+  std::optional<Second> second;
   Fidelity fidelity;
 };
 MitsubaBlend ToMitsuba(const LobeMaterial& m);
@@ -52,11 +61,19 @@ MitsubaBlend ToMitsuba(const LobeMaterial& m);
 // pbrt-v4: mix(amount) of diffuse(reflectance) and conductor(reflectance, roughness = alpha,
 // remaproughness false): (1 - a) R / pi + a F_conductor D G / (4 cos_i cos_o), G
 // height-correlated; reflectance r gives eta = 1, k = 2 sqrt(r) / sqrt(1 - r), r <= 0.9999.
+// A second lobe: the conductor becomes mix(second->amount = v) of the two conductors,
+// (1 - a) R / pi + a ((1 - v) F_r lobe + v F_r2 lobe2); pbrt-v4 resolves nested mixes.
 struct PbrtMix {
   double amount = 0;
   Rgb diffuse_reflectance{};
   Rgb conductor_reflectance{};
   double roughness = 0;
+  struct Second {
+    double amount = 0;  // v, the inner mix's amount
+    Rgb conductor_reflectance{};
+    double roughness = 0;
+  };
+  std::optional<Second> second;
   Fidelity fidelity;
 };
 PbrtMix ToPbrt(const LobeMaterial& m);
@@ -70,10 +87,17 @@ PbrtMix ToPbrt(const LobeMaterial& m);
 // cspec0 = (1 - m) 0.08 specular ((1 - tint) + tint base / lum(base)) + m base to 1 at grazing;
 // metallic m is 0 (base kd) or, when that is nearer, 1 (base ks, no diffuse). It is never exact
 // for a brdfit model (docs/exports.md, "Blender").
+// A second lobe adds a second Glossy BSDF (second->glossy_color, roughness sqrt(alpha2)) to the
+// sum: lambert+ggx+ggx exactly.
 struct BlenderMaterial {
   Rgb diffuse_color{};
   Rgb glossy_color{};
   double roughness = 0;  // sqrt(alpha), both shaders
+  struct Second {
+    Rgb glossy_color{};
+    double roughness = 0;  // sqrt(alpha2)
+  };
+  std::optional<Second> second;
   Fidelity fidelity;     // of the Diffuse + Glossy node tree
   Rgb base_color{};      // Principled: kd (metallic 0) or ks (metallic 1)
   double metallic = 0;

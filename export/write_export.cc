@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/model_choice.h"
 #include "core/provenance.h"
 #include "core/suggest.h"
 #include "export/blender_script.h"
@@ -87,6 +88,64 @@ std::vector<std::string> MaterialFileNames(const std::vector<std::string>& mater
   return names;
 }
 
+namespace {
+
+// The format's name as --format spells it.
+const char* FormatName(Format format) {
+  switch (format) {
+    case Format::kGltf:
+      return "gltf";
+    case Format::kGlb:
+      return "glb";
+    case Format::kMitsuba:
+      return "mitsuba";
+    case Format::kPbrt:
+      return "pbrt";
+    case Format::kBlender:
+      return "blender";
+    case Format::kThreejs:
+      return "threejs";
+  }
+  return "?";
+}
+
+// Whether `a` ranks above `b`: a rendered score (the model choice's, dB) above none, a higher
+// score first, then the lower log_rmse.
+bool Better(const FitReportEntry& a, const FitReportEntry& b) {
+  const RenderedError &ra = a.result.metrics.rendered, &rb = b.result.metrics.rendered;
+  if (ra.ok != rb.ok) return ra.ok;
+  if (ra.ok) {
+    const double sa = RenderedScoreDb(ra), sb = RenderedScoreDb(rb);
+    if (sa != sb) return sa > sb;
+  }
+  return a.result.metrics.log_rmse < b.result.metrics.log_rmse;
+}
+
+}  // namespace
+
+Fidelity FidelityOf(const FitResult& fit, Format format) {
+  if (format == Format::kThreejs) return {};
+  if (!IsExportable(fit.model)) {
+    return {{"the " + std::string(FormatName(format)) + " export takes only " +
+             std::string(ExportableModels()) + ", not " + fit.model}};
+  }
+  const LobeMaterial m = FromFit(fit);
+  switch (format) {
+    case Format::kGltf:
+    case Format::kGlb:
+      return ToGltf(m).fidelity;
+    case Format::kMitsuba:
+      return ToMitsuba(m).fidelity;
+    case Format::kPbrt:
+      return ToPbrt(m).fidelity;
+    case Format::kBlender:
+      return ToBlender(m).fidelity;
+    case Format::kThreejs:
+      break;
+  }
+  return {};
+}
+
 const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
                                   const std::string& material, const std::string& model,
                                   Format format) {
@@ -123,34 +182,65 @@ const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
     throw InputError("no fit of model '" + model + "'" + SuggestionAfter(model, fitted) +
                      " (fitted: " + models + ")");
   }
-  if (format == Format::kThreejs) {
+  // The chosen fit when it qualifies, else the best-scored one that does; null when none does.
+  const auto pick = [&](auto&& qualifies) -> const FitReportEntry* {
+    const FitReportEntry* best = nullptr;
     for (const auto* e : of) {
-      if (e->chosen) return *e;
+      if (!qualifies(*e)) continue;
+      if (e->chosen) return e;
+      if (!best || Better(*e, *best)) best = e;
     }
-    const FitReportEntry* best = of.front();
-    for (const auto* e : of) {
-      if (e->result.metrics.log_rmse < best->result.metrics.log_rmse) best = e;
-    }
-    return *best;
-  }
-  const std::string exact =
-      format == Format::kMitsuba || format == Format::kBlender ? "lambert+ggx" : "lambert+ggx-hc";
-  for (const auto* e : of) {
-    if (e->result.model == exact) return *e;
-  }
-  for (const auto* e : of) {
-    if (e->chosen && IsExportable(e->result.model)) return *e;
-  }
-  const FitReportEntry* best = nullptr;
+    return best;
+  };
+  if (format == Format::kThreejs) return *pick([](const FitReportEntry&) { return true; });
+  const auto exact = [&](const FitReportEntry& e) {
+    return IsExportable(e.result.model) && FidelityOf(e.result, format).Exact();
+  };
+  if (const FitReportEntry* e = pick(exact)) return *e;
+  // None exact: the fewest approximations the format states (a fit approximate in one way is
+  // nearer the target's material than one approximate in two), then the chosen fit, then the
+  // best.
+  const FitReportEntry* nearest = nullptr;
+  std::size_t nearest_count = 0;
   for (const auto* e : of) {
     if (!IsExportable(e->result.model)) continue;
-    if (!best || e->result.metrics.log_rmse < best->result.metrics.log_rmse) best = e;
+    const std::size_t n = FidelityOf(e->result, format).approximations.size();
+    const bool wins =
+        !nearest || n < nearest_count ||
+        (n == nearest_count && !nearest->chosen && (e->chosen || Better(*e, *nearest)));
+    if (wins) {
+      nearest = e;
+      nearest_count = n;
+    }
   }
-  if (!best) {
-    throw InputError("none of the fits (" + models + ") can be exported: fit one of " +
-                     std::string(ExportableModels()) + " (" + exact + " is exact for this target)");
+  if (nearest) return *nearest;
+  throw InputError("none of the fits (" + models + ") can be exported: fit one of " +
+                   std::string(ExportableModels()) + " (brdfit fit TABLE --target " +
+                   FormatName(format) + " fits the models this target expresses exactly)");
+}
+
+std::string SelectionNote(const std::vector<FitReportEntry>& entries,
+                          const FitReportEntry& selected, Format format) {
+  const FitReportEntry* chosen = nullptr;
+  for (const auto& e : entries) {
+    if (e.material == selected.material && e.chosen && !e.factorization && !e.result.Failed()) {
+      chosen = &e;
+    }
   }
-  return *best;
+  if (!chosen || chosen == &selected || chosen->result.model == selected.result.model) return {};
+  const std::string why =
+      !IsExportable(chosen->result.model) && format != Format::kThreejs
+          ? "which " + std::string(FormatName(format)) + " cannot express"
+          : "which " + std::string(FormatName(format)) + " expresses only approximately";
+  const RenderedError &a = chosen->result.metrics.rendered, &b = selected.result.metrics.rendered;
+  std::string gap;
+  if (a.ok && b.ok) {
+    gap = fmt::format("; {} scores {:.2f} dB, {:.2f} dB below the chosen fit's {:.2f} dB",
+                      selected.result.model, RenderedScoreDb(b),
+                      RenderedScoreDb(a) - RenderedScoreDb(b), RenderedScoreDb(a));
+  }
+  return fmt::format("brdfit chose {} for this material, {}: exporting {}{}", chosen->result.model,
+                     why, selected.result.model, gap);
 }
 
 ExportOutcome WriteExport(const FitReportEntry& entry, const std::string& fits_path, Format format,

@@ -17,16 +17,29 @@ enum class Format { kGltf, kGlb, kMitsuba, kPbrt, kBlender, kThreejs };
 // "gltf" | "glb" | "mitsuba" | "pbrt" | "blender" | "threejs"; throws InputError otherwise.
 Format FormatFromString(const std::string& s);
 
+// What exporting `fit` in `format` approximates (each target's own check, export/targets.h):
+// empty when exact; a model export cannot read gives one entry. kThreejs evaluates every
+// analytic model exactly.
+Fidelity FidelityOf(const FitResult& fit, Format format);
+
 // The entry to export among `entries`: those of `material` (any when empty and there is one
-// material), of `model` when given, else the exportable one the target expresses exactly
-// (lambert+ggx for Mitsuba and Blender, lambert+ggx-hc for the others), else the chosen fit, else
-// the exportable fit with the lowest log_rmse. kThreejs evaluates every analytic model exactly:
-// `model`, else the chosen fit, else the lowest log_rmse. A factorization entry (io/fit_report.h)
-// is never selected: its sidecar exports (threejs). Throws InputError naming what is
-// available.
+// material), of `model` when given; else the chosen fit when the format expresses it exactly,
+// else the best fit the format expresses exactly, else the exportable fit with the fewest
+// approximations (FidelityOf), the chosen one first among equals, then the best. "Best" is the
+// rendered score of the model choice (core/model_choice.h, RenderedScoreDb), then the lowest
+// log_rmse for fits without one.
+// kThreejs evaluates every analytic model exactly: `model`, else the chosen fit, else the best.
+// A factorization entry (io/fit_report.h) is never selected: its sidecar exports (threejs).
+// Throws InputError naming what is available.
 const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
                                   const std::string& material, const std::string& model,
                                   Format format);
+
+// When `selected` is not its material's chosen analytic fit: which fit brdfit chose, why the
+// format does not take it (not exportable, or only approximately) and how far the exported fit's
+// rendered score is below it (dB). Empty when the chosen fit is exported or there is none.
+std::string SelectionNote(const std::vector<FitReportEntry>& entries,
+                          const FitReportEntry& selected, Format format);
 
 // The file extension of a format's main output: ".gltf", ".glb", ".xml" (Mitsuba 3), ".pbrt",
 // ".py" (Blender), ".mjs" (three.js).

@@ -17,8 +17,9 @@ the sRGB curve near black). It is noise-aware: the grey case is rendered again w
 seed, and the seed-to-seed difference (two independent renders: sqrt(2) times one render's
 noise) must stay at or below mean 0.25 and p99 2, or the tolerance would be too tight for the
 sample count (measured at 16 samples: mean 0.05, p99 1).
+The two-lobe case (lambert+ggx+ggx: a second Glossy BSDF added) is held to the same tolerance.
 Must be caught (outside the tolerance): the roughness trap (roughness = alpha instead of
-sqrt(alpha)) in the grey case, and the masking of a rough bright lobe (alpha 0.6, ks 0.9)
+sqrt(alpha)) in the grey case, the two-lobe export with its second Glossy BSDF removed, and the masking of a rough bright lobe (alpha 0.6, ks 0.9)
 compared with brdfit's height-correlated lambert+ggx-hc instead of the separable lambert+ggx:
 Cycles 3.4's GGX is separable, and the comparison can see the difference.
 Reported only: the approximate Principled BSDF material of the script (--material principled).
@@ -111,8 +112,15 @@ def main():
     pick = lambda m, model: [f for f in fits if f["material"] == m and f["model"] == model][0]
     grey = synthetic("grey", "lambert+ggx", (0.30, 0.20, 0.10), (0.25, 0.25, 0.25), 0.15)
     rough = synthetic("rough", "lambert+ggx", (0, 0, 0), (0.9, 0.9, 0.9), 0.6)
+    # Two lobes (lambert+ggx+ggx): a sharp coloured highlight over a wide haze, a second Glossy
+    # BSDF added in the node tree.
+    two = synthetic("two", "lambert+ggx", (0.10, 0.06, 0.03), (0.06, 0.05, 0.04), 0.25)
+    two["model"] = "lambert+ggx+ggx"
+    two["params"] = {k.replace("ggx.", "ggx1."): v for k, v in two["params"].items()}
+    two["params"].update({"ggx2.ks_r": 0.5, "ggx2.ks_g": 0.35, "ggx2.ks_b": 0.2,
+                          "ggx2.alpha": 0.02})
     cases = [("grey", grey), ("gold", pick("gold-metallic-paint", "lambert+ggx")),
-             ("red", pick("red-phenolic", "lambert+ggx")), ("rough", rough)]
+             ("red", pick("red-phenolic", "lambert+ggx")), ("rough", rough), ("two", two)]
     bad = 0
     renders = {}
     for name, fit in cases:
@@ -150,6 +158,23 @@ def main():
     caught = mean > MEAN_TOL or p99 > P99_TOL
     bad += not caught
     print(f"planted roughness = alpha: mean {mean:.2f}, p99 {p99}, max {worst} levels: "
+          f"{'caught' if caught else 'NOT CAUGHT'}")
+
+    # Planted: the two-lobe export without its second Glossy BSDF (what a one-lobe target
+    # keeps) must be outside the tolerance of the two-lobe fit.
+    script, ref, _ = renders["two"]
+    text = open(script).read()
+    start = text.find(',\n         "second_glossy_color"')
+    if start < 0:
+        print(f"FAIL planted: no second_glossy_color in {script}")
+        return 1
+    planted = os.path.join(o.work, "planted-one-lobe.py")
+    open(planted, "w").write(text[:start] + text[text.find("}", start):])
+    img = b.render(planted, os.path.join(o.work, "planted-one-lobe-blender.png"))
+    mean, p99, worst = compare(ref, img)
+    caught = mean > MEAN_TOL or p99 > P99_TOL
+    bad += not caught
+    print(f"planted second lobe dropped: mean {mean:.2f}, p99 {p99}, max {worst} levels: "
           f"{'caught' if caught else 'NOT CAUGHT'}")
 
     # Masking: the rough lobe as height-correlated (brdfit lambert+ggx-hc) must not match.

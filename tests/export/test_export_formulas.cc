@@ -159,16 +159,41 @@ Rgb ParseRgb(const std::string& s) {
   return v;
 }
 
+// Every roughconductor's (alpha, specular_reflectance), in the order of the file.
+std::vector<std::pair<double, Rgb>> MitsubaConductors(const std::string& xml) {
+  std::vector<std::pair<double, Rgb>> out;
+  for (std::size_t at = xml.find("<bsdf type=\"roughconductor\""); at != std::string::npos;
+       at = xml.find("<bsdf type=\"roughconductor\"", at + 1)) {
+    const std::string rest = xml.substr(at);
+    EXPECT_EQ(MitsubaValue(rest, "roughconductor", "string", "distribution"), "ggx");
+    EXPECT_EQ(MitsubaValue(rest, "roughconductor", "string", "material"), "none");
+    out.emplace_back(std::stod(MitsubaValue(rest, "roughconductor", "float", "alpha")),
+                     ParseRgb(MitsubaValue(rest, "roughconductor", "rgb", "specular_reflectance")));
+  }
+  return out;
+}
+
+// blendbsdf(w) of diffuse(R) and either one roughconductor or a nested blendbsdf(v) of two:
+// (1 - w) R / pi + w S lobe, or (1 - w) R / pi + w ((1 - v) S1 lobe1 + v S2 lobe2).
 Rgb MitsubaEval(const std::string& xml, const Dirs& d) {
-  EXPECT_EQ(MitsubaValue(xml, "roughconductor", "string", "distribution"), "ggx");
-  EXPECT_EQ(MitsubaValue(xml, "roughconductor", "string", "material"), "none");
   const double w = std::stod(MitsubaValue(xml, "blendbsdf", "float", "weight"));
   const Rgb r = ParseRgb(MitsubaValue(xml, "diffuse", "rgb", "reflectance"));
-  const Rgb s = ParseRgb(MitsubaValue(xml, "roughconductor", "rgb", "specular_reflectance"));
-  const double a = std::stod(MitsubaValue(xml, "roughconductor", "float", "alpha"));
-  const double lobe = DGgx(a, d.ch) * GSeparable(a, d.ci, d.co) / (4 * d.ci * d.co);
+  const auto conductors = MitsubaConductors(xml);
+  EXPECT_TRUE(conductors.size() == 1 || conductors.size() == 2) << conductors.size();
+  std::vector<double> share = {1.0};
+  if (conductors.size() == 2) {
+    const std::size_t inner = xml.find("<bsdf type=\"blendbsdf\"", xml.find("</bsdf>"));
+    EXPECT_NE(inner, std::string::npos) << "the nested blendbsdf";
+    const double v = std::stod(MitsubaValue(xml.substr(inner), "blendbsdf", "float", "weight"));
+    share = {1 - v, v};
+  }
   Rgb out{};
-  for (int c = 0; c < 3; ++c) out[c] = (1 - w) * r[c] / kPi + w * s[c] * lobe;  // |F| = 1
+  for (int c = 0; c < 3; ++c) out[c] = (1 - w) * r[c] / kPi;
+  for (std::size_t i = 0; i < conductors.size() && i < share.size(); ++i) {
+    const auto& [a, s] = conductors[i];
+    const double lobe = DGgx(a, d.ch) * GSeparable(a, d.ci, d.co) / (4 * d.ci * d.co);
+    for (int c = 0; c < 3; ++c) out[c] += w * share[i] * s[c] * lobe;  // |F| = 1
+  }
   return out;
 }
 
@@ -238,6 +263,25 @@ double FrComplex(double cos_i, std::complex<double> eta) {
   return (std::norm(r_parl) + std::norm(r_perp)) / 2;
 }
 
+// conductor(reflectance, roughness) as pbrt-v4 evaluates it: F_r D G / (4 cos_i cos_o), G
+// height-correlated, F the Fresnel of eta = 1, k = 2 sqrt(r) / sqrt(1 - r), r <= 0.9999.
+Rgb PbrtConductor(const PbrtParams& cond, const Dirs& d) {
+  EXPECT_EQ(cond.at("string type").at(0), "\"conductor\"");
+  EXPECT_EQ(cond.at("bool remaproughness").at(0), "false");
+  const Rgb refl = Num3(cond, "rgb reflectance");
+  const double a = Num(cond, "float roughness");
+  const double lobe = DGgx(a, d.ch) * GHeightCorrelated(a, d.ci, d.co) / (4 * d.ci * d.co);
+  Rgb out{};
+  for (int c = 0; c < 3; ++c) {
+    const double rc = std::clamp(refl[c], 0.0, 0.9999);
+    const double k = 2 * std::sqrt(rc) / std::sqrt(1 - rc);
+    out[c] = FrComplex(std::abs(d.cd), {1.0, k}) * lobe;
+  }
+  return out;
+}
+
+// mix(amount a) of brdfit-diffuse and brdfit-specular; brdfit-specular a conductor, or a
+// mix(v) of brdfit-specular-1 and -2 (pbrt-v4 picks materials[1] with probability amount).
 Rgb PbrtEval(const std::string& text, const Dirs& d) {
   const auto mats = PbrtNamedMaterials(text);
   const PbrtParams& mix = mats.at("brdfit-material");
@@ -245,20 +289,22 @@ Rgb PbrtEval(const std::string& text, const Dirs& d) {
   EXPECT_EQ(mix.at("string materials").at(0), "\"brdfit-diffuse\"");
   EXPECT_EQ(mix.at("string materials").at(1), "\"brdfit-specular\"");
   const PbrtParams& diff = mats.at("brdfit-diffuse");
-  const PbrtParams& cond = mats.at("brdfit-specular");
-  EXPECT_EQ(cond.at("string type").at(0), "\"conductor\"");
-  EXPECT_EQ(cond.at("bool remaproughness").at(0), "false");
-  const double amount = Num(mix, "float amount");
-  const Rgb r = Num3(diff, "rgb reflectance"), refl = Num3(cond, "rgb reflectance");
-  const double a = Num(cond, "float roughness");
-  const double lobe = DGgx(a, d.ch) * GHeightCorrelated(a, d.ci, d.co) / (4 * d.ci * d.co);
-  Rgb out{};
-  for (int c = 0; c < 3; ++c) {
-    const double rc = std::clamp(refl[c], 0.0, 0.9999);
-    const double k = 2 * std::sqrt(rc) / std::sqrt(1 - rc);
-    const double f = FrComplex(std::abs(d.cd), {1.0, k});
-    out[c] = (1 - amount) * r[c] / kPi + amount * f * lobe;
+  const PbrtParams& spec = mats.at("brdfit-specular");
+  Rgb lobes{};
+  if (spec.at("string type").at(0) == "\"mix\"") {
+    EXPECT_EQ(spec.at("string materials").at(0), "\"brdfit-specular-1\"");
+    EXPECT_EQ(spec.at("string materials").at(1), "\"brdfit-specular-2\"");
+    const double v = Num(spec, "float amount");
+    const Rgb l1 = PbrtConductor(mats.at("brdfit-specular-1"), d);
+    const Rgb l2 = PbrtConductor(mats.at("brdfit-specular-2"), d);
+    for (int c = 0; c < 3; ++c) lobes[c] = (1 - v) * l1[c] + v * l2[c];
+  } else {
+    lobes = PbrtConductor(spec, d);
   }
+  const double amount = Num(mix, "float amount");
+  const Rgb r = Num3(diff, "rgb reflectance");
+  Rgb out{};
+  for (int c = 0; c < 3; ++c) out[c] = (1 - amount) * r[c] / kPi + amount * lobes[c];
   return out;
 }
 
@@ -296,6 +342,13 @@ Rgb BlenderExactEval(const std::string& py, const Dirs& d) {
   const double lobe = DGgx(a, d.ch) * GSeparable(a, d.ci, d.co) / (4 * d.ci * d.co);
   Rgb out{};
   for (int c = 0; c < 3; ++c) out[c] = kd[c] / kPi + ks[c] * lobe;
+  if (py.find("\"second_glossy_color\": (") != std::string::npos) {
+    // + a second Glossy BSDF (GGX), added.
+    const Rgb ks2 = PyTuple(py, "EXACT", "second_glossy_color");
+    const double r2 = PyNumber(py, "EXACT", "second_roughness"), a2 = r2 * r2;
+    const double lobe2 = DGgx(a2, d.ch) * GSeparable(a2, d.ci, d.co) / (4 * d.ci * d.co);
+    for (int c = 0; c < 3; ++c) out[c] += ks2[c] * lobe2;
+  }
   return out;
 }
 
@@ -547,6 +600,105 @@ TEST(ExportFormulas, SheenGoesToKhrMaterialsSheenAndIsLeftOutElsewhere) {
   EXPECT_NE(pbrt.find("sheen lobe"), std::string::npos);
 }
 
+// An entry of `model` with its parameters given by name (every one of the model's).
+FitReportEntry EntryByName(const std::string& model, const std::map<std::string, double>& p) {
+  const ModelInfo* m = FindModel(model);
+  std::vector<double> params;
+  for (const std::string& n : m->param_names) {
+    EXPECT_EQ(p.count(n), 1u) << model << " " << n;
+    params.push_back(p.count(n) ? p.at(n) : 0.0);
+  }
+  EXPECT_EQ(p.size(), params.size()) << model;
+  return Entry(model, params);
+}
+
+// lambert+ggx+ggx, coloured lobes: exact in Mitsuba 3 (a nested blendbsdf of two
+// roughconductors) and in Blender (a second Glossy BSDF added); pbrt-v4 nests two conductors
+// (exact but for its height-correlated masking); glTF and the Principled BSDF keep the stronger
+// lobe and say so.
+TEST(ExportFormulas, TwoGgxLobesAreExactInMitsubaAndBlender) {
+  ScratchDir dir;
+  bool exact = false;
+  // The second lobe is the stronger: the exports put it first.
+  const auto e = EntryByName("lambert+ggx+ggx", {{"lambert.kd_r", 0.20},
+                                                 {"lambert.kd_g", 0.12},
+                                                 {"lambert.kd_b", 0.05},
+                                                 {"ggx1.ks_r", 0.05},
+                                                 {"ggx1.ks_g", 0.04},
+                                                 {"ggx1.ks_b", 0.03},
+                                                 {"ggx1.alpha", 0.30},
+                                                 {"ggx2.ks_r", 0.50},
+                                                 {"ggx2.ks_g", 0.40},
+                                                 {"ggx2.ks_b", 0.35},
+                                                 {"ggx2.alpha", 0.02}});
+  const std::string xml = ReadText(Export(dir, e, Format::kMitsuba, "two.xml", &exact));
+  EXPECT_TRUE(exact);
+  EXPECT_EQ(MitsubaConductors(xml).size(), 2u);
+  EXPECT_NEAR(MitsubaConductors(xml).at(0).first, 0.02, 1e-12);
+  EXPECT_LT(MaxRelError(e, [&](const Dirs& d) { return MitsubaEval(xml, d); }), 1e-7);
+
+  const std::string py = ReadText(Export(dir, e, Format::kBlender, "two.py", &exact));
+  EXPECT_TRUE(exact);
+  EXPECT_NEAR(PyNumber(py, "EXACT", "second_roughness"), std::sqrt(0.30), 1e-9);
+  EXPECT_LT(MaxRelError(e, [&](const Dirs& d) { return BlenderExactEval(py, d); }), 1e-7);
+  EXPECT_NE(py.find("the fit's weaker lobe"), std::string::npos) << "Principled: one lobe";
+
+  // pbrt-v4: the same sum with height-correlated masking and its conductor Fresnel.
+  const std::string pbrt = ReadText(Export(dir, e, Format::kPbrt, "two.pbrt", &exact));
+  EXPECT_FALSE(exact);
+  EXPECT_NE(pbrt.find("brdfit-specular-2"), std::string::npos);
+  const auto hc = EntryByName("lambert+ggx+ggx", {{"lambert.kd_r", 0.20},
+                                                  {"lambert.kd_g", 0.12},
+                                                  {"lambert.kd_b", 0.05},
+                                                  {"ggx1.ks_r", 0.05},
+                                                  {"ggx1.ks_g", 0.05},
+                                                  {"ggx1.ks_b", 0.05},
+                                                  {"ggx1.alpha", 0.30},
+                                                  {"ggx2.ks_r", 0.40},
+                                                  {"ggx2.ks_g", 0.40},
+                                                  {"ggx2.ks_b", 0.40},
+                                                  {"ggx2.alpha", 0.02}});
+  const std::string grey = ReadText(Export(dir, hc, Format::kPbrt, "grey.pbrt", &exact));
+  const Dirs n = MakeDirs({0, 0, 1}, {0, 0, 1});
+  const auto hc_sum = [&](const Dirs& d) {
+    Rgb out{};
+    for (int c = 0; c < 3; ++c) out[c] = hc.result.params[c] / kPi;
+    for (const auto& [ks, a] : {std::pair{0.05, 0.30}, std::pair{0.40, 0.02}}) {
+      const double lobe = DGgx(a, d.ch) * GHeightCorrelated(a, d.ci, d.co) / (4 * d.ci * d.co);
+      for (int c = 0; c < 3; ++c) out[c] += ks * lobe;
+    }
+    return out;
+  };
+  std::mt19937_64 rng(3);
+  for (int k = 0; k < 500; ++k) {
+    const Dirs d = k == 0 ? n : MakeDirs(RandomDir(rng), RandomDir(rng));
+    const Rgb t = PbrtEval(grey, d), want = hc_sum(d);
+    // pbrt's 0.9999 reflectance clamp: F dips by up to 4.3e-4 near grazing.
+    for (int c = 0; c < 3; ++c) ASSERT_NEAR(t[c], want[c], 1e-3 * want[c]) << k;
+  }
+
+  // glTF: the stronger lobe alone, and the note names the weaker one.
+  const fs::path gltf = Export(dir, e, Format::kGltf, "two.gltf", &exact);
+  EXPECT_FALSE(exact);
+  EXPECT_NE(ReadText(gltf).find("the fit's weaker lobe (ks (0.05, 0.04, 0.03)"), std::string::npos);
+  const auto mat = GltfMaterial(gltf);
+  EXPECT_NEAR(mat["pbrMetallicRoughness"]["roughnessFactor"].get<double>(), std::sqrt(0.02), 1e-12);
+}
+
+// A sheen lobe fitted to zero is no sheen: the export is the exact lambert+ggx, with no note.
+TEST(ExportFormulas, ZeroSheenIsNoSheen) {
+  ScratchDir dir;
+  bool exact = false;
+  const auto e =
+      Entry("lambert+ggx+sheen", {0.21, 0.13, 0.07, 0.05, 0.04, 0.03, 0.4, 0, 0, 0, 0.3});
+  const std::string xml = ReadText(Export(dir, e, Format::kMitsuba, "none.xml", &exact));
+  EXPECT_TRUE(exact);
+  EXPECT_EQ(xml.find("sheen lobe"), std::string::npos);
+  EXPECT_LT(MaxRelError(e, [&](const Dirs& d) { return MitsubaEval(xml, d); }), 1e-7);
+  const auto mat = GltfMaterial(Export(dir, e, Format::kGltf, "none.gltf", &exact));
+  EXPECT_FALSE(mat.contains("extensions") && mat["extensions"].contains("KHR_materials_sheen"));
+}
+
 // Golden files: `brdfit export tests/export/data/fits.json` as of this commit (the fits of
 // nbrdf:gold-metallic-paint and nbrdf:red-phenolic written by `brdfit fit ... --model
 // ggx-hc,ggx,ggx-f0,ue4 --json`), checked by hand against docs/exports.md's tables and by the
@@ -565,7 +717,7 @@ TEST(ExportGolden, FilesMatch) {
   for (const Case& c :
        {Case{"gold-metallic-paint", "", Format::kMitsuba, "gold-metallic-paint.xml"},
         Case{"gold-metallic-paint", "", Format::kPbrt, "gold-metallic-paint.pbrt"},
-        Case{"red-phenolic", "", Format::kGltf, "red-phenolic.gltf"},
+        Case{"red-phenolic", "lambert+ggx-hc", Format::kGltf, "red-phenolic.gltf"},
         Case{"red-phenolic", "ue4", Format::kPbrt, "red-phenolic-ue4.pbrt"}}) {
     const auto& e = exports::SelectEntry(entries, c.material, c.model, c.format);
     const fs::path out = dir.path() / c.golden;
@@ -574,16 +726,43 @@ TEST(ExportGolden, FilesMatch) {
   }
 }
 
+// The default: the chosen fit when the format expresses it exactly, else the best-scored fit it
+// does (a note names the chosen one and the gap), else the best exportable one.
 TEST(ExportSelect, ChoosesTheExactModelAndRefusesTheUnexportable) {
   const fs::path src = BRDFIT_SOURCE_DIR;
   const auto entries = ReadFitParamsJson(src / "tests/export/data/fits.json");
   EXPECT_THROW(exports::SelectEntry(entries, "", "", Format::kGltf), InputError);  // 2 materials
+  // gold-metallic-paint: brdfit chose lambert+ggx, exact in Mitsuba and Blender; pbrt-v4's
+  // height-correlated masking takes lambert+ggx-hc exactly.
+  for (const Format f : {Format::kMitsuba, Format::kBlender}) {
+    const auto& e = exports::SelectEntry(entries, "gold-metallic-paint", "", f);
+    EXPECT_EQ(e.result.model, "lambert+ggx");
+    EXPECT_EQ(exports::SelectionNote(entries, e, f), "");
+  }
+  const auto& pbrt = exports::SelectEntry(entries, "gold-metallic-paint", "", Format::kPbrt);
+  EXPECT_EQ(pbrt.result.model, "lambert+ggx-hc");
+  const std::string note = exports::SelectionNote(entries, pbrt, Format::kPbrt);
+  EXPECT_NE(note.find("brdfit chose lambert+ggx for this material, which pbrt expresses only "
+                      "approximately: exporting lambert+ggx-hc"),
+            std::string::npos)
+      << note;
+  EXPECT_NE(note.find("dB below the chosen fit's"), std::string::npos) << note;
+  // red-phenolic: brdfit chose lambert+ggx-f0 (Schlick Fresnel), which Mitsuba's
+  // roughconductor (no Fresnel) does not express: the best-scored exact fit instead.
+  const auto& mitsuba = exports::SelectEntry(entries, "red-phenolic", "", Format::kMitsuba);
+  EXPECT_EQ(mitsuba.result.model, "lambert+ggx");
+  EXPECT_NE(exports::SelectionNote(entries, mitsuba, Format::kMitsuba).find("lambert+ggx-f0"),
+            std::string::npos);
+  // glTF expresses neither exactly, each in one way (a coloured ks; the diffuse weighted by
+  // 1 - max F): the chosen one.
   EXPECT_EQ(exports::SelectEntry(entries, "red-phenolic", "", Format::kGltf).result.model,
-            "lambert+ggx-hc");
-  EXPECT_EQ(exports::SelectEntry(entries, "red-phenolic", "", Format::kMitsuba).result.model,
-            "lambert+ggx");
-  EXPECT_EQ(exports::SelectEntry(entries, "red-phenolic", "", Format::kBlender).result.model,
-            "lambert+ggx");
+            "lambert+ggx-f0");
+  // three.js evaluates every model: the chosen fit.
+  EXPECT_EQ(exports::SelectEntry(entries, "red-phenolic", "", Format::kThreejs).result.model,
+            "lambert+ggx-f0");
+  // --model wins, and must be exportable.
+  EXPECT_EQ(exports::SelectEntry(entries, "red-phenolic", "ue4", Format::kGltf).result.model,
+            "ue4");
   EXPECT_THROW(exports::SelectEntry(entries, "red-phenolic", "ward", Format::kGltf), InputError);
   EXPECT_THROW(exports::SelectEntry(entries, "no-such", "", Format::kGltf), InputError);
   auto e = Entry("lambert+abc", std::vector<double>(FindModel("lambert+abc")->params.size(), 0.1));
