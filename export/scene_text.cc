@@ -98,6 +98,10 @@ std::string PbrtScene(const PbrtMix& m, const Provenance& p, const std::string& 
                   "# a ((1 - v) F_r D G / (4 cos_i cos_o) + v F_r2 D2 G2 / (4 cos_i cos_o)).\n"
                 : ".\n";
   s += "# Render: pbrt this.pbrt (docs/exports.md)\n\n";
+  // pbrt-v4's LookAt puts Cross(up, dir) on the image's right: a left-handed view, the mirror
+  // image of the other exports' and brdfit's preview. Scale -1 1 1 (applied to the camera
+  // transform) mirrors it back, so that the light from (1, 1, 1) lights the upper right.
+  s += "Scale -1 1 1\n";
   s += "LookAt 0 0 4.2  0 0 0  0 1 0\n";
   s += "Camera \"perspective\" \"float fov\" [ 30 ]\n";
   s += fmt::format(

@@ -14,6 +14,7 @@ PACKAGES=(
   python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest  # python/ (docs/python.md)
   parallel slurmctld slurmd slurm-client  # the sharded-batch recipes and their tests (docs/scale.md)
   blender  # Blender 3.4: export.blender_render renders the Blender exports (docs/exports.md)
+  libopengl0 libglx0  # ../shared/tools/pbrt-v4's run-time libraries beside OpenEXR (export.pbrt_render)
 )
 # Extra packages for the sanitizer / fuzzing build (clang's runtimes).
 if [[ "${BRDFIT_WITH_CLANG:-0}" == 1 ]]; then

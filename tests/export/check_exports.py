@@ -29,7 +29,7 @@ from node_tools import ensure_tools
 
 FORMATS = {"gltf": ".gltf", "glb": ".glb", "mitsuba": ".xml", "pbrt": ".pbrt", "blender": ".py",
            "threejs": ".mjs"}
-PBRT_DIRECTIVES = {"LookAt", "Camera", "Film", "Sampler", "Integrator", "WorldBegin",
+PBRT_DIRECTIVES = {"Scale", "LookAt", "Camera", "Film", "Sampler", "Integrator", "WorldBegin",
                    "LightSource", "MakeNamedMaterial", "NamedMaterial", "AttributeBegin",
                    "AttributeEnd", "Shape"}
 PBRT_TYPES = {"integer", "float", "point2", "vector2", "point3", "vector3", "normal", "normal3",
@@ -98,11 +98,12 @@ def check_pbrt(path, text):
         if d not in PBRT_DIRECTIVES:
             return f"{path}: unknown directive {d!r}"
         i += 1
-        if d == "LookAt":
-            vals = t[i:i + 9]
-            if len(vals) != 9 or any(not re.fullmatch(r"-?[0-9.eE+-]+", v) for v in vals):
-                return f"{path}: LookAt needs 9 numbers"
-            i += 9
+        if d in ("LookAt", "Scale"):
+            n = 9 if d == "LookAt" else 3
+            vals = t[i:i + n]
+            if len(vals) != n or any(not re.fullmatch(r"-?[0-9.eE+-]+", v) for v in vals):
+                return f"{path}: {d} needs {n} numbers"
+            i += n
             continue
         if d in ("WorldBegin", "AttributeBegin", "AttributeEnd"):
             continue

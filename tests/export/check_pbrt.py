@@ -1,0 +1,229 @@
+#!/usr/bin/env python3
+"""pbrt-v4 renders brdfit's pbrt exports like brdfit's own preview renders the fit
+(docs/exports.md, "pbrt-v4").
+
+Each case is exported (`brdfit export --format pbrt`) and rendered by pbrt-v4
+(../shared/tools/pbrt-v4: a CPU build of mmp/pbrt-v4, spectral, RGB film, sRGB PNG) with the
+scene's camera moved to brdfit's preview distance (0, 0, 4) — the only edit to the file —, and
+`brdfit render` renders the same fit in the same scene (check_threejs.preview_scene: one
+directional light from (1, 1, 1) of irradiance 3, 30 deg field of view, linear -> sRGB 8 bit).
+
+pbrt's mix material picks one of its materials per shading point, so at 64 samples per pixel
+single pixels are noisy: both images are compared as 16 x 16 pixel block means in linear light
+(the blocks wholly inside the sphere's inner disc, radius 118 px), as sRGB 8-bit levels: mean
+and max over the blocks. Tolerance of an exact export (lambert+ggx-hc with a grey ks): mean <= 1,
+max <= 4 levels (measured: mean 0.18, max 2.80). It is noise-aware: the grey case is rendered
+again with another seed and the seed-to-seed block difference (sqrt(2) times one render's noise)
+must stay at or below mean 0.5 and max 3.5 (measured: 0.18 / 2.87), or the tolerance would be
+too tight for the sample count. The planted defects render at 16 samples per pixel.
+Must be caught (outside the tolerance): the roughness trap ("bool remaproughness" true, pbrt's
+default, which reads the roughness as a perceptual one; measured 12.92 / 68.07) and the two-lobe
+export with its inner mix amount set to 0, the first conductor for both lobes (8.72 / 40.79).
+Measured and reported: gold-metallic-paint's lambert+ggx-hc 0.37 / 4.45, the two-lobe grey
+0.25 / 2.69. Reported only (approximate by construction, docs/exports.md): a coloured ks (the conductor's
+Fresnel rises to white at grazing; pbrt's spectral upsampling of the colours) and the two-lobe
+export against brdfit's separable-masking lambert+ggx+ggx.
+Exit 0 ok, 1 a case is outside its tolerance, 77 (ctest SKIP) when pbrt-v4 is missing or in the
+sanitizer build.
+"""
+import argparse
+import json
+import os
+import re
+import subprocess
+import sys
+
+from check_threejs import SIZE, analytic, preview_scene, read_png
+
+MEAN_TOL, MAX_TOL = 1.0, 4.0
+NOISE_MEAN_MAX, NOISE_MAX_MAX = 0.5, 3.5
+BLOCK, RADIUS, SPP, PLANTED_SPP = 16, 118, 64, 16
+
+
+def to_linear(v):
+    c = v / 255.0
+    return c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
+
+
+def to_srgb_levels(c):
+    c = min(max(c, 0.0), 1.0)
+    return 255.0 * (12.92 * c if c <= 0.0031308 else 1.055 * c ** (1 / 2.4) - 0.055)
+
+
+LINEAR = [to_linear(v) for v in range(256)]
+
+
+def block_means(path):
+    """{(bx, by, channel): mean linear value} over the blocks wholly inside the sphere."""
+    w, h, ch, rows = read_png(path)
+    if (w, h) != (SIZE, SIZE):
+        raise RuntimeError(f"{path}: {w}x{h}, expected {SIZE}x{SIZE}")
+    c0, out = (SIZE - 1) / 2, {}
+    for by in range(SIZE // BLOCK):
+        for bx in range(SIZE // BLOCK):
+            corners = [(bx * BLOCK + dx, by * BLOCK + dy) for dx in (0, BLOCK - 1)
+                       for dy in (0, BLOCK - 1)]
+            if any((x - c0) ** 2 + (y - c0) ** 2 > RADIUS ** 2 for x, y in corners):
+                continue
+            for k in range(3):
+                s = sum(LINEAR[rows[y][x * ch + k]] for y in range(by * BLOCK, (by + 1) * BLOCK)
+                        for x in range(bx * BLOCK, (bx + 1) * BLOCK))
+                out[(bx, by, k)] = s / (BLOCK * BLOCK)
+    return out
+
+
+def compare_blocks(a_path, b_path):
+    a, b = block_means(a_path), block_means(b_path)
+    d = [abs(to_srgb_levels(a[key]) - to_srgb_levels(b[key])) for key in a]
+    return sum(d) / len(d), max(d)
+
+
+def run(cmd, what):
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError(f"{what} failed ({r.returncode}): {r.stdout[-2000:]}{r.stderr[-2000:]}")
+    return r
+
+
+def fit_of(name, model, params):
+    return {"source": "synthetic", "material": name, "model": model, "status": "converged",
+            "message": "", "params": params,
+            "metrics": {"log_rmse": 0, "cbrt_rmse": 0, "rel_l2": 0, "weighting": "none",
+                        "cutoff_deg": 90}}
+
+
+def lobe_params(kd, lobes):
+    """lambert kd and [(prefix, ks, alpha)] as a fit's named parameters."""
+    p = {f"lambert.kd_{c}": v for c, v in zip("rgb", kd)}
+    for prefix, ks, alpha in lobes:
+        p.update({f"{prefix}.ks_{c}": v for c, v in zip("rgb", ks)})
+        p[f"{prefix}.alpha"] = alpha
+    return p
+
+
+class Bench:
+    def __init__(self, o):
+        self.o = o
+
+    def preview(self, name, fit):
+        path = os.path.join(self.o.work, name + ".scene.json")
+        json.dump(preview_scene(analytic(fit)), open(path, "w"), indent=1)
+        png = os.path.join(self.o.work, name + "-brdfit.png")
+        run([self.o.brdfit, "render", path, "-o", png], f"{name}: brdfit render")
+        return png
+
+    def export(self, name, fit):
+        fits = os.path.join(self.o.work, name + ".json")
+        json.dump({"format": "brdfit-fit-params", "format_version": 1, "fits": [fit]},
+                  open(fits, "w"))
+        out = os.path.join(self.o.work, name + ".pbrt")
+        run([self.o.brdfit, "export", fits, "--format", "pbrt", "-q", "-o", out],
+            f"{name}: brdfit export")
+        return open(out).read()
+
+    def render(self, name, text, seed=0, spp=SPP):
+        """pbrt-v4 of the exported text, the camera at brdfit's preview distance, PNG output."""
+        png = os.path.join(self.o.work, name + "-pbrt.png")
+        moved = text.replace("LookAt 0 0 4.2  0 0 0  0 1 0", "LookAt 0 0 4  0 0 0  0 1 0")
+        moved, n = re.subn(r'"string filename" \[ "[^"]*" \]',
+                           f'"string filename" [ "{os.path.basename(png)}" ]', moved)
+        if moved.count("LookAt 0 0 4  ") != 1 or n != 1:
+            raise RuntimeError(f"{name}: the export's camera or film line is not the expected one")
+        scene = os.path.join(self.o.work, name + "-render.pbrt")
+        open(scene, "w").write(moved)
+        if os.path.exists(png):
+            os.remove(png)
+        subprocess.run([self.o.pbrt, "--quiet", "--nthreads", "2", "--spp", str(spp), "--seed",
+                        str(seed), os.path.basename(scene)], cwd=self.o.work,
+                       capture_output=True, text=True, check=False)
+        if not os.path.exists(png):
+            raise RuntimeError(f"pbrt-v4 wrote no {png}")
+        return png
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    for a in ("--brdfit", "--fits", "--work", "--pbrt"):
+        ap.add_argument(a, required=True)
+    ap.add_argument("--sanitizer-build", action="store_true")
+    o = ap.parse_args()
+    if o.sanitizer_build:
+        print("SKIP pbrt-v4 rendering: not run in the sanitizer build (pbrt is not instrumented "
+              "and the exported numbers do not depend on it)")
+        return 77
+    if not os.access(o.pbrt, os.X_OK):
+        print(f"SKIP pbrt-v4 rendering: {o.pbrt} not found (../shared/tools/pbrt-v4; its README "
+              "lists the run-time packages)")
+        return 77
+    os.makedirs(o.work, exist_ok=True)
+    b = Bench(o)
+    fits = json.load(open(o.fits))["fits"]
+    gold = [f for f in fits if f["material"] == "gold-metallic-paint" and
+            f["model"] == "lambert+ggx-hc"][0]
+    grey = fit_of("grey", "lambert+ggx-hc",
+                  lobe_params((0.30, 0.20, 0.10), [("ggx-hc", (0.25, 0.25, 0.25), 0.15)]))
+    two = fit_of("two", "lambert+ggx+ggx",
+                 lobe_params((0.10, 0.06, 0.03), [("ggx1", (0.06, 0.06, 0.06), 0.25),
+                                                  ("ggx2", (0.40, 0.40, 0.40), 0.02)]))
+    bad = 0
+
+    def verdict(label, mean, worst, must):
+        nonlocal bad
+        inside = mean <= MEAN_TOL and worst <= MAX_TOL
+        if must == "match":
+            bad += not inside
+            word = "ok" if inside else f"OUTSIDE (mean <= {MEAN_TOL}, max <= {MAX_TOL})"
+        elif must == "differ":
+            bad += inside
+            word = "caught" if not inside else "NOT CAUGHT"
+        else:
+            word = "reported"
+        print(f"{label}: block mean {mean:.2f}, max {worst:.2f} levels: {word}")
+
+    text = {}
+    renders = {}
+    for name, fit, must in (("grey", grey, "match"), ("gold", gold, "report"),
+                            ("two", two, "report")):
+        text[name] = b.export(name, fit)
+        ref = b.preview(name, fit)
+        img = b.render(name, text[name])
+        renders[name] = (ref, img)
+        mean, worst = compare_blocks(ref, img)
+        verdict(f"{name:5s} {fit['model']:16s} pbrt-v4 vs brdfit preview", mean, worst, must)
+
+    # Noise: the grey case with another seed.
+    img1 = b.render("grey-seed1", text["grey"], seed=1)
+    mean, worst = compare_blocks(renders["grey"][1], img1)
+    quiet = mean <= NOISE_MEAN_MAX and worst <= NOISE_MAX_MAX
+    bad += not quiet
+    print(f"noise seed 0 vs seed 1: block mean {mean:.2f}, max {worst:.2f} levels: "
+          f"{'ok' if quiet else 'TOO NOISY for the tolerance'}")
+
+    # Planted: pbrt's default remaproughness (true) reads alpha as a perceptual roughness.
+    key = '"bool remaproughness" [ false ]'
+    if key not in text["grey"]:
+        print(f"FAIL planted: {key} not in the grey export")
+        return 1
+    img = b.render("planted-remap", text["grey"].replace(key, '"bool remaproughness" [ true ]'),
+                   spp=PLANTED_SPP)
+    verdict("planted remaproughness true", *compare_blocks(renders["grey"][0], img), "differ")
+
+    # Planted: the two-lobe export with its inner mix amount 0: the first conductor for both.
+    one, n = re.subn(r'"string materials" \[ "brdfit-specular-1" "brdfit-specular-2" \]\n'
+                     r'    "float amount" \[ [^\]]* \]',
+                     '"string materials" [ "brdfit-specular-1" "brdfit-specular-2" ]\n'
+                     '    "float amount" [ 0 ]', text["two"])
+    if n != 1:
+        print("FAIL planted: no nested mix of two conductors in the two-lobe export")
+        return 1
+    img = b.render("planted-one-lobe", one, spp=PLANTED_SPP)
+    verdict("planted one conductor for both lobes", *compare_blocks(renders["two"][0], img), "differ")
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main())
+    except RuntimeError as e:
+        print(f"FAIL: {e}")
+        sys.exit(1)
