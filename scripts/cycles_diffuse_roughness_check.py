@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Which Oren-Nayar Blender 3.4 Cycles' Diffuse BSDF evaluates, checked against Cycles renders.
+"""Which rough diffuse Blender 3.4 Cycles evaluates — its Diffuse BSDF with Roughness (an
+Oren-Nayar) and its Principled BSDF with Specular 0 (a Burley) —, checked against Cycles renders.
 
     /usr/bin/python3 scripts/cycles_diffuse_roughness_check.py --brdfit build/brdfit [--work DIR]
 
@@ -24,12 +25,24 @@ Lambert): 0.23 / 0.6 / 4.6, the floor of Cycles' noise and its UV-sphere mesh. S
 BSDF is Fujii's form exactly, and brdfit's `oren-nayar` is not it (not the same
 parameterization: a fit of one to the other is nearer than the same sigma). A catalog model of
 Fujii's form would export exactly to Cycles as a Diffuse BSDF with Roughness = sigma in [0, 1].
+
+The same grey Lambert's Principled BSDF material (`--material principled`: metallic 0, specular
+0 — so Cycles builds no specular closure —, sheen and clearcoat 0) with Roughness r in
+{0, 0.5, 1}, against Burley 2012's diffuse (f = kd/pi F(cos_i) F(cos_o), F(c) = 1 + (F_D90 - 1)
+(1 - c)^5, F_D90 = 0.5 + 2 r cos_d^2) and Frostbite's renormalized one (brdfit's `burley`,
+models/burley.h, r = sqrt(alpha)). Measured: r 0: Lambert 2.54 / 11.1 / 13.7, Burley 2012
+0.23 / 0.7 / 3.3, Frostbite 2.88 / 15.6 / 16.9; r 0.5: 1.45 / 6.3 / 7.4, 0.23 / 0.6 / 4.9,
+10.82 / 16.7 / 18.8; r 1: 4.82 / 19.8 / 25.3, 0.24 / 0.6 / 8.0, 21.33 / 32.1 / 33.6. So Cycles'
+Principled diffuse is Burley 2012 exactly (r = Roughness), and brdfit's Frostbite `burley` is
+not it: a catalog model of Burley 2012 (+ ggx, as Principled with Specular 0 + a Glossy BSDF)
+would export exactly.
 Needs numpy (Debian's python3-numpy, hence /usr/bin/python3) and blender; exit 0, 1 on a failure.
 """
 import argparse
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 
@@ -80,6 +93,17 @@ def classic(sigma, nl, nv, lv):
     return KD / math.pi * (a + b * s)
 
 
+def burley_2012(r, nl, nv, cd):
+    fd90 = 0.5 + 2 * r * cd * cd
+    return KD / math.pi * (1 + (fd90 - 1) * (1 - nl) ** 5) * (1 + (fd90 - 1) * (1 - nv) ** 5)
+
+
+def frostbite(r, nl, nv, cd):
+    fd90 = 0.5 * r + 2 * r * cd * cd
+    return (KD / math.pi * (1 + (fd90 - 1) * (1 - nl) ** 5) * (1 + (fd90 - 1) * (1 - nv) ** 5)
+            * (1 + (1 / 1.51 - 1) * r))
+
+
 def srgb_levels(c):
     c = np.clip(c, 0, 1)
     return np.where(c <= 0.0031308, 12.92 * c, 1.055 * c ** (1 / 2.4) - 0.055) * 255
@@ -112,23 +136,44 @@ def main():
     nl = np.maximum((n * LIGHT).sum(-1), 0)
     nv = np.maximum((n * v).sum(-1), 0)
     lv = (v * LIGHT).sum(-1)
-    for sigma in (0.0, 0.5, 1.0):
-        patched = os.path.join(o.work, f"grey-sigma{sigma}.py")
-        open(patched, "w").write(text.replace(
-            ROUGHNESS_LINE, f'diffuse.inputs["Roughness"].default_value = {sigma}'))
-        png = os.path.join(o.work, f"grey-sigma{sigma}.png")
+    h = v + LIGHT
+    cd = (LIGHT * (h / np.linalg.norm(h, axis=-1, keepdims=True))).sum(-1)
+
+    def render(name, patched_text, material):
+        patched = os.path.join(o.work, name + ".py")
+        open(patched, "w").write(patched_text)
+        png = os.path.join(o.work, name + ".png")
         subprocess.run([o.blender, "-b", "--factory-startup", "--python-exit-code", "1", "-P",
-                        patched, "--", "--render", png, "--size", str(SIZE), "--samples", "64",
-                        "--threads", "2"], check=True, capture_output=True)
+                        patched, "--", "--render", png, "--material", material, "--size",
+                        str(SIZE), "--samples", "64", "--threads", "2"], check=True,
+                       capture_output=True)
         w, h, ch, rows = read_png(png)
-        got = np.array([list(r) for r in rows], dtype=float).reshape(h, w, ch)[..., :3].mean(-1)
-        line = [f"sigma {sigma}:"]
-        for name, f in (("Lambert", lambert), ("Fujii (Cycles 3.4)", fujii),
-                        ("brdfit oren-nayar", classic)):
-            want = np.where(hit, srgb_levels(f(sigma, nl, nv, lv) * nl * IRRADIANCE), 0)
+        return np.array([list(r) for r in rows], dtype=float).reshape(h, w, ch)[..., :3].mean(-1)
+
+    def differences(got, formulas):
+        out = []
+        for name, fr in formulas:
+            want = np.where(hit, srgb_levels(fr * nl * IRRADIANCE), 0)
             d = np.abs(got - want)[inner]
-            line.append(f"{name} {d.mean():.2f} / {np.percentile(d, 99):.1f} / {d.max():.1f}")
-        print("  ".join(line))
+            out.append(f"{name} {d.mean():.2f} / {np.percentile(d, 99):.1f} / {d.max():.1f}")
+        return "  ".join(out)
+
+    for sigma in (0.0, 0.5, 1.0):
+        got = render(f"grey-sigma{sigma}", text.replace(
+            ROUGHNESS_LINE, f'diffuse.inputs["Roughness"].default_value = {sigma}'), "exact")
+        print(f"Diffuse BSDF, Roughness {sigma}: " + differences(got, (
+            ("Lambert", lambert(sigma, nl, nv, lv)), ("Fujii", fujii(sigma, nl, nv, lv)),
+            ("brdfit oren-nayar", classic(sigma, nl, nv, lv)))))
+    key = re.search(r'"roughness": [0-9.e+-]+,', text[text.find("\nPRINCIPLED = {"):])
+    if not key:
+        print(f"FAIL: {script} has no PRINCIPLED roughness")
+        return 1
+    for r in (0.0, 0.5, 1.0):
+        got = render(f"grey-principled{r}", text.replace(key.group(0), f'"roughness": {r},'),
+                     "principled")
+        print(f"Principled (specular 0), Roughness {r}: " + differences(got, (
+            ("Lambert", lambert(r, nl, nv, lv)), ("Burley 2012", burley_2012(r, nl, nv, cd)),
+            ("brdfit burley (Frostbite)", frostbite(r, nl, nv, cd)))))
     return 0
 
 
