@@ -199,7 +199,7 @@ void PrintTargetFidelity(std::FILE* out, const exports::FitTarget& t,
     for (const std::string& a : f.approximations) what += (what.empty() ? "" : "; ") + a;
     fmt::print(out, "target {}: {} {}: {}\n", t.name, e.material, e.result.model,
                f.Exact() ? "exact export (brdfit export --format " +
-                               std::string(t.format == exports::Format::kGlb ? "glb" : t.name) + ")"
+                               std::string(exports::FormatName(t.format)) + ")"
                          : "approximate export: " + what);
   }
 }

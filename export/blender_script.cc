@@ -39,10 +39,26 @@ def node_of_type(tree, kind):
     return next(n for n in tree.nodes if n.type == kind)
 
 
-def exact_material():
-    """Diffuse BSDF (roughness 0: Lambert) + Glossy BSDF (GGX, no Fresnel).
+def glossy_bsdf(tree, color, roughness):
+    """Glossy BSDF, GGX: color D G1 G1 / (4 cos_i cos_o), alpha = roughness^2."""
+    glossy = tree.nodes.new("ShaderNodeBsdfGlossy")
+    glossy.distribution = "GGX"
+    glossy.inputs["Color"].default_value = rgba(color)
+    glossy.inputs["Roughness"].default_value = roughness
+    return glossy.outputs["BSDF"]
 
-    f = kd / pi + ks D G / (4 cos_i cos_o)."""
+
+def add_shader(tree, a, b):
+    add = tree.nodes.new("ShaderNodeAddShader")
+    tree.links.new(a, add.inputs[0])
+    tree.links.new(b, add.inputs[1])
+    return add.outputs["Shader"]
+
+
+def exact_material():
+    """Diffuse BSDF (roughness 0: Lambert) + Glossy BSDF (GGX, no Fresnel) [+ a second one].
+
+    f = kd / pi + ks D G / (4 cos_i cos_o) [+ ks2 D2 G2 / (4 cos_i cos_o)]."""
     mat = bpy.data.materials.new("brdfit-material")
     mat.use_nodes = True
     tree = mat.node_tree
@@ -51,24 +67,13 @@ def exact_material():
     diffuse = tree.nodes.new("ShaderNodeBsdfDiffuse")
     diffuse.inputs["Color"].default_value = rgba(EXACT["diffuse_color"])
     diffuse.inputs["Roughness"].default_value = 0.0
-    glossy = tree.nodes.new("ShaderNodeBsdfGlossy")
-    glossy.distribution = "GGX"
-    glossy.inputs["Color"].default_value = rgba(EXACT["glossy_color"])
-    glossy.inputs["Roughness"].default_value = EXACT["roughness"]
-    add = tree.nodes.new("ShaderNodeAddShader")
-    tree.links.new(diffuse.outputs["BSDF"], add.inputs[0])
-    tree.links.new(glossy.outputs["BSDF"], add.inputs[1])
+    shader = add_shader(tree, diffuse.outputs["BSDF"],
+                        glossy_bsdf(tree, EXACT["glossy_color"], EXACT["roughness"]))
     if "second_glossy_color" in EXACT:
-        # + a second Glossy BSDF (GGX): the fit's second lobe, added.
-        glossy2 = tree.nodes.new("ShaderNodeBsdfGlossy")
-        glossy2.distribution = "GGX"
-        glossy2.inputs["Color"].default_value = rgba(EXACT["second_glossy_color"])
-        glossy2.inputs["Roughness"].default_value = EXACT["second_roughness"]
-        add2 = tree.nodes.new("ShaderNodeAddShader")
-        tree.links.new(add.outputs["Shader"], add2.inputs[0])
-        tree.links.new(glossy2.outputs["BSDF"], add2.inputs[1])
-        add = add2
-    tree.links.new(add.outputs["Shader"], out.inputs["Surface"])
+        # The fit's second lobe, added.
+        shader = add_shader(tree, shader, glossy_bsdf(tree, EXACT["second_glossy_color"],
+                                                      EXACT["second_roughness"]))
+    tree.links.new(shader, out.inputs["Surface"])
     return mat
 
 

@@ -22,32 +22,42 @@ namespace brdfit::exports {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// Each format's --format name and main output's extension.
+struct FormatSpelling {
+  Format format;
+  const char* name;
+  const char* extension;
+};
+constexpr FormatSpelling kFormats[] = {
+    {Format::kGltf, "gltf", ".gltf"},      {Format::kGlb, "glb", ".glb"},
+    {Format::kMitsuba, "mitsuba", ".xml"}, {Format::kPbrt, "pbrt", ".pbrt"},
+    {Format::kBlender, "blender", ".py"},  {Format::kThreejs, "threejs", ".mjs"},
+};
+
+const FormatSpelling& SpellingOf(Format format) {
+  for (const FormatSpelling& f : kFormats) {
+    if (f.format == format) return f;
+  }
+  throw std::logic_error("unknown export format");
+}
+
+}  // namespace
+
 Format FormatFromString(const std::string& s) {
-  if (s == "gltf") return Format::kGltf;
-  if (s == "glb") return Format::kGlb;
-  if (s == "mitsuba") return Format::kMitsuba;
-  if (s == "pbrt") return Format::kPbrt;
-  if (s == "blender") return Format::kBlender;
-  if (s == "threejs") return Format::kThreejs;
+  for (const FormatSpelling& f : kFormats) {
+    if (s == f.name) return f.format;
+  }
   throw InputError("--format '" + s + "': expected gltf, glb, mitsuba, pbrt, blender or threejs");
 }
 
+const char* FormatName(Format format) {
+  return SpellingOf(format).name;
+}
+
 const char* FormatExtension(Format format) {
-  switch (format) {
-    case Format::kGltf:
-      return ".gltf";
-    case Format::kGlb:
-      return ".glb";
-    case Format::kMitsuba:
-      return ".xml";
-    case Format::kPbrt:
-      return ".pbrt";
-    case Format::kBlender:
-      return ".py";
-    case Format::kThreejs:
-      return ".mjs";
-  }
-  throw std::logic_error("FormatExtension: unknown format");
+  return SpellingOf(format).extension;
 }
 
 std::vector<std::string> MaterialsOf(const std::vector<FitReportEntry>& entries) {
@@ -89,25 +99,6 @@ std::vector<std::string> MaterialFileNames(const std::vector<std::string>& mater
 }
 
 namespace {
-
-// The format's name as --format spells it.
-const char* FormatName(Format format) {
-  switch (format) {
-    case Format::kGltf:
-      return "gltf";
-    case Format::kGlb:
-      return "glb";
-    case Format::kMitsuba:
-      return "mitsuba";
-    case Format::kPbrt:
-      return "pbrt";
-    case Format::kBlender:
-      return "blender";
-    case Format::kThreejs:
-      return "threejs";
-  }
-  return "?";
-}
 
 // Whether `a` ranks above `b`: a rendered score (the model choice's, dB) above none, a higher
 // score first, then the lower log_rmse.
@@ -182,28 +173,13 @@ const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
     throw InputError("no fit of model '" + model + "'" + SuggestionAfter(model, fitted) +
                      " (fitted: " + models + ")");
   }
-  // The chosen fit when it qualifies, else the best-scored one that does; null when none does.
-  const auto pick = [&](auto&& qualifies) -> const FitReportEntry* {
-    const FitReportEntry* best = nullptr;
-    for (const auto* e : of) {
-      if (!qualifies(*e)) continue;
-      if (e->chosen) return e;
-      if (!best || Better(*e, *best)) best = e;
-    }
-    return best;
-  };
-  if (format == Format::kThreejs) return *pick([](const FitReportEntry&) { return true; });
-  const auto exact = [&](const FitReportEntry& e) {
-    return IsExportable(e.result.model) && FidelityOf(e.result, format).Exact();
-  };
-  if (const FitReportEntry* e = pick(exact)) return *e;
-  // None exact: the fewest approximations the format states (a fit approximate in one way is
+  // The fewest approximations the format states (0: exact; a fit approximate in one way is
   // nearer the target's material than one approximate in two), then the chosen fit, then the
-  // best.
+  // best. three.js takes every model, exactly.
   const FitReportEntry* nearest = nullptr;
   std::size_t nearest_count = 0;
   for (const auto* e : of) {
-    if (!IsExportable(e->result.model)) continue;
+    if (format != Format::kThreejs && !IsExportable(e->result.model)) continue;
     const std::size_t n = FidelityOf(e->result, format).approximations.size();
     const bool wins =
         !nearest || n < nearest_count ||

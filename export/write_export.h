@@ -16,6 +16,8 @@ enum class Format { kGltf, kGlb, kMitsuba, kPbrt, kBlender, kThreejs };
 
 // "gltf" | "glb" | "mitsuba" | "pbrt" | "blender" | "threejs"; throws InputError otherwise.
 Format FormatFromString(const std::string& s);
+// The name --format takes for `format`: "gltf", "glb", ...
+const char* FormatName(Format format);
 
 // What exporting `fit` in `format` approximates (each target's own check, export/targets.h):
 // empty when exact; a model export cannot read gives one entry. kThreejs evaluates every

@@ -33,7 +33,8 @@ import shutil
 import subprocess
 import sys
 
-from check_threejs import SIZE, analytic, compare, preview_scene  # the scene of the three.js checks
+# The scene, image comparison and brdfit helpers of the three.js checks.
+from check_threejs import SIZE, analytic, brdfit_render, compare, export_fit
 
 MEAN_TOL, P99_TOL = 1.0, 3
 NOISE_MEAN_MAX, NOISE_P99_MAX = 0.25, 2
@@ -63,21 +64,10 @@ class Bench:
 
     def preview(self, name, fit):
         """brdfit render of the fit in the scene the Blender script builds."""
-        scene = preview_scene(analytic(fit))
-        path = os.path.join(self.o.work, name + ".scene.json")
-        json.dump(scene, open(path, "w"), indent=1)
-        png = os.path.join(self.o.work, name + "-brdfit.png")
-        run([self.o.brdfit, "render", path, "-o", png], f"{name}: brdfit render")
-        return png
+        return brdfit_render(self.o, name, analytic(fit))
 
     def export(self, name, fit):
-        fits = os.path.join(self.o.work, name + ".json")
-        json.dump({"format": "brdfit-fit-params", "format_version": 1, "fits": [fit]},
-                  open(fits, "w"))
-        script = os.path.join(self.o.work, name + ".py")
-        run([self.o.brdfit, "export", fits, "--format", "blender", "-q", "-o", script],
-            f"{name}: brdfit export")
-        return script
+        return export_fit(self.o, name, fit, "blender", ".py")
 
     def render(self, script, png, material="exact", seed=0):
         run([self.blender, "-b", "--factory-startup", "--python-exit-code", "1", "-P", script,

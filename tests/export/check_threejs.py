@@ -211,6 +211,20 @@ def brdfit_render(o, name, material):
     return png
 
 
+def export_fit(o, name, fit, fmt, extension):
+    """`brdfit export` of one fit (written as brdfit-fit-params JSON) to o.work/NAME.EXTENSION."""
+    fits = os.path.join(o.work, name + ".json")
+    json.dump({"format": "brdfit-fit-params", "format_version": 1, "fits": [fit]},
+              open(fits, "w"))
+    out = os.path.join(o.work, name + extension)
+    r = subprocess.run([o.brdfit, "export", fits, "--format", fmt, "-q", "-o", out],
+                       capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError(f"{name}: brdfit export --format {fmt} failed ({r.returncode}): "
+                           f"{r.stdout[-2000:]}{r.stderr[-2000:]}")
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser()
     for a in ("--brdfit", "--fits", "--tools", "--work"):

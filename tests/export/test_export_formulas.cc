@@ -74,6 +74,13 @@ Dirs MakeDirs(const Vec3& wi, const Vec3& wo) {
   return d;
 }
 
+// A GGX microfacet lobe without Fresnel: D G / (4 cos_i cos_o), G height-correlated or
+// separable (Walter 2007 eq. 20 with F = 1).
+double GgxLobe(double a, const Dirs& d, bool height_correlated) {
+  const double g = height_correlated ? GHeightCorrelated(a, d.ci, d.co) : GSeparable(a, d.ci, d.co);
+  return DGgx(a, d.ch) * g / (4 * d.ci * d.co);
+}
+
 Rgb Array(const nlohmann::json& j, std::size_t n = 3) {
   Rgb v{};
   for (std::size_t c = 0; c < 3 && c < n; ++c) v[c] = j.at(c).get<double>();
@@ -191,7 +198,7 @@ Rgb MitsubaEval(const std::string& xml, const Dirs& d) {
   for (int c = 0; c < 3; ++c) out[c] = (1 - w) * r[c] / kPi;
   for (std::size_t i = 0; i < conductors.size() && i < share.size(); ++i) {
     const auto& [a, s] = conductors[i];
-    const double lobe = DGgx(a, d.ch) * GSeparable(a, d.ci, d.co) / (4 * d.ci * d.co);
+    const double lobe = GgxLobe(a, d, false);
     for (int c = 0; c < 3; ++c) out[c] += w * share[i] * s[c] * lobe;  // |F| = 1
   }
   return out;
@@ -270,7 +277,7 @@ Rgb PbrtConductor(const PbrtParams& cond, const Dirs& d) {
   EXPECT_EQ(cond.at("bool remaproughness").at(0), "false");
   const Rgb refl = Num3(cond, "rgb reflectance");
   const double a = Num(cond, "float roughness");
-  const double lobe = DGgx(a, d.ch) * GHeightCorrelated(a, d.ci, d.co) / (4 * d.ci * d.co);
+  const double lobe = GgxLobe(a, d, true);
   Rgb out{};
   for (int c = 0; c < 3; ++c) {
     const double rc = std::clamp(refl[c], 0.0, 0.9999);
@@ -339,14 +346,14 @@ double FresnelDielectric(double c, double eta) {
 Rgb BlenderExactEval(const std::string& py, const Dirs& d) {
   const Rgb kd = PyTuple(py, "EXACT", "diffuse_color"), ks = PyTuple(py, "EXACT", "glossy_color");
   const double r = PyNumber(py, "EXACT", "roughness"), a = r * r;
-  const double lobe = DGgx(a, d.ch) * GSeparable(a, d.ci, d.co) / (4 * d.ci * d.co);
+  const double lobe = GgxLobe(a, d, false);
   Rgb out{};
   for (int c = 0; c < 3; ++c) out[c] = kd[c] / kPi + ks[c] * lobe;
   if (py.find("\"second_glossy_color\": (") != std::string::npos) {
     // + a second Glossy BSDF (GGX), added.
     const Rgb ks2 = PyTuple(py, "EXACT", "second_glossy_color");
     const double r2 = PyNumber(py, "EXACT", "second_roughness"), a2 = r2 * r2;
-    const double lobe2 = DGgx(a2, d.ch) * GSeparable(a2, d.ci, d.co) / (4 * d.ci * d.co);
+    const double lobe2 = GgxLobe(a2, d, false);
     for (int c = 0; c < 3; ++c) out[c] += ks2[c] * lobe2;
   }
   return out;
@@ -368,7 +375,7 @@ Rgb BlenderPrincipledEval(const std::string& py, const Dirs& d) {
   const double fl = schlick(d.ci), fv = schlick(d.co);
   const double rr = r * (1 + Dot(d.wi, d.wo));
   const double burley = (1 - 0.5 * fv) * (1 - 0.5 * fl) + rr * (fl + fv + fl * fv * (rr - 1));
-  const double lobe = DGgx(a, d.ch) * GSeparable(a, d.ci, d.co) / (4 * d.ci * d.co);
+  const double lobe = GgxLobe(a, d, false);
   Rgb out{};
   for (int c = 0; c < 3; ++c) {
     const double ctint = lum > 0 ? base[c] / lum : 1;
@@ -664,7 +671,7 @@ TEST(ExportFormulas, TwoGgxLobesAreExactInMitsubaAndBlender) {
     Rgb out{};
     for (int c = 0; c < 3; ++c) out[c] = hc.result.params[c] / kPi;
     for (const auto& [ks, a] : {std::pair{0.05, 0.30}, std::pair{0.40, 0.02}}) {
-      const double lobe = DGgx(a, d.ch) * GHeightCorrelated(a, d.ci, d.co) / (4 * d.ci * d.co);
+      const double lobe = GgxLobe(a, d, true);
       for (int c = 0; c < 3; ++c) out[c] += ks * lobe;
     }
     return out;
