@@ -18,7 +18,7 @@ with this script's own evaluation of the analytic sphere under three formulas:
 - brdfit's `oren-nayar` (Oren & Nayar 1994 eq. 30, the qualitative model, models/oren_nayar.h)
   at the same sigma.
 
-Differences as mean / p99 / max 8-bit levels. Measured (2026-12, Debian 12's Blender 3.4):
+Differences as mean / p99 / max 8-bit levels, measured with Debian 12's Blender 3.4:
 sigma 0.5: Lambert 7.98 / 20.5 / 25.2, Fujii 0.23 / 0.6 / 6.6, brdfit oren-nayar 5.01 / 9.6 /
 10.7; sigma 1: 14.54 / 38.8 / 41.0, 0.24 / 0.6 / 8.0, 11.06 / 24.1 / 27.6; sigma 0 (all three
 Lambert): 0.23 / 0.6 / 4.6, the floor of Cycles' noise and its UV-sphere mesh. So the Diffuse
