@@ -12,10 +12,12 @@
 #include "cli/command.h"
 #include "cli/terminal_text.h"
 #include "core/error.h"
+#include "export/fit_targets.h"
 #include "export/write_export.h"
 #include "io/factor_io.h"
 #include "io/fit_params_json.h"
 #include "io/output_policy.h"
+#include "pipeline/refit_source.h"
 #include "preview/shader_gen.h"
 
 namespace brdfit::cli {
@@ -26,6 +28,7 @@ namespace fs = std::filesystem;
 struct ExportOptions {
   std::string fits, format, material, model, out;
   bool quiet = false;
+  bool no_fit = false;  // never fit the target's models on the spot
 };
 
 bool IsFactorSidecar(const std::string& path) {
@@ -72,6 +75,59 @@ const FitReportEntry& Select(const std::vector<FitReportEntry>& entries,
     if (!err.path().empty()) throw;
     throw InputError(o.fits, err.what());
   }
+}
+
+// Whether the fits of `material` include one of the target's own models.
+bool HasTargetFit(const std::vector<FitReportEntry>& entries, const std::string& material,
+                  const exports::FitTarget& target) {
+  for (const FitReportEntry& e : entries) {
+    if (e.material != material || e.result.Failed() || e.factorization) continue;
+    for (const std::string& m : target.models) {
+      if (e.result.model == m) return true;
+    }
+  }
+  return false;
+}
+
+// Without --model, a material whose fits include none of the target's own models (the ones
+// `brdfit fit --target` fits, export/fit_targets.h) gets them fitted on the spot to the table
+// its fits came from, added to `entries` for the selection (exports::SelectEntry); the fits
+// file is not modified. When the table cannot be read (moved, changed), the export goes on
+// with the fits there are and says why.
+void FitTargetModelsOnTheSpot(std::vector<FitReportEntry>* entries, const std::string& material,
+                              const ExportOptions& o, exports::Format format) {
+  const exports::FitTarget* target = exports::FitTargetForFormat(format);
+  if (o.no_fit || !o.model.empty() || !target || HasTargetFit(*entries, material, *target)) {
+    return;
+  }
+  const FitReportEntry* of = nullptr;
+  for (const FitReportEntry& e : *entries) {
+    if (e.material == material && !e.result.Failed() && !e.factorization && (!of || e.chosen)) {
+      of = &e;
+    }
+  }
+  if (!of) return;
+  std::string models;
+  for (const std::string& m : target->models) models += (models.empty() ? "" : ", ") + m;
+  pipeline::SourceRefit refit;
+  try {
+    refit = pipeline::RefitSource(*of, target->models);
+  } catch (const std::exception& err) {  // InputError, or a scratch report not writable
+    fmt::print(stderr,
+               "brdfit: export: note: {}: the fits hold none of {}'s own models, and {} could "
+               "not be fitted on the spot ({}): exporting the nearest\n",
+               TerminalSafe(material), exports::FormatName(format), models,
+               TerminalSafe(err.what()));
+    return;
+  }
+  fmt::print(stderr,
+             "brdfit: export: note: {}: {} holds none of {}'s own models: fitted {} to {} on "
+             "the spot{} (not saved; brdfit fit {} --target {} keeps them)\n",
+             TerminalSafe(material), TerminalSafe(o.fits), exports::FormatName(format), models,
+             TerminalSafe(of->source),
+             refit.same_options ? "" : " with brdfit fit's default options, not the report's",
+             TerminalSafe(of->source), target->name);
+  for (FitReportEntry& e : refit.entries) entries->push_back(std::move(e));
 }
 
 // -o names a folder: one that exists, or a name ending in '/'.
@@ -129,9 +185,10 @@ int RunExportFolder(const ExportOptions& o, exports::Format format) {
   }
   const fs::path dir = o.out;
   CheckOutputFolder(dir, "-o");
-  const std::vector<FitReportEntry> entries = ReadFitsAnyFormat(o.fits);
+  std::vector<FitReportEntry> entries = ReadFitsAnyFormat(o.fits);
   std::vector<std::string> materials = exports::MaterialsOf(entries);
   if (!o.material.empty()) materials = {o.material};
+  for (const std::string& m : materials) FitTargetModelsOnTheSpot(&entries, m, o, format);
   std::vector<const FitReportEntry*> chosen;
   for (const std::string& m : materials) chosen.push_back(&Select(entries, m, o, format));
   const std::vector<std::string> names = exports::MaterialFileNames(materials, format);
@@ -158,7 +215,11 @@ int RunExport(const ExportOptions& o) {
   std::vector<PlannedOutput> outs;
   AddPlannedOutputs(o.out, format, &outs);
   CheckOutputs({o.fits}, outs);
-  const std::vector<FitReportEntry> entries = ReadFitsAnyFormat(o.fits);
+  std::vector<FitReportEntry> entries = ReadFitsAnyFormat(o.fits);
+  const std::vector<std::string> materials = exports::MaterialsOf(entries);
+  if (materials.size() == 1 || !o.material.empty()) {
+    FitTargetModelsOnTheSpot(&entries, o.material.empty() ? materials[0] : o.material, o, format);
+  }
   const FitReportEntry& e = Select(entries, o.material, o, format);
   NoteChoice(entries, e, o, format);
   WriteOne(e, o, format, o.out);
@@ -190,11 +251,15 @@ Registrar reg{
                      "every material of the fits (or --material's), one file each, named "
                      "after the material")
           ->required();
+      sub.add_flag("--no-fit", o->no_fit,
+                   "never fit on the spot (default: when a material's fits hold none of the "
+                   "target's own models, fit them to the table the fits came from, as brdfit "
+                   "fit --target does, without saving them, and export the best)");
       sub.add_flag("-q,--quiet", o->quiet, "no summary line");
       sub.footer(
           "Exit codes: 0 ok, 2 bad input or output. Exportable models: lambert+ggx-hc, "
-          "lambert+ggx, lambert+ggx-f0, ue4, lambert+ggx+sheen, lambert+ggx+ggx (threejs: any "
-          "analytic model); "
+          "lambert+ggx, lambert+ggx-f0, ue4, lambert+ggx+sheen, lambert+ggx+ggx, "
+          "oren-nayar-fujii+ggx, burley-2012+ggx (threejs: any analytic model); "
           "docs/exports.md has the "
           "mappings.\n"
           "Examples:\n  brdfit fit gold.binary --model ggx-hc --json fits.json\n"

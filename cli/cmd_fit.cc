@@ -352,7 +352,8 @@ Registrar reg{
               ->delimiter(',')
               ->capture_default_str();
       sub.add_option("--diffuse", o->diffuse,
-                     "diffuse lobe added to bare specular names (lambert, oren-nayar, burley): "
+                     "diffuse lobe added to bare specular names (lambert, oren-nayar, burley, "
+                     "oren-nayar-fujii, burley-2012): "
                      "ggx -> lambert+ggx; a name without that sum in the catalog is refused "
                      "(none: fit names as given)")
           ->capture_default_str();

@@ -55,19 +55,35 @@ def add_shader(tree, a, b):
     return add.outputs["Shader"]
 
 
-def exact_material():
-    """Diffuse BSDF (roughness 0: Lambert) + Glossy BSDF (GGX, no Fresnel) [+ a second one].
+def body_bsdf(tree):
+    """The fit's body. Diffuse BSDF: Lambert kd / pi at roughness 0, Fujii's Oren-Nayar
+    kd (a + b s / t) above (Cycles' bsdf_oren_nayar.h). Principled BSDF with Specular 0 and
+    Metallic 0 (no specular closure): Burley 2012's diffuse of base colour kd, roughness r."""
+    if EXACT["body"] == "burley-2012":
+        p = tree.nodes.new("ShaderNodeBsdfPrincipled")
+        p.distribution = "GGX"
+        p.inputs["Base Color"].default_value = rgba(EXACT["diffuse_color"])
+        p.inputs["Roughness"].default_value = EXACT["body_roughness"]
+        for name in ("Metallic", "Specular", "Specular Tint", "Subsurface", "Sheen", "Clearcoat",
+                     "Transmission", "Anisotropic"):
+            p.inputs[name].default_value = 0.0
+        return p.outputs["BSDF"]
+    diffuse = tree.nodes.new("ShaderNodeBsdfDiffuse")
+    diffuse.inputs["Color"].default_value = rgba(EXACT["diffuse_color"])
+    diffuse.inputs["Roughness"].default_value = EXACT["body_roughness"]
+    return diffuse.outputs["BSDF"]
 
-    f = kd / pi + ks D G / (4 cos_i cos_o) [+ ks2 D2 G2 / (4 cos_i cos_o)]."""
+
+def exact_material():
+    """The body (body_bsdf) + Glossy BSDF (GGX, no Fresnel) [+ a second one].
+
+    f = body + ks D G / (4 cos_i cos_o) [+ ks2 D2 G2 / (4 cos_i cos_o)]."""
     mat = bpy.data.materials.new("brdfit-material")
     mat.use_nodes = True
     tree = mat.node_tree
     tree.nodes.clear()
     out = tree.nodes.new("ShaderNodeOutputMaterial")
-    diffuse = tree.nodes.new("ShaderNodeBsdfDiffuse")
-    diffuse.inputs["Color"].default_value = rgba(EXACT["diffuse_color"])
-    diffuse.inputs["Roughness"].default_value = 0.0
-    shader = add_shader(tree, diffuse.outputs["BSDF"],
+    shader = add_shader(tree, body_bsdf(tree),
                         glossy_bsdf(tree, EXACT["glossy_color"], EXACT["roughness"]))
     if "second_glossy_color" in EXACT:
         # The fit's second lobe, added.
@@ -190,9 +206,10 @@ std::string BlenderScript(const BlenderMaterial& m, const Provenance& p) {
   s += PythonComment("material brdfit-principled (not on the sphere; --material principled): " +
                      principled.FidelityLine());
   s +=
-      "#\n# brdfit-material (on the sphere): Add Shader(Diffuse BSDF roughness 0, Glossy BSDF "
-      "GGX)\n"
-      "#   = kd / pi + ks D G1 G1 / (4 cos_i cos_o)  (Cycles 3.4: Lambert; GGX, separable Smith)\n"
+      "#\n# brdfit-material (on the sphere): Add Shader(body, Glossy BSDF GGX)\n"
+      "#   = body + ks D G1 G1 / (4 cos_i cos_o)  (Cycles 3.4: GGX, separable Smith); the body is\n"
+      "#   a Diffuse BSDF (roughness 0: Lambert kd / pi; sigma: Fujii's Oren-Nayar) or, for\n"
+      "#   burley-2012, a Principled BSDF with Specular 0 and Metallic 0 (Burley 2012 diffuse)\n"
       "#   (+ a second Glossy BSDF when EXACT has second_glossy_color: the fit's second lobe)\n"
       "# brdfit-principled: Principled BSDF (GGX), roughness sqrt(alpha), metallic 0 with base "
       "colour\n"
@@ -201,7 +218,12 @@ std::string BlenderScript(const BlenderMaterial& m, const Provenance& p) {
       "# Render: blender -b --factory-startup --python-exit-code 1 -P this.py -- --render out.png\n"
       "#   [--material exact|principled] [--size 256] [--samples 16] [--save scene.blend]\n"
       "# (docs/exports.md, \"Blender\")\n";
-  s += fmt::format("\nEXACT = {{\"diffuse_color\": {}, \"glossy_color\": {}, \"roughness\": {:.9g}",
+  const char* body = m.body == Body::kOrenNayarFujii ? "oren-nayar-fujii"
+                     : m.body == Body::kBurley2012   ? "burley-2012"
+                                                     : "lambert";
+  s += fmt::format("\nEXACT = {{\"body\": \"{}\", \"body_roughness\": {:.9g},\n", body,
+                   m.body_roughness);
+  s += fmt::format("         \"diffuse_color\": {}, \"glossy_color\": {}, \"roughness\": {:.9g}",
                    Tuple3(m.diffuse_color), Tuple3(m.glossy_color), m.roughness);
   if (m.second) {
     s += fmt::format(",\n         \"second_glossy_color\": {}, \"second_roughness\": {:.9g}",

@@ -19,9 +19,10 @@ const std::vector<FitTarget>& Targets() {
        "three.js ShaderMaterial running brdfit's GLSL: every model exact"},
       {"blender",
        Format::kBlender,
-       {"lambert+ggx", "lambert+ggx+ggx"},
-       "Blender 3.4 Cycles Diffuse + Glossy (GGX, separable masking) node tree, one Glossy BSDF "
-       "per lobe: exact; its Principled BSDF material is approximate"},
+       {"lambert+ggx", "lambert+ggx+ggx", "oren-nayar-fujii+ggx", "burley-2012+ggx"},
+       "Blender 3.4 Cycles node tree of a body (Diffuse BSDF: Lambert or Fujii's Oren-Nayar; "
+       "Principled BSDF with Specular 0: Burley 2012) and one Glossy BSDF (GGX, separable "
+       "masking) per lobe: exact; its Principled BSDF material is approximate"},
       {"mitsuba",
        Format::kMitsuba,
        {"lambert+ggx", "lambert+ggx+ggx"},
@@ -49,6 +50,15 @@ const FitTarget& FitTargetOf(const std::string& name) {
     if (name == t.name) return t;
   }
   throw InputError("--target '" + name + "': expected one of " + FitTargetNames());
+}
+
+const FitTarget* FitTargetForFormat(Format format) {
+  if (format == Format::kThreejs) return nullptr;
+  const Format f = format == Format::kGltf ? Format::kGlb : format;
+  for (const FitTarget& t : Targets()) {
+    if (t.format == f) return &t;
+  }
+  return nullptr;
 }
 
 Fidelity ExportFidelity(const FitResult& fit, const FitTarget& target) {

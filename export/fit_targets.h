@@ -22,6 +22,9 @@ struct FitTarget {
 
 // "gltf" | "threejs" | "blender" | "mitsuba" | "pbrt"; throws InputError listing them.
 const FitTarget& FitTargetOf(const std::string& name);
+// The target an export format is checked against (glb and gltf: "gltf"); nullptr for threejs,
+// which renders every model exactly and fits nothing of its own.
+const FitTarget* FitTargetForFormat(Format format);
 // "gltf, threejs, blender, mitsuba, pbrt".
 std::string FitTargetNames();
 

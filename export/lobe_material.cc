@@ -1,6 +1,7 @@
 #include "export/lobe_material.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string_view>
 
 #include "core/error.h"
@@ -27,12 +28,14 @@ double MaxOf(const Rgb& v) {
 }  // namespace
 
 const char* ExportableModels() {
-  return "lambert+ggx-hc, lambert+ggx, lambert+ggx-f0, ue4, lambert+ggx+sheen, lambert+ggx+ggx";
+  return "lambert+ggx-hc, lambert+ggx, lambert+ggx-f0, ue4, lambert+ggx+sheen, lambert+ggx+ggx, "
+         "oren-nayar-fujii+ggx, burley-2012+ggx";
 }
 
 bool IsExportable(const std::string& model) {
   return model == "lambert+ggx-hc" || model == "lambert+ggx" || model == "lambert+ggx-f0" ||
-         model == "ue4" || model == "lambert+ggx+sheen" || model == "lambert+ggx+ggx";
+         model == "ue4" || model == "lambert+ggx+sheen" || model == "lambert+ggx+ggx" ||
+         model == "oren-nayar-fujii+ggx" || model == "burley-2012+ggx";
 }
 
 LobeMaterial FromFit(const FitResult& fit) {
@@ -56,7 +59,17 @@ LobeMaterial FromFit(const FitResult& fit) {
     }
     return m;
   }
-  m.kd = Triple(fit, "lambert.kd");
+  if (fit.model == "oren-nayar-fujii+ggx") {
+    m.body = Body::kOrenNayarFujii;
+    m.kd = Triple(fit, "oren-nayar-fujii.kd");
+    m.body_roughness = Param(fit, "oren-nayar-fujii.sigma");
+  } else if (fit.model == "burley-2012+ggx") {
+    m.body = Body::kBurley2012;
+    m.kd = Triple(fit, "burley-2012.kd");
+    m.body_roughness = std::sqrt(std::max(Param(fit, "burley-2012.alpha"), 0.0));
+  } else {
+    m.kd = Triple(fit, "lambert.kd");
+  }
   if (fit.model == "lambert+ggx-f0") {
     m.spec = Triple(fit, "ggx-f0.f0");
     m.alpha = Param(fit, "ggx-f0.alpha");

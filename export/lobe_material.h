@@ -25,9 +25,16 @@ enum class LobeFresnel { kFoldedIntoKs, kSchlick };
 // plus, for lambert+ggx+sheen, the Charlie sheen lobe of models/sheen.h (sheen = true),
 // and, for ue4, its own metallic-roughness parameters (diffuse (1 - m) base / pi, F0 =
 // mix(0.04, base, m)), which kd and spec restate without the Schlick-Smith G.
+// The body under the lobes: Lambert kd / pi; Fujii's Oren-Nayar kd A (1 + sigma s / t)
+// (models/oren_nayar.h, Cycles' Diffuse BSDF); Burley 2012's diffuse (models/burley.h, Cycles'
+// Principled diffuse).
+enum class Body { kLambert, kOrenNayarFujii, kBurley2012 };
+
 struct LobeMaterial {
   std::string model;  // registry name of the source fit
-  Rgb kd{};           // Lambert albedo (f_d = kd / pi)
+  Rgb kd{};           // the body's albedo (Lambert: f_d = kd / pi)
+  Body body = Body::kLambert;
+  double body_roughness = 0;  // oren-nayar-fujii: sigma; burley-2012: r = sqrt(alpha)
   Rgb spec{};         // ks (kFoldedIntoKs) or F0 (kSchlick)
   double alpha = 0;   // GGX alpha (glTF / Blender roughness = sqrt(alpha))
   Masking masking = Masking::kSeparable;

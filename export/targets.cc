@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace brdfit::exports {
 
@@ -95,6 +96,32 @@ void NoteSecondLobeDropped(const LobeMaterial& m, const char* target_name, const
       target_name, why, Fmt3(m.second->spec), m.second->alpha));
 }
 
+// A target whose diffuse is Lambert: a rough body becomes the Lambert albedo equal to it at
+// normal incidence and view (Fujii's Oren-Nayar: kd pi A, models/oren_nayar.h; Burley 2012:
+// kd), and the note says what is lost.
+Rgb LambertBody(const LobeMaterial& m, const char* target_name, Fidelity* f) {
+  if (m.body == Body::kLambert) return m.kd;
+  if (m.body == Body::kBurley2012) {
+    f->approximations.push_back(fmt::format(
+        "{} has a Lambert diffuse: the fit's Burley 2012 body (r = {:.4g}) is exported as Lambert "
+        "kd = {}, equal at normal incidence and view; its grazing retro-reflection and darkening "
+        "are lost (Blender's Principled BSDF carries it)",
+        target_name, m.body_roughness, Fmt3(m.kd)));
+    return m.kd;
+  }
+  const double sigma = m.body_roughness;
+  const double scale =
+      std::numbers::pi / (std::numbers::pi + (std::numbers::pi / 2 - 2.0 / 3.0) * sigma);
+  Rgb kd{};
+  for (int c = 0; c < 3; ++c) kd[c] = m.kd[c] * scale;
+  f->approximations.push_back(fmt::format(
+      "{} has a Lambert diffuse: the fit's Oren-Nayar body (Fujii, sigma = {:.4g}) is exported as "
+      "Lambert kd = {} ({:.4g} kd, equal at normal incidence and view); its flattening towards "
+      "grazing is lost (Blender's Diffuse BSDF carries it)",
+      target_name, sigma, Fmt3(kd), scale));
+  return kd;
+}
+
 // KHR_materials_sheen: the sheen lobe over the base layer, which the extension dims by its
 // albedo scaling min(1 - max(sheenColor) E(cos_o), 1 - max(sheenColor) E(cos_i)) (E the sheen's
 // directional albedo); the fit adds the lobe to an undimmed body.
@@ -132,6 +159,7 @@ GltfPbr ToGltf(const LobeMaterial& m) {
     return g;
   }
   NoteMasking(m, Masking::kHeightCorrelated, "glTF", &f);
+  const Rgb kd = LambertBody(m, "glTF 2.0", &f);
   // The default ior 1.5 gives ((ior - 1)/(ior + 1))^2 = 0.04, so specularColor = 25 F0 puts F0
   // itself under KHR_materials_specular's min(0.04 specularColor, 1) (specularColorFactor has
   // no upper bound). KHR_materials_ior's ior = 0 would do the same, but three.js documents ior
@@ -143,7 +171,7 @@ GltfPbr ToGltf(const LobeMaterial& m) {
     g.specular_factor = 1;
     for (int c = 0; c < 3; ++c) g.specular_color[c] = kSpecularColorPerF0 * m.spec[c];
     const double f0 = std::min(Max(m.spec), 0.999);
-    g.base_color = DiffuseOver(m.kd, f0, "glTF base colour", &f);
+    g.base_color = DiffuseOver(kd, f0, "glTF base colour", &f);
     f.approximations.push_back(fmt::format(
         "glTF weights the diffuse by 1 - max(Fr) (the fit by 1): base colour = kd / (1 - {:.4g}), "
         "exact at normal incidence, darker towards grazing",
@@ -170,7 +198,7 @@ GltfPbr ToGltf(const LobeMaterial& m) {
         "largest are exact at normal incidence only (up to {:.4g} times too bright at grazing)",
         Fmt3(m.spec), GrazingFactor(m.spec)));
   }
-  g.base_color = DiffuseOver(m.kd, w, "glTF base colour", &f);
+  g.base_color = DiffuseOver(kd, w, "glTF base colour", &f);
   return g;
 }
 
@@ -181,11 +209,12 @@ MitsubaBlend ToMitsuba(const LobeMaterial& m) {
   b.alpha = m.alpha;
   NoteMasking(m, Masking::kSeparable, "Mitsuba 3 roughconductor", &f);
   const Rgb ks = ConstantWeight(m, "Mitsuba 3", &f);
+  const Rgb kd = LambertBody(m, "Mitsuba 3's diffuse", &f);
   // (1 - w) R / pi + w S lobe with R = kd / (1 - w), S = ks / w; w splits the two so that both
   // reflectances stay in [0, 1] when kd + ks <= 1. A second lobe shares w with the first by the
   // inner weight v = max ks2 / (max ks + max ks2): S = ks / (w (1 - v)), S2 = ks2 / (w v), every
   // reflectance's largest channel max kd + max ks + max ks2.
-  const double kd_max = Max(m.kd), ks_max = Max(ks);
+  const double kd_max = Max(kd), ks_max = Max(ks);
   const double ks2_max = m.second ? Max(m.second->spec) : 0, lobes = ks_max + ks2_max;
   b.weight = lobes + kd_max > 0 ? lobes / (lobes + kd_max) : 0.5;
   const double v = m.second ? (lobes > 0 ? ks2_max / lobes : 0.5) : 0;
@@ -198,7 +227,7 @@ MitsubaBlend ToMitsuba(const LobeMaterial& m) {
     for (int c = 0; c < 3; ++c) s2.specular_reflectance[c] = w2 > 0 ? m.second->spec[c] / w2 : 0;
     b.second = s2;
   }
-  b.diffuse_reflectance = DiffuseOver(m.kd, b.weight, "Mitsuba diffuse reflectance", &f);
+  b.diffuse_reflectance = DiffuseOver(kd, b.weight, "Mitsuba diffuse reflectance", &f);
   if (std::max(Max(b.specular_reflectance), b.second ? Max(b.second->specular_reflectance) : 0) >
       1) {
     f.approximations.push_back(
@@ -215,6 +244,7 @@ PbrtMix ToPbrt(const LobeMaterial& m) {
   p.roughness = m.alpha;
   NoteMasking(m, Masking::kHeightCorrelated, "pbrt-v4 conductor", &f);
   const Rgb ks = ConstantWeight(m, "pbrt-v4", &f);
+  const Rgb kd = LambertBody(m, "pbrt-v4's diffuse", &f);
   // The conductor's Fresnel is at most 1: its reflectance is ks / max ks (pbrt clamps to
   // 0.9999, so F >= 0.9999 for a grey ks) and the mix amount carries max ks. A second lobe:
   // amount max ks + max ks2, shared by the inner mix's v = max ks2 / (max ks + max ks2).
@@ -247,7 +277,7 @@ PbrtMix ToPbrt(const LobeMaterial& m) {
     s2.conductor_reflectance = reflectance(m.second->spec, a * v);
     p.second = s2;
   }
-  p.diffuse_reflectance = DiffuseOver(m.kd, a, "pbrt-v4 diffuse reflectance", &f);
+  p.diffuse_reflectance = DiffuseOver(kd, a, "pbrt-v4 diffuse reflectance", &f);
   return p;
 }
 
@@ -293,6 +323,10 @@ BlenderMaterial ToBlender(const LobeMaterial& m) {
   NoteSheenDropped(m, "Blender's Diffuse + Glossy node tree", &f);
   NoteMasking(m, Masking::kSeparable, "Cycles 3.4 Glossy BSDF (GGX)", &f);
   const Rgb ks = ConstantWeight(m, "Blender", &f);
+  // The body: Diffuse BSDF (roughness 0: Lambert; sigma: Fujii's Oren-Nayar) or, for Burley
+  // 2012, a Principled BSDF reduced to its diffuse (Specular 0, Metallic 0, roughness r).
+  b.body = m.body;
+  b.body_roughness = m.body == Body::kLambert ? 0.0 : m.body_roughness;
   b.diffuse_color = m.kd;
   b.glossy_color = ks;
   if (m.second) {
@@ -342,10 +376,19 @@ BlenderMaterial ToBlender(const LobeMaterial& m) {
   p.approximations.push_back(
       "Principled: Cycles' Fresnel rises from cspec0 at normal incidence to 1 at grazing (the "
       "dielectric Fresnel of the IOR that Specular gives); the fit's ks is a constant weight");
-  p.approximations.push_back(fmt::format(
-      "Principled: Cycles' diffuse is Burley's (retro-reflection with the shared roughness "
-      "{:.4g}, (1 - FL/2)(1 - FV/2) falloff), the fit's Lambert",
-      b.roughness));
+  if (m.body == Body::kBurley2012) {
+    if (std::abs(m.body_roughness - b.roughness) > 1e-6) {
+      p.approximations.push_back(fmt::format(
+          "Principled: one Roughness {:.4g} serves the diffuse and the lobe; the fit's Burley "
+          "body has r = {:.4g}",
+          b.roughness, m.body_roughness));
+    }
+  } else {
+    p.approximations.push_back(fmt::format(
+        "Principled: Cycles' diffuse is Burley's (retro-reflection with the shared roughness "
+        "{:.4g}, (1 - FL/2)(1 - FV/2) falloff), the fit's {}",
+        b.roughness, m.body == Body::kLambert ? "Lambert" : "Oren-Nayar (Fujii)"));
+  }
   NoteMasking(m, Masking::kSeparable, "Cycles 3.4 Principled BSDF (GGX)", &p);
   if (worst > 1e-6) {
     p.approximations.push_back(fmt::format(

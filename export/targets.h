@@ -89,7 +89,13 @@ PbrtMix ToPbrt(const LobeMaterial& m);
 // for a brdfit model (docs/exports.md, "Blender").
 // A second lobe adds a second Glossy BSDF (second->glossy_color, roughness sqrt(alpha2)) to the
 // sum: lambert+ggx+ggx exactly.
+// A rough body keeps its own shader, exact in Cycles: Fujii's Oren-Nayar is the Diffuse BSDF
+// with Roughness sigma (bsdf_oren_nayar.h); Burley 2012 is a Principled BSDF with Specular 0,
+// Metallic 0 and Roughness r (its diffuse alone, bsdf_principled_diffuse.h), whose Base Color
+// is kd: oren-nayar-fujii+ggx and burley-2012+ggx exactly.
 struct BlenderMaterial {
+  Body body = Body::kLambert;
+  double body_roughness = 0;  // the Diffuse BSDF's sigma or the Principled body's r
   Rgb diffuse_color{};
   Rgb glossy_color{};
   double roughness = 0;  // sqrt(alpha), both shaders

@@ -1,4 +1,5 @@
-// Burley (Disney) diffuse with Frostbite's renormalization ("burley").
+// Burley (Disney) diffuse: with Frostbite's renormalization ("burley") and Burley 2012's
+// original ("burley-2012", Blender Cycles' Principled BSDF diffuse).
 #pragma once
 
 #include <array>
@@ -67,6 +68,19 @@ struct Burley : BurleyDiffuse<BurleyVariant::kFrostbite> {
   static constexpr std::string_view kName = "burley";
   static constexpr std::string_view kDoc =
       "Burley/Disney diffuse with Frostbite renormalization (Lagarde 2014), r = sqrt(alpha)";
+};
+
+// Burley 2012's original, unrenormalized. Blender Cycles 3.4's Principled BSDF evaluates the
+// same diffuse in Burley 2015's split form (bsdf_principled_diffuse.h):
+//   (1 - FL/2)(1 - FV/2) + RR (FL + FV + FL FV (RR - 1)),  RR = r (1 + wi.wo) = 2 r cos_d^2,
+// which expands to (1 + (F_D90 - 1) FL)(1 + (F_D90 - 1) FV) with F_D90 = 0.5 + RR; its
+// Roughness input is r = sqrt(alpha) (checked against Cycles renders by
+// scripts/cycles_diffuse_roughness_check.py).
+struct Burley2012 : BurleyDiffuse<BurleyVariant::kDisney> {
+  static constexpr std::string_view kName = "burley-2012";
+  static constexpr std::string_view kDoc =
+      "Burley/Disney diffuse as published (Burley 2012, Blender Cycles' Principled diffuse), "
+      "r = sqrt(alpha)";
 };
 
 }  // namespace brdfit

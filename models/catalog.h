@@ -53,13 +53,15 @@ using ModelCatalog = std::tuple<
     Sum<Lambert, Lafortune, Lafortune, Lafortune>,
     // added after the first release: appended, so that the earlier entries keep their index
     // (and their fit/problem_instances_*.cc shard)
-    GgxF0, Sum<Lambert, GgxF0>, Sum<Lambert, GgxHc>, Abc, Sum<Lambert, Abc>, Sgd,
-    Sum<Lambert, Sgd>,
+    GgxF0, Sum<Lambert, GgxF0>, Sum<Lambert, GgxHc>, Abc, Sum<Lambert, Abc>, Sgd, Sum<Lambert, Sgd>,
     // rough diffuse bodies under a GGX lobe: for fabrics and matte paints, whose grazing
     // brightening Lambert cannot hold (docs/accuracy.md)
     Sum<OrenNayar, Ggx>, Sum<Burley, Ggx>,
     // a sheen lobe for cloth: the grazing highlight of fibres (docs/accuracy.md)
-    Sheen, Sum<Lambert, Sheen>, Sum<Lambert, Ggx, Sheen>, Sum<Burley, Ggx, Sheen>>;
+    Sheen, Sum<Lambert, Sheen>, Sum<Lambert, Ggx, Sheen>, Sum<Burley, Ggx, Sheen>,
+    // the rough bodies Blender Cycles evaluates (Diffuse BSDF, Principled diffuse), so that a
+    // rough body under a GGX lobe exports to Blender exactly (docs/exports.md)
+    OrenNayarFujii, Burley2012, Sum<OrenNayarFujii, Ggx>, Sum<Burley2012, Ggx>>;
 
 // Calls f(std::type_identity<M>{}) for every model type M in the catalog.
 template <class F>

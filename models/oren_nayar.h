@@ -1,4 +1,5 @@
-// Oren-Nayar rough diffuse reflection, qualitative model ("oren-nayar").
+// Oren-Nayar rough diffuse reflection: the qualitative model ("oren-nayar") and Fujii's
+// improved form ("oren-nayar-fujii", Blender Cycles' Diffuse BSDF).
 #pragma once
 
 #include <algorithm>
@@ -45,6 +46,46 @@ struct OrenNayar {
     const double sxy = g.wi.x * g.wo.x + g.wi.y * g.wo.y;
     const double geo = std::max(0.0, sxy) / std::max(g.cos_i, g.cos_o);
     const T shape = (a + b * geo) * kInvPi;
+    for (int c = 0; c < 3; ++c) rgb[c] = p[c] * shape;
+  }
+};
+
+// Fujii 2012, "A tiny improvement of Oren-Nayar reflectance model"
+// (mimosa-pudica.net/improved-oren-nayar.html), the "improved ON" form:
+//   f_r = kd (A + B s / t),  s = wi.wo - cos_i cos_o,  t = max(cos_i, cos_o) if s > 0 else 1,
+//   A = 1 / (pi + (pi/2 - 2/3) sigma),  B = sigma A.                       [1/sr, no cosine]
+// s = sin(th_i) sin(th_o) cos(ph_i - ph_o) = wi.x wo.x + wi.y wo.y; unlike eq. 30 above, s < 0
+// (lights and views on opposite sides) darkens instead of being clamped to 0. sigma is Fujii's
+// roughness in [0, 1], not eq. 30's slope deviation. This is Blender Cycles' Diffuse BSDF
+// (intern/cycles/kernel/closure/bsdf_oren_nayar.h: div = 1 / (pi + ((3 pi - 4) / 6) sigma),
+// a = div, b = sigma div, sigma = saturate(Roughness)), checked against Cycles renders by
+// scripts/cycles_diffuse_roughness_check.py. sigma = 0 is Lambert. Energy conserving: with
+// kd = 1 the directional albedo is 1 at sigma = 0 and below 1 otherwise (0.78 at normal
+// incidence and sigma = 1; tests/models/test_physics.cc).
+//
+// Parameters: kd_r, kd_g, kd_b [0, 1] linear weights; sigma [0, 1] (Cycles' Roughness).
+struct OrenNayarFujii {
+  static constexpr std::string_view kName = "oren-nayar-fujii";
+  static constexpr std::string_view kDoc =
+      "Oren-Nayar rough diffuse, Fujii's improved form (Blender Cycles' Diffuse BSDF), "
+      "sigma = Cycles' Roughness in [0, 1]";
+  static constexpr bool kEnergyConserving = true;
+  static constexpr std::array<ParamSpec, 4> kParams = {{
+      {"kd_r", "1", 0.0, 1.0, 0.5, false, "diffuse albedo, red", ParamRole::kWeightR},
+      {"kd_g", "1", 0.0, 1.0, 0.5, false, "diffuse albedo, green", ParamRole::kWeightG},
+      {"kd_b", "1", 0.0, 1.0, 0.5, false, "diffuse albedo, blue", ParamRole::kWeightB},
+      {"sigma", "1", 0.0, 1.0, 0.3, false, "roughness (Cycles' Diffuse BSDF Roughness)"},
+  }};
+
+  template <class T>
+  static void Eval(const T* p, const Geometry& g, T rgb[3]) {
+    const T& sigma = p[3];
+    const T a = 1.0 / (kPi + (kPi / 2 - 2.0 / 3.0) * sigma);
+    const double s = g.wi.x * g.wo.x + g.wi.y * g.wo.y;
+    // max(cos_i, cos_o) > 0 for every geometry a table or image evaluates (both above the
+    // surface); s / t is bounded by 1 in magnitude.
+    const double st = s > 0 ? s / std::max(g.cos_i, g.cos_o) : s;
+    const T shape = a * (1.0 + sigma * st);
     for (int c = 0; c < 3; ++c) rgb[c] = p[c] * shape;
   }
 };

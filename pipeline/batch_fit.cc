@@ -168,7 +168,8 @@ std::vector<FitReportEntry> ReadKept(const fs::path& report, bool force) {
 
 // The diffuse bodies `--diffuse` may name, and the single models that carry a diffuse term of
 // their own (ue4's (1 - m) base / pi): neither is a bare specular name.
-constexpr std::array<std::string_view, 3> kDiffuseModels = {"lambert", "oren-nayar", "burley"};
+constexpr std::array<std::string_view, 5> kDiffuseModels = {"lambert", "oren-nayar", "burley",
+                                                            "oren-nayar-fujii", "burley-2012"};
 constexpr std::array<std::string_view, 1> kOwnDiffuseModels = {"ue4"};
 
 bool IsDiffuseModel(std::string_view name) {
@@ -275,7 +276,8 @@ std::vector<std::string> ResolveModelNames(const std::vector<std::string>& reque
                                            const std::string& diffuse) {
   if (diffuse != "none" && !IsDiffuseModel(diffuse)) {
     throw InputError("--diffuse '" + diffuse +
-                     "' is not a diffuse model (expected none, lambert, oren-nayar or burley)");
+                     "' is not a diffuse model (expected none, lambert, oren-nayar, burley, "
+                     "oren-nayar-fujii or burley-2012)");
   }
   std::vector<std::string> out;
   for (const std::string& n : requested) {

@@ -60,6 +60,12 @@ const std::map<std::string, int>& MeasuredRunCost() {
       {"lambert+sheen", 12},
       {"lambert+ggx+sheen", 20},
       {"burley+ggx+sheen", 40},
+      // The bodies Blender Cycles evaluates, measured later in one run with their twins
+      // (oren-nayar, burley and their +ggx sums) and scaled by each twin's ratio.
+      {"oren-nayar-fujii", 12},
+      {"burley-2012", 12},
+      {"oren-nayar-fujii+ggx", 19},
+      {"burley-2012+ggx", 23},
       // The factorization candidate (pipeline/factor_candidate.h: four forms, their scores and
       // files): 2.9 times lambert+ggx+ggx.
       {"factorization", 85},

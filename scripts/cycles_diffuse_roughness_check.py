@@ -23,8 +23,9 @@ sigma 0.5: Lambert 7.98 / 20.5 / 25.2, Fujii 0.23 / 0.6 / 6.6, brdfit oren-nayar
 10.7; sigma 1: 14.54 / 38.8 / 41.0, 0.24 / 0.6 / 8.0, 11.06 / 24.1 / 27.6; sigma 0 (all three
 Lambert): 0.23 / 0.6 / 4.6, the floor of Cycles' noise and its UV-sphere mesh. So the Diffuse
 BSDF is Fujii's form exactly, and brdfit's `oren-nayar` is not it (not the same
-parameterization: a fit of one to the other is nearer than the same sigma). A catalog model of
-Fujii's form would export exactly to Cycles as a Diffuse BSDF with Roughness = sigma in [0, 1].
+parameterization: a fit of one to the other is nearer than the same sigma). The catalog's
+`oren-nayar-fujii` is Fujii's form and exports to Cycles as a Diffuse BSDF with Roughness = sigma
+(tests/export/check_blender.py renders it).
 
 The same grey Lambert's Principled BSDF material (`--material principled`: metallic 0, specular
 0 — so Cycles builds no specular closure —, sheen and clearcoat 0) with Roughness r in
@@ -34,8 +35,8 @@ models/burley.h, r = sqrt(alpha)). Measured: r 0: Lambert 2.54 / 11.1 / 13.7, Bu
 0.23 / 0.7 / 3.3, Frostbite 2.88 / 15.6 / 16.9; r 0.5: 1.45 / 6.3 / 7.4, 0.23 / 0.6 / 4.9,
 10.82 / 16.7 / 18.8; r 1: 4.82 / 19.8 / 25.3, 0.24 / 0.6 / 8.0, 21.33 / 32.1 / 33.6. So Cycles'
 Principled diffuse is Burley 2012 exactly (r = Roughness), and brdfit's Frostbite `burley` is
-not it: a catalog model of Burley 2012 (+ ggx, as Principled with Specular 0 + a Glossy BSDF)
-would export exactly.
+not it: the catalog's `burley-2012` (+ ggx) exports exactly as a Principled BSDF with Specular 0
+plus a Glossy BSDF (tests/export/check_blender.py renders it).
 Needs numpy (Debian's python3-numpy, hence /usr/bin/python3) and blender; exit 0, 1 on a failure.
 """
 import argparse
@@ -54,7 +55,7 @@ from check_threejs import read_png  # noqa: E402  (the tests' PNG reader)
 
 SIZE, RADIUS, KD, IRRADIANCE = 256, 118, 0.5, 3.0
 LIGHT = np.array([1.0, 1.0, 1.0]) / math.sqrt(3)
-ROUGHNESS_LINE = 'diffuse.inputs["Roughness"].default_value = 0.0'
+ROUGHNESS_LINE = '"body_roughness": 0,'
 
 
 def sphere():
@@ -130,7 +131,7 @@ def main():
                    check=True)
     text = open(script).read()
     if text.count(ROUGHNESS_LINE) != 1:
-        print(f"FAIL: {script} does not set the Diffuse BSDF's roughness as expected")
+        print(f"FAIL: {script} does not set the body's roughness as expected")
         return 1
     hit, inner, n, v = sphere()
     nl = np.maximum((n * LIGHT).sum(-1), 0)
@@ -160,7 +161,7 @@ def main():
 
     for sigma in (0.0, 0.5, 1.0):
         got = render(f"grey-sigma{sigma}", text.replace(
-            ROUGHNESS_LINE, f'diffuse.inputs["Roughness"].default_value = {sigma}'), "exact")
+            ROUGHNESS_LINE, f'"body_roughness": {sigma},'), "exact")
         print(f"Diffuse BSDF, Roughness {sigma}: " + differences(got, (
             ("Lambert", lambert(sigma, nl, nv, lv)), ("Fujii", fujii(sigma, nl, nv, lv)),
             ("brdfit oren-nayar", classic(sigma, nl, nv, lv)))))

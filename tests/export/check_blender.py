@@ -17,11 +17,16 @@ the sRGB curve near black). It is noise-aware: the grey case is rendered again w
 seed, and the seed-to-seed difference (two independent renders: sqrt(2) times one render's
 noise) must stay at or below mean 0.25 and p99 2, or the tolerance would be too tight for the
 sample count (measured at 16 samples: mean 0.05, p99 1).
-The two-lobe case (lambert+ggx+ggx: a second Glossy BSDF added) is held to the same tolerance.
+The two-lobe case (lambert+ggx+ggx: a second Glossy BSDF added) and the rough bodies
+(oren-nayar-fujii+ggx: the Diffuse BSDF's Roughness; burley-2012+ggx: a Principled BSDF with
+Specular 0 under the Glossy BSDF) are held to the same tolerance.
 Must be caught (outside the tolerance): the roughness trap (roughness = alpha instead of
 sqrt(alpha)) in the grey case, the two-lobe export with its second Glossy BSDF removed, and the masking of a rough bright lobe (alpha 0.6, ks 0.9)
 compared with brdfit's height-correlated lambert+ggx-hc instead of the separable lambert+ggx:
-Cycles 3.4's GGX is separable, and the comparison can see the difference.
+Cycles 3.4's GGX is separable, and the comparison can see the difference; and each rough body
+compared with the other form of the same name at the same parameters (brdfit's qualitative
+oren-nayar, its Frostbite burley): Cycles evaluates Fujii's form and Burley 2012's, and the
+comparison can tell them apart.
 Reported only: the approximate Principled BSDF material of the script (--material principled).
 Exit 0 ok, 1 a case is outside its tolerance, 77 (ctest SKIP) when blender is missing or in the
 sanitizer build.
@@ -40,9 +45,12 @@ MEAN_TOL, P99_TOL = 1.0, 3
 NOISE_MEAN_MAX, NOISE_P99_MAX = 0.25, 2
 
 
-def synthetic(name, model, kd, ks, alpha):
-    lobe = model.split("+")[1]
-    params = {f"lambert.kd_{c}": v for c, v in zip("rgb", kd)}
+def synthetic(name, model, kd, ks, alpha, body_shape=None):
+    """A fit of `model` = BODY+LOBE; body_shape: the body's shape parameter (name, value)."""
+    body, lobe = model.split("+")[:2]
+    params = {f"{body}.kd_{c}": v for c, v in zip("rgb", kd)}
+    if body_shape:
+        params[f"{body}.{body_shape[0]}"] = body_shape[1]
     params.update({f"{lobe}.ks_{c}": v for c, v in zip("rgb", ks)})
     params[f"{lobe}.alpha"] = alpha
     return {"source": "synthetic", "material": name, "model": model, "status": "converged",
@@ -109,24 +117,31 @@ def main():
     two["params"] = {k.replace("ggx.", "ggx1."): v for k, v in two["params"].items()}
     two["params"].update({"ggx2.ks_r": 0.5, "ggx2.ks_g": 0.35, "ggx2.ks_b": 0.2,
                           "ggx2.alpha": 0.02})
+    # Rough bodies: Fujii's Oren-Nayar as the Diffuse BSDF's roughness, Burley 2012 as a
+    # Principled BSDF with Specular 0.
+    fujii = synthetic("fujii", "oren-nayar-fujii+ggx", (0.45, 0.25, 0.12), (0.08, 0.08, 0.08),
+                      0.2, ("sigma", 0.9))
+    burley = synthetic("burley", "burley-2012+ggx", (0.35, 0.30, 0.40), (0.10, 0.10, 0.10), 0.08,
+                       ("alpha", 0.7))
     cases = [("grey", grey), ("gold", pick("gold-metallic-paint", "lambert+ggx")),
-             ("red", pick("red-phenolic", "lambert+ggx")), ("rough", rough), ("two", two)]
+             ("red", pick("red-phenolic", "lambert+ggx")), ("rough", rough), ("two", two),
+             ("fujii", fujii), ("burley", burley)]
     bad = 0
     renders = {}
     for name, fit in cases:
         script = b.export(name, fit)
         ref = b.preview(name, fit)
         img = b.render(script, os.path.join(o.work, name + "-blender.png"))
-        renders[name] = (script, ref, img)
+        renders[name] = (script, ref, img, fit)
         mean, p99, worst = compare(ref, img)
         ok = mean <= MEAN_TOL and p99 <= P99_TOL
         bad += not ok
-        print(f"{name:6s} {fit['model']:12s} Blender (exact node tree) vs brdfit preview: mean "
+        print(f"{name:6s} {fit['model']:20s} Blender (exact node tree) vs brdfit preview: mean "
               f"{mean:.2f}, p99 {p99}, max {worst} levels: "
               f"{'ok' if ok else f'OUTSIDE (mean <= {MEAN_TOL}, p99 <= {P99_TOL})'}")
 
     # Noise: the grey case again with another seed.
-    script, _, img0 = renders["grey"]
+    script, _, img0, _ = renders["grey"]
     img1 = b.render(script, os.path.join(o.work, "grey-seed1-blender.png"), seed=1)
     mean, p99, worst = compare(img0, img1)
     quiet = mean <= NOISE_MEAN_MAX and p99 <= NOISE_P99_MAX
@@ -152,7 +167,7 @@ def main():
 
     # Planted: the two-lobe export without its second Glossy BSDF (what a one-lobe target
     # keeps) must be outside the tolerance of the two-lobe fit.
-    script, ref, _ = renders["two"]
+    script, ref, _, _ = renders["two"]
     text = open(script).read()
     start = text.find(',\n         "second_glossy_color"')
     if start < 0:
@@ -175,9 +190,23 @@ def main():
     print(f"masking Blender GGX vs brdfit height-correlated lambert+ggx-hc: mean {mean:.2f}, "
           f"p99 {p99}, max {worst} levels: {'caught' if caught else 'NOT CAUGHT'}")
 
+    # Bodies: Cycles' Diffuse BSDF is Fujii's Oren-Nayar, not Oren & Nayar's qualitative model
+    # (brdfit's oren-nayar) at the same sigma; its Principled diffuse is Burley 2012, not
+    # Frostbite's renormalized form (brdfit's burley) at the same alpha.
+    for name, other in (("fujii", "oren-nayar"), ("burley", "burley")):
+        fit = dict(renders[name][3])
+        body = fit["model"].split("+")[0]
+        fit["model"] = fit["model"].replace(body, other, 1)
+        fit["params"] = {k.replace(body + ".", other + ".", 1): v for k, v in fit["params"].items()}
+        mean, p99, worst = compare(b.preview(name + "-as-" + other, fit), renders[name][2])
+        caught = mean > MEAN_TOL or p99 > P99_TOL
+        bad += not caught
+        print(f"body Blender {body} vs brdfit {other} at the same parameters: mean {mean:.2f}, "
+              f"p99 {p99}, max {worst} levels: {'caught' if caught else 'NOT CAUGHT'}")
+
     # Reported: the Principled BSDF material (approximate by construction).
     for name in ("gold", "red"):
-        script, ref, _ = renders[name]
+        script, ref, _, _ = renders[name]
         img = b.render(script, os.path.join(o.work, name + "-principled-blender.png"),
                        material="principled")
         mean, p99, worst = compare(ref, img)

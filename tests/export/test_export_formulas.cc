@@ -342,13 +342,33 @@ double FresnelDielectric(double c, double eta) {
   return 0.5 * a * a * (1 + b * b);
 }
 
-// The script's node tree: Diffuse BSDF (roughness 0) + Glossy BSDF (GGX), Cycles 3.4.
+// The script's node tree: the body + Glossy BSDF (GGX), Cycles 3.4.
+// The body: Diffuse BSDF with Roughness sigma (Cycles 3.4 bsdf_oren_nayar.h: a = 1 / (pi +
+// (3 pi - 4) / 6 sigma), b = sigma a, t = l.v - nl nv, t /= max(nl, nv) when t > 0, value
+// a + b t; Lambert at sigma 0 as bsdf_diffuse.h) or Principled BSDF with Specular 0 and
+// Metallic 0 (bsdf_principled_diffuse.h, PRINCIPLED_DIFFUSE_FULL:
+// (1 - FV/2)(1 - FL/2) + RR (FL + FV + FL FV (RR - 1)), RR = r (1 + l.v), over pi).
+double BlenderBody(const std::string& py, const Dirs& d) {
+  const double r = PyNumber(py, "EXACT", "body_roughness");
+  if (py.find("\"body\": \"burley-2012\"") != std::string::npos) {
+    auto schlick = [](double c) { return std::pow(std::clamp(1 - c, 0.0, 1.0), 5); };
+    const double fl = schlick(d.ci), fv = schlick(d.co), rr = r * (1 + Dot(d.wi, d.wo));
+    return ((1 - 0.5 * fv) * (1 - 0.5 * fl) + rr * (fl + fv + fl * fv * (rr - 1))) / kPi;
+  }
+  if (r == 0) return 1 / kPi;
+  const double sigma = std::clamp(r, 0.0, 1.0);
+  const double a = 1 / (kPi + (3 * kPi - 4) / 6 * sigma), b = sigma * a;
+  double t = Dot(d.wi, d.wo) - d.ci * d.co;
+  if (t > 0) t /= std::max(d.ci, d.co);
+  return a + b * t;
+}
+
 Rgb BlenderExactEval(const std::string& py, const Dirs& d) {
   const Rgb kd = PyTuple(py, "EXACT", "diffuse_color"), ks = PyTuple(py, "EXACT", "glossy_color");
   const double r = PyNumber(py, "EXACT", "roughness"), a = r * r;
-  const double lobe = GgxLobe(a, d, false);
+  const double lobe = GgxLobe(a, d, false), body = BlenderBody(py, d);
   Rgb out{};
-  for (int c = 0; c < 3; ++c) out[c] = kd[c] / kPi + ks[c] * lobe;
+  for (int c = 0; c < 3; ++c) out[c] = kd[c] * body + ks[c] * lobe;
   if (py.find("\"second_glossy_color\": (") != std::string::npos) {
     // + a second Glossy BSDF (GGX), added.
     const Rgb ks2 = PyTuple(py, "EXACT", "second_glossy_color");
@@ -690,6 +710,60 @@ TEST(ExportFormulas, TwoGgxLobesAreExactInMitsubaAndBlender) {
   EXPECT_NE(ReadText(gltf).find("the fit's weaker lobe (ks (0.05, 0.04, 0.03)"), std::string::npos);
   const auto mat = GltfMaterial(gltf);
   EXPECT_NEAR(mat["pbrMetallicRoughness"]["roughnessFactor"].get<double>(), std::sqrt(0.02), 1e-12);
+}
+
+// Rough bodies under a GGX lobe: Fujii's Oren-Nayar is Cycles' Diffuse BSDF with Roughness
+// sigma and Burley 2012 a Principled BSDF with Specular 0, so both export to Blender exactly;
+// glTF, Mitsuba 3 and pbrt-v4 have a Lambert diffuse: the body becomes the Lambert albedo equal
+// to it at normal incidence and view, and the note says so.
+TEST(ExportFormulas, RoughBodiesAreExactInBlenderAndLambertElsewhere) {
+  ScratchDir dir;
+  bool exact = false;
+  const Dirs n = MakeDirs({0, 0, 1}, {0, 0, 1});
+  const auto fujii = EntryByName("oren-nayar-fujii+ggx", {{"oren-nayar-fujii.kd_r", 0.45},
+                                                          {"oren-nayar-fujii.kd_g", 0.25},
+                                                          {"oren-nayar-fujii.kd_b", 0.12},
+                                                          {"oren-nayar-fujii.sigma", 0.9},
+                                                          {"ggx.ks_r", 0.08},
+                                                          {"ggx.ks_g", 0.07},
+                                                          {"ggx.ks_b", 0.06},
+                                                          {"ggx.alpha", 0.2}});
+  const auto burley = EntryByName("burley-2012+ggx", {{"burley-2012.kd_r", 0.35},
+                                                      {"burley-2012.kd_g", 0.30},
+                                                      {"burley-2012.kd_b", 0.40},
+                                                      {"burley-2012.alpha", 0.7},
+                                                      {"ggx.ks_r", 0.1},
+                                                      {"ggx.ks_g", 0.1},
+                                                      {"ggx.ks_b", 0.1},
+                                                      {"ggx.alpha", 0.08}});
+  for (const auto* e : {&fujii, &burley}) {
+    SCOPED_TRACE(e->result.model);
+    const std::string py = ReadText(Export(dir, *e, Format::kBlender, "b.py", &exact));
+    EXPECT_TRUE(exact);
+    EXPECT_LT(MaxRelError(*e, [&](const Dirs& d) { return BlenderExactEval(py, d); }), 1e-7);
+    // The same script with the body's roughness set to 0 (a Lambert body) differs.
+    const std::string key = "\"body_roughness\": ";
+    const std::size_t at = py.find(key);
+    ASSERT_NE(at, std::string::npos);
+    const std::string flat = py.substr(0, at + key.size()) + "0" + py.substr(py.find(',', at));
+    EXPECT_GT(MaxRelError(*e, [&](const Dirs& d) { return BlenderExactEval(flat, d); }), 1e-2);
+    // The Lambert targets: approximate, said, and equal at normal incidence and view.
+    const std::string xml = ReadText(Export(dir, *e, Format::kMitsuba, "b.xml", &exact));
+    EXPECT_FALSE(exact);
+    EXPECT_NE(xml.find("has a Lambert diffuse"), std::string::npos);
+    const Rgb t = MitsubaEval(xml, n), m = Model(*e, n);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(t[c], m[c], 1e-7 * m[c]) << c;
+    EXPECT_GT(MaxRelError(*e, [&](const Dirs& d) { return MitsubaEval(xml, d); }), 1e-2);
+    const std::string pbrt = ReadText(Export(dir, *e, Format::kPbrt, "b.pbrt", &exact));
+    EXPECT_FALSE(exact);
+    EXPECT_NE(pbrt.find("has a Lambert diffuse"), std::string::npos);
+    const fs::path gltf = Export(dir, *e, Format::kGltf, "b.gltf", &exact);
+    EXPECT_FALSE(exact);
+    EXPECT_NE(ReadText(gltf).find("has a Lambert diffuse"), std::string::npos);
+  }
+  // Burley's Principled material is the body's own shader with the lobe's roughness: it says so.
+  const std::string py = ReadText(Export(dir, burley, Format::kBlender, "p.py", &exact));
+  EXPECT_NE(py.find("one Roughness"), std::string::npos);
 }
 
 // A sheen lobe fitted to zero is no sheen: the export is the exact lambert+ggx, with no note.

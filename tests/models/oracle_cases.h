@@ -57,6 +57,20 @@ struct OracleCase<Burley> : OracleOf<oracle::BurleyFrostbite> {
 };
 
 template <>
+struct OracleCase<OrenNayarFujii> : OracleOf<oracle::OrenNayarFujii> {
+  // Not sigma = 1: there A (1 + s) at grazing opposite directions (s -> -1) cancels to ~1e-6 of
+  // A, and the model's s from vector components and the oracle's from angles differ by a
+  // rounding of A (a relative 1e-10 of the tiny value), which the angle conditioning does not
+  // measure.
+  static ParamSets Params() { return WithWeights({{0.0}, {0.1}, {0.5}, {0.95}}); }
+};
+
+template <>
+struct OracleCase<Burley2012> : OracleOf<oracle::Burley2012> {
+  static ParamSets Params() { return WithWeights({{1e-4}, {0.01}, {0.25}, {1.0}}); }
+};
+
+template <>
 struct OracleCase<Phong> : OracleOf<oracle::Phong> {
   static ParamSets Params() { return WithWeights({{1}, {3.5}, {40}, {1000}}); }
 };

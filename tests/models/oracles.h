@@ -112,6 +112,25 @@ inline void OrenNayar(const double* p, const Angles& a, double rgb[3]) {
   for (int c = 0; c < 3; ++c) rgb[c] = p[c] / kPi * v;
 }
 
+// Fujii 2012's improved Oren-Nayar, in angles: s = sin(th_i) sin(th_o) cos(ph_i - ph_o).
+inline void OrenNayarFujii(const double* p, const Angles& a, double rgb[3]) {
+  const double sigma = p[3];
+  const double A = 1.0 / (kPi + (kPi / 2 - 2.0 / 3.0) * sigma), B = sigma * A;
+  const double s = std::sin(a.ti) * std::sin(a.to) * std::cos(a.pi - a.po);
+  const double t = s > 0 ? std::max(std::cos(a.ti), std::cos(a.to)) : 1.0;
+  for (int c = 0; c < 3; ++c) rgb[c] = p[c] * (A + B * s / t);
+}
+
+// Burley 2012 §5.3 as published, r = sqrt(alpha), in Burley 2015's split form
+// (1 - FL/2)(1 - FV/2) + RR (FL + FV + FL FV (RR - 1)), RR = 2 r cos_d^2 (Cycles' form).
+inline void Burley2012(const double* p, const Angles& a, double rgb[3]) {
+  const double r = std::sqrt(p[3]), cd = std::cos(Half(a).td);
+  const double fl = std::pow(OneMinusCos(a.ti), 5), fv = std::pow(OneMinusCos(a.to), 5);
+  const double rr = 2 * r * cd * cd;
+  const double v = (1 - fl / 2) * (1 - fv / 2) + rr * (fl + fv + fl * fv * (rr - 1));
+  for (int c = 0; c < 3; ++c) rgb[c] = p[c] * v / kPi;
+}
+
 // Lagarde & de Rousiers 2014 Listing 1 (Fr_DisneyDiffuse) with linearRoughness = sqrt(alpha).
 inline void BurleyFrostbite(const double* p, const Angles& a, double rgb[3]) {
   const double lr = std::sqrt(p[3]);

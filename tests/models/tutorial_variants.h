@@ -44,10 +44,9 @@ using GgxFarCry3 = Microfacet<GgxNdf, SmithHeightCorrelated, FarCry3Fresnel>;
 using GgxDielectric = Microfacet<GgxNdf, SmithHeightCorrelated, DielectricFresnel>;
 
 // URP workshop 2025 step 14: Frostbite diffuse fed alpha as "linearRoughness" (Frostbite's
-// linearRoughness is the perceptual r = sqrt(alpha)); and Burley 2012's original Disney diffuse
-// (no renormalization).
+// linearRoughness is the perceptual r = sqrt(alpha)). Burley 2012's original is in the catalog
+// (burley-2012).
 using UrpFrostbiteDiffuse = BurleyDiffuse<BurleyVariant::kUrpLinearRoughness>;
-using DisneyDiffuse = BurleyDiffuse<BurleyVariant::kDisney>;
 
 // Anisotropic Ward lobe, Ward 1992 eq. 5:
 //   f_r = rho_s exp(-tan^2 th_h (cos^2 ph_h / ax^2 + sin^2 ph_h / ay^2))

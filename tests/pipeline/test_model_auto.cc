@@ -46,13 +46,13 @@ TEST(ModelAuto, CandidatesKeepTheirLossesUnlessALossIsGiven) {
 
 TEST(ModelAuto, TheCandidateThatExpressesTheTableIsChosen) {
   ScratchDir dir;
-  // An Oren-Nayar + GGX table: oren-nayar+ggx reproduces it exactly, the other candidates (two
-  // GGX lobes, Burley + GGX, ABC) only approximately.
+  // An Oren-Nayar (Fujii) + GGX table: oren-nayar-fujii+ggx reproduces it exactly, the other
+  // candidates (two GGX lobes, Burley + GGX, ABC) only approximately.
   const std::vector<double> truth = testing::Params(
-      "oren-nayar+ggx", {"oren-nayar.kd_r=0.30", "oren-nayar.kd_g=0.18", "oren-nayar.kd_b=0.08",
-                         "oren-nayar.sigma=0.6", "ggx.ks_r=0.5", "ggx.ks_g=0.4", "ggx.ks_b=0.3",
-                         "ggx.alpha=0.15"});
-  const Table t = testing::SynthModel("oren-nayar+ggx", truth, testing::SmallGrid());
+      "oren-nayar-fujii+ggx", {"oren-nayar-fujii.kd_r=0.30", "oren-nayar-fujii.kd_g=0.18",
+                               "oren-nayar-fujii.kd_b=0.08", "oren-nayar-fujii.sigma=0.8",
+                               "ggx.ks_r=0.5", "ggx.ks_g=0.4", "ggx.ks_b=0.3", "ggx.alpha=0.15"});
+  const Table t = testing::SynthModel("oren-nayar-fujii+ggx", truth, testing::SmallGrid());
   const fs::path table = dir.path() / "t.h5", report = dir.path() / "fits.h5",
                  json = dir.path() / "fits.json";
   SaveTable(t, table);
@@ -72,13 +72,13 @@ TEST(ModelAuto, TheCandidateThatExpressesTheTableIsChosen) {
       continue;
     }
     ++chosen;
-    EXPECT_EQ(f["model"], "oren-nayar+ggx");
+    EXPECT_EQ(f["model"], "oren-nayar-fujii+ggx");
     EXPECT_EQ(f["options"]["loss"], "rel");
     EXPECT_FALSE(f["choice"].get<std::string>().empty());
     // Exact recovery; the PSNR is then limited by the measured side's trilinear lookup between
     // cell centres (about 65 dB on this 30 x 30 x 60 grid).
     EXPECT_GT(f["metrics"]["rendered"]["psnr_db"].get<double>(), 55.0);
-    EXPECT_NEAR(f["params"]["oren-nayar.sigma"].get<double>(), 0.6, 1e-4);
+    EXPECT_NEAR(f["params"]["oren-nayar-fujii.sigma"].get<double>(), 0.8, 1e-4);
     EXPECT_NEAR(f["params"]["ggx.alpha"].get<double>(), 0.15, 1e-4);
   }
   EXPECT_EQ(chosen, 1);

@@ -29,7 +29,8 @@ TEST(ModelNames, EveryBareSpecularLobeGetsLambert) {
   int bare = 0;
   for (const std::string& m : FittableModels()) {
     if (m.find('+') != std::string::npos) continue;
-    if (m == "lambert" || m == "oren-nayar" || m == "burley" || m == "ue4") {
+    if (m == "lambert" || m == "oren-nayar" || m == "burley" || m == "oren-nayar-fujii" ||
+        m == "burley-2012" || m == "ue4") {
       EXPECT_EQ(ResolveModelNames({m}, "lambert").front(), m)
           << "a diffuse body (or ue4, with its own) stays as given";
     } else if (IsFittable("lambert+" + m)) {
