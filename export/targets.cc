@@ -80,6 +80,7 @@ Rgb ConstantWeight(const LobeMaterial& m, const char* target_name, Fidelity* f) 
 // A target without the Charlie sheen: the lobe is left out, and said.
 void NoteSheenDropped(const LobeMaterial& m, const char* target_name, Fidelity* f) {
   if (!m.sheen) return;
+  ++f->dropped_lobes;
   f->approximations.push_back(fmt::format(
       "{} has no Charlie sheen: the fit's sheen lobe (colour {}, alpha {:.4g}) is left out, so "
       "the material is darker towards grazing (three.js and glTF carry it)",
@@ -90,6 +91,7 @@ void NoteSheenDropped(const LobeMaterial& m, const char* target_name, Fidelity* 
 void NoteSecondLobeDropped(const LobeMaterial& m, const char* target_name, const char* why,
                            Fidelity* f) {
   if (!m.second) return;
+  ++f->dropped_lobes;
   f->approximations.push_back(fmt::format(
       "{} has one GGX lobe{}: the fit's weaker lobe (ks {}, alpha {:.4g}) is left out, so the "
       "material is darker (Blender's node tree, Mitsuba 3, pbrt-v4 and three.js carry it)",

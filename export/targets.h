@@ -14,6 +14,10 @@ namespace brdfit::exports {
 // What did not carry over exactly; empty = exact (up to the noted tolerance of the target).
 struct Fidelity {
   std::vector<std::string> approximations;
+  // How many of the fit's lobes the target leaves out (a second GGX lobe, a sheen): each is in
+  // `approximations` too. A dropped lobe loses far more than the other approximations (a
+  // masking form, a coloured ks, a layering), so the selection of exports weighs it first.
+  int dropped_lobes = 0;
   bool Exact() const { return approximations.empty(); }
 };
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <stdexcept>
+#include <tuple>
 
 #include "core/error.h"
 #include "core/model_choice.h"
@@ -173,20 +174,19 @@ const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
     throw InputError("no fit of model '" + model + "'" + SuggestionAfter(model, fitted) +
                      " (fitted: " + models + ")");
   }
-  // The fewest approximations the format states (0: exact; a fit approximate in one way is
-  // nearer the target's material than one approximate in two), then the chosen fit, then the
-  // best. three.js takes every model, exactly.
+  // Exact first; then the fewest lobes the format leaves out; then the chosen fit; then the
+  // best. The other approximations (a masking form, a coloured ks, a layering) are not counted:
+  // in three.js their number does not tell which export renders nearer the measurement, the
+  // fit's own score does (docs/exports.md, "In a viewer"). three.js takes every model, exactly.
+  const auto rank = [&](const FitReportEntry* e) {
+    const Fidelity f = FidelityOf(e->result, format);
+    return std::make_tuple(!f.Exact(), f.dropped_lobes, !e->chosen);
+  };
   const FitReportEntry* nearest = nullptr;
-  std::size_t nearest_count = 0;
   for (const auto* e : of) {
     if (format != Format::kThreejs && !IsExportable(e->result.model)) continue;
-    const std::size_t n = FidelityOf(e->result, format).approximations.size();
-    const bool wins =
-        !nearest || n < nearest_count ||
-        (n == nearest_count && !nearest->chosen && (e->chosen || Better(*e, *nearest)));
-    if (wins) {
+    if (!nearest || rank(e) < rank(nearest) || (rank(e) == rank(nearest) && Better(*e, *nearest))) {
       nearest = e;
-      nearest_count = n;
     }
   }
   if (nearest) return *nearest;

@@ -26,8 +26,8 @@ Fidelity FidelityOf(const FitResult& fit, Format format);
 
 // The entry to export among `entries`: those of `material` (any when empty and there is one
 // material), of `model` when given; else the chosen fit when the format expresses it exactly,
-// else the best fit the format expresses exactly, else the exportable fit with the fewest
-// approximations (FidelityOf), the chosen one first among equals, then the best. "Best" is the
+// else the best fit the format expresses exactly, else among the exportable fits: the fewest
+// lobes left out (Fidelity::dropped_lobes), then the chosen fit, then the best. "Best" is the
 // rendered score of the model choice (core/model_choice.h, RenderedScoreDb), then the lowest
 // log_rmse for fits without one.
 // kThreejs evaluates every analytic model exactly: `model`, else the chosen fit, else the best.

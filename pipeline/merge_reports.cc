@@ -1,7 +1,6 @@
 #include "pipeline/merge_reports.h"
 
 #include <fmt/core.h>
-#include <unistd.h>
 
 #include <fstream>
 #include <iterator>
@@ -9,11 +8,11 @@
 #include <memory>
 #include <set>
 #include <string>
-#include <system_error>
 #include <tuple>
 
 #include "core/error.h"
 #include "pipeline/batch_fit.h"
+#include "pipeline/scratch_folder.h"
 
 namespace brdfit::pipeline {
 namespace {
@@ -21,27 +20,6 @@ namespace {
 namespace fs = std::filesystem;
 
 using Key = std::tuple<std::string, std::string, std::string>;  // material, model, options
-
-// A scratch folder for comparing entries, removed on destruction.
-class Scratch {
- public:
-  Scratch() {
-    static int counter = 0;
-    dir_ = fs::temp_directory_path() /
-           fmt::format("brdfit-merge-{}-{}", static_cast<long>(::getpid()), counter++);
-    fs::create_directories(dir_);
-  }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  Scratch(const Scratch&) = delete;
-  Scratch& operator=(const Scratch&) = delete;
-  const fs::path& dir() const { return dir_; }
-
- private:
-  fs::path dir_;
-};
 
 // The bytes of the entry written alone, without timings or choice marks: what must agree.
 std::string Canonical(FitReportEntry e, const fs::path& scratch) {
@@ -61,7 +39,7 @@ MergedReports MergeFitReports(const std::vector<fs::path>& parts) {
   std::map<Key, std::size_t> seen;  // key -> index into out.entries
   std::vector<std::size_t> from;    // part of each kept entry
   std::map<std::string, std::pair<std::string, std::size_t>> source_of;  // material -> source, part
-  std::unique_ptr<Scratch> scratch;
+  std::unique_ptr<ScratchFolder> scratch;
   // The parts of one batch: written by one brdfit version, each model fitted under one set of
   // options, each material from one table's contents. Anything else is a mix of runs whose
   // fits do not compare (the choice would weigh them as if they did).
@@ -109,7 +87,7 @@ MergedReports MergeFitReports(const std::vector<fs::path>& parts) {
         out.entries.push_back(std::move(e));
         continue;
       }
-      if (!scratch) scratch = std::make_unique<Scratch>();
+      if (!scratch) scratch = std::make_unique<ScratchFolder>("merge");
       const FitReportEntry& kept = out.entries[it->second];
       if (Canonical(kept, scratch->dir()) != Canonical(e, scratch->dir())) {
         const fs::path& a = parts[from[it->second]];

@@ -1,47 +1,16 @@
 #include "pipeline/refit_source.h"
 
 #include <fmt/core.h>
-#include <unistd.h>
-
-#include <atomic>
-#include <filesystem>
-#include <system_error>
 
 #include "core/error.h"
 #include "pipeline/batch_fit.h"
 #include "pipeline/fit_settings.h"
+#include "pipeline/scratch_folder.h"
 
 namespace brdfit::pipeline {
 
-namespace {
-
-namespace fs = std::filesystem;
-
-// A folder of its own under the system's temporary directory, removed with everything in it.
-class ScratchFolder {
- public:
-  ScratchFolder() {
-    static std::atomic<int> counter{0};
-    dir_ = fs::temp_directory_path() /
-           fmt::format("brdfit-refit-{}-{}", static_cast<long>(::getpid()), counter++);
-    fs::create_directories(dir_);
-  }
-  ~ScratchFolder() {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  ScratchFolder(const ScratchFolder&) = delete;
-  ScratchFolder& operator=(const ScratchFolder&) = delete;
-  const fs::path& dir() const { return dir_; }
-
- private:
-  fs::path dir_;
-};
-
-}  // namespace
-
 SourceRefit RefitSource(const FitReportEntry& of, const std::vector<std::string>& models) {
-  ScratchFolder scratch;
+  ScratchFolder scratch("refit");
   BatchFitRequest req;
   req.inputs = {of.source};
   req.models = ResolveModelRuns(models, "none", /*loss_given=*/false);

@@ -36,15 +36,21 @@ std::vector<double> FujiiTruth(double sigma) {
        "ggx.ks_b=0.1", "ggx.alpha=0.1"});
 }
 
+// A Fujii + GGX table at `table` with one fit of lambert+abc (which no target but three.js
+// takes) in the report `report`.
+void TableWithAnAbcFit(const fs::path& table, const fs::path& report, const fs::path& scratch) {
+  SaveTable(testing::SynthModel("oren-nayar-fujii+ggx", FujiiTruth(0.7), testing::SmallGrid()),
+            table);
+  const auto r = RunCli(
+      {"fit", table.string(), "--model", "lambert+abc", "-o", report.string(), "--no-progress"},
+      scratch);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+}
+
 TEST(RefitSource, FitsTheTargetsModelsToTheReportsTable) {
   ScratchDir dir;
   const fs::path table = dir.path() / "felt.h5", report = dir.path() / "fits.h5";
-  SaveTable(testing::SynthModel("oren-nayar-fujii+ggx", FujiiTruth(0.7), testing::SmallGrid()),
-            table);
-  auto r = RunCli(
-      {"fit", table.string(), "--model", "lambert+abc", "-o", report.string(), "--no-progress"},
-      dir.path());
-  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  ASSERT_NO_FATAL_FAILURE(TableWithAnAbcFit(table, report, dir.path()));
   const auto entries = ReadFitReport(report);
   ASSERT_EQ(entries.size(), 1u);
 
@@ -82,16 +88,12 @@ TEST(RefitSource, ExportFitsBlendersModelsOnTheSpotAndLeavesTheFitsAlone) {
   ScratchDir dir;
   const fs::path table = dir.path() / "felt.h5", report = dir.path() / "fits.h5",
                  script = dir.path() / "felt.py";
-  SaveTable(testing::SynthModel("oren-nayar-fujii+ggx", FujiiTruth(0.7), testing::SmallGrid()),
-            table);
-  auto r = RunCli(
-      {"fit", table.string(), "--model", "lambert+abc", "-o", report.string(), "--no-progress"},
-      dir.path());
-  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  ASSERT_NO_FATAL_FAILURE(TableWithAnAbcFit(table, report, dir.path()));
   const std::string before = Bytes(report);
 
   // --no-fit: lambert+abc is not exportable to Blender, and nothing else is there.
-  r = RunCli({"export", report.string(), "--format", "blender", "--no-fit", "-o", script.string()},
+  auto r =
+      RunCli({"export", report.string(), "--format", "blender", "--no-fit", "-o", script.string()},
              dir.path());
   EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
   EXPECT_NE(r.err.find("none of the fits (lambert+abc) can be exported"), std::string::npos)
