@@ -14,7 +14,7 @@ namespace brdfit {
 
 enum class BurleyVariant {
   kFrostbite,  // Lagarde & de Rousiers 2014 renormalized, linearRoughness r = sqrt(alpha)
-  kDisney,     // Burley 2012 original (albedo up to ~1.2 at r = 1: not energy conserving)
+  kDisney,     // Burley 2012 original (albedo up to 1.55 at r = 1: not energy conserving)
   // URP workshop 2025 steps 14-15: Frostbite's code fed alpha as linearRoughness.
   kUrpLinearRoughness,
 };
@@ -32,7 +32,8 @@ enum class BurleyVariant {
 // linearRoughness; kUrpLinearRoughness reproduces it.
 // NOT energy conserving: Frostbite's renormalization (energyFactor = 1/1.51 at r = 1) is a fit;
 // with kd = 1 the directional albedo reaches 1.03 at 89.9 deg incidence and r = 1 (1.009 at
-// 89 deg); Burley 2012's original reaches about 1.2 (tests/models/test_physics.cc).
+// 89 deg); Burley 2012's original reaches 1.55 at 89.9 deg (1.28 at 80)
+// (tests/models/test_physics.cc).
 //
 // Parameters: kd_r, kd_g, kd_b [0, 1] linear weights; alpha [1e-4, 1].
 template <BurleyVariant V>
