@@ -5,7 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
+
+#include "models/oren_nayar.h"
 
 namespace brdfit::exports {
 
@@ -112,8 +113,7 @@ Rgb LambertBody(const LobeMaterial& m, const char* target_name, Fidelity* f) {
     return m.kd;
   }
   const double sigma = m.body_roughness;
-  const double scale =
-      std::numbers::pi / (std::numbers::pi + (std::numbers::pi / 2 - 2.0 / 3.0) * sigma);
+  const double scale = kPi * OrenNayarFujii::A(sigma);
   Rgb kd{};
   for (int c = 0; c < 3; ++c) kd[c] = m.kd[c] * scale;
   f->approximations.push_back(fmt::format(
@@ -328,7 +328,7 @@ BlenderMaterial ToBlender(const LobeMaterial& m) {
   // The body: Diffuse BSDF (roughness 0: Lambert; sigma: Fujii's Oren-Nayar) or, for Burley
   // 2012, a Principled BSDF reduced to its diffuse (Specular 0, Metallic 0, roughness r).
   b.body = m.body;
-  b.body_roughness = m.body == Body::kLambert ? 0.0 : m.body_roughness;
+  b.body_roughness = m.body_roughness;
   b.diffuse_color = m.kd;
   b.glossy_color = ks;
   if (m.second) {

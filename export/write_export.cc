@@ -183,10 +183,13 @@ const FitReportEntry& SelectEntry(const std::vector<FitReportEntry>& entries,
     return std::make_tuple(!f.Exact(), f.dropped_lobes, !e->chosen);
   };
   const FitReportEntry* nearest = nullptr;
+  std::tuple<bool, int, bool> nearest_rank;
   for (const auto* e : of) {
     if (format != Format::kThreejs && !IsExportable(e->result.model)) continue;
-    if (!nearest || rank(e) < rank(nearest) || (rank(e) == rank(nearest) && Better(*e, *nearest))) {
+    const auto r = rank(e);
+    if (!nearest || r < nearest_rank || (r == nearest_rank && Better(*e, *nearest))) {
       nearest = e;
+      nearest_rank = r;
     }
   }
   if (nearest) return *nearest;

@@ -77,10 +77,16 @@ struct OrenNayarFujii {
       {"sigma", "1", 0.0, 1.0, 0.3, false, "roughness (Cycles' Diffuse BSDF Roughness)"},
   }};
 
+  // A(sigma) = 1 / (pi + (pi/2 - 2/3) sigma): f_r / kd where s = 0 (normal incidence or view).
+  template <class T>
+  static T A(const T& sigma) {
+    return 1.0 / (kPi + (kPi / 2 - 2.0 / 3.0) * sigma);
+  }
+
   template <class T>
   static void Eval(const T* p, const Geometry& g, T rgb[3]) {
     const T& sigma = p[3];
-    const T a = 1.0 / (kPi + (kPi / 2 - 2.0 / 3.0) * sigma);
+    const T a = A(sigma);
     const double s = g.wi.x * g.wo.x + g.wi.y * g.wo.y;
     // max(cos_i, cos_o) > 0 for every geometry a table or image evaluates (both above the
     // surface); s / t is bounded by 1 in magnitude.

@@ -1,5 +1,5 @@
 // Fitting more models to the table a report's fit came from, without touching the report:
-// what `brdfit export` does when the report holds no fit the target expresses exactly
+// what `brdfit export` does when a material's fits hold none of the target's own models
 // (docs/exports.md, "Which fits export").
 #pragma once
 
