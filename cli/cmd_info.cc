@@ -24,7 +24,7 @@ struct InfoOptions {
 };
 
 // What `info` says the input is: a file format, or an NBRDF network tabulated on the MERL grid.
-enum class InfoFormat { kMerl, kHdf5, kNbrdf };
+enum class InfoFormat { kMerl, kHdf5, kNbrdf, kRglBsdf };
 const char* FormatName(InfoFormat f) {
   switch (f) {
     case InfoFormat::kMerl:
@@ -33,6 +33,8 @@ const char* FormatName(InfoFormat f) {
       return "brdfit HDF5 table";
     case InfoFormat::kNbrdf:
       return "NBRDF network, tabulated on the MERL grid";
+    case InfoFormat::kRglBsdf:
+      return "RGL .bsdf (Dupuy & Jakob 2018), tabulated on the MERL grid";
   }
   return "?";
 }
@@ -70,7 +72,15 @@ void PrintText(const InfoOptions& o, const Table& t, InfoFormat format, const Lo
   fmt::print("valid       {} ({:.2f} %)\n", s.valid, Percent(s.valid, s.cells));
   fmt::print("invalid     {} ({:.2f} %)", s.cells - s.valid, Percent(s.cells - s.valid, s.cells));
   if (format == InfoFormat::kMerl) fmt::print(", negative in the file: {}", r.negative_cells);
+  if (format == InfoFormat::kRglBsdf) {
+    fmt::print(", not covered by the file: {}, not finite: {}", r.uncovered_cells,
+               r.not_finite_cells);
+  }
   fmt::print("\n");
+  if (format == InfoFormat::kRglBsdf && r.clamped_cells) {
+    fmt::print("  clamped to 0 (a channel below 0, outside the sRGB gamut): {} cells\n",
+               r.clamped_cells);
+  }
   fmt::print("  below the horizon at the cell centre   {} ({:.2f} % of cells)\n", s.below_horizon,
              Percent(s.below_horizon, s.cells));
   fmt::print("  holes above the horizon                {} ({:.2f} % of {} above-horizon cells)\n",
@@ -113,9 +123,10 @@ int RunInfo(const InfoOptions& o) {
   LoadReport report;
   const bool nbrdf = IsNbrdfInput(o.path);
   const Table t = nbrdf ? pipeline::LoadInput(o.path) : LoadTable(o.path, &report);
-  const InfoFormat format = nbrdf                                 ? InfoFormat::kNbrdf
-                            : report.format == TableFormat::kMerl ? InfoFormat::kMerl
-                                                                  : InfoFormat::kHdf5;
+  const InfoFormat format = nbrdf                                    ? InfoFormat::kNbrdf
+                            : report.format == TableFormat::kMerl    ? InfoFormat::kMerl
+                            : report.format == TableFormat::kRglBsdf ? InfoFormat::kRglBsdf
+                                                                     : InfoFormat::kHdf5;
   const TableStats s = ComputeTableStats(t);
   if (!o.json) {
     PrintText(o, t, format, report, s);
@@ -130,6 +141,11 @@ int RunInfo(const InfoOptions& o) {
                {"theta_h_mapping", ToString(t.grid.theta_h_mapping)}};
   j.update(TableStatsToJson(s));
   if (format == InfoFormat::kMerl) j["negative_in_file"] = report.negative_cells;
+  if (format == InfoFormat::kRglBsdf) {
+    j["not_covered_by_file"] = report.uncovered_cells;
+    j["not_finite_in_file"] = report.not_finite_cells;
+    j["clamped_to_zero"] = report.clamped_cells;
+  }
   if (format != InfoFormat::kMerl) j["provenance"] = ProvenanceJson(t.provenance);
   fmt::print("{}\n", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace));
   return kExitOk;

@@ -93,6 +93,7 @@ int FuzzMesh(const std::uint8_t* data, std::size_t size);
 int FuzzFactorFiles(const std::uint8_t* data, std::size_t size);
 int FuzzBenchCsv(const std::uint8_t* data, std::size_t size);
 int FuzzRenderCache(const std::uint8_t* data, std::size_t size);
+int FuzzRglBsdf(const std::uint8_t* data, std::size_t size);
 
 }  // namespace brdfit::fuzz
 

@@ -27,13 +27,14 @@
 #include <OpenEXR/ImfRgbaFile.h>
 #include <OpenEXR/ImfTiledRgbaFile.h>
 
+#include "core/table.h"
 #include "fuzz/factor_checks.h"
 #include "io/exr_texture.h"
 #include "io/factor_io.h"
 #include "io/fit_report.h"
 #include "io/hdf5_table.h"
 #include "io/merl.h"
-#include "core/table.h"
+#include "io/tensor_file.h"
 
 namespace fs = std::filesystem;
 using namespace brdfit;
@@ -69,6 +70,56 @@ void MerlSeeds(const fs::path& dir) {
   WriteBytes(dir / "expanded-tiny", std::string(1, '\3') + MerlHeader() + '\0' + Doubles({5e-324, -0.0, 1e300}));
   WriteBytes(dir / "expanded-short", std::string(1, '\1') + MerlHeader() + '\xf7' + Doubles({1.0}));
   WriteBytes(dir / "expanded-long", std::string(1, '\1') + MerlHeader() + '\xf9' + Doubles({1.0}));
+}
+
+// fuzz_rgl_bsdf input: the .bsdf file itself. Small but valid RGB and spectral files (a GGX-like
+// NDF, uniform projected area and VNDF, colours varying over the warped grid), one with the
+// optional 'valid' mask, and one anisotropic (rejected: a seed for the error path).
+std::vector<char> RglBsdfSeed(int rows, int n_theta, int n_phi, bool spectral, bool with_valid) {
+  const double pi = 3.14159265358979323846;
+  const auto r = static_cast<std::uint64_t>(rows), nt = static_cast<std::uint64_t>(n_theta),
+             np = static_cast<std::uint64_t>(n_phi);
+  std::vector<double> theta_i(nt), phi_i(np), ndf(2 * r), sigma(2 * r, 1.0);
+  for (std::uint64_t i = 0; i < nt; ++i) theta_i[i] = 1.4 * static_cast<double>(i) / (nt - 1);
+  for (std::uint64_t i = 0; i < np; ++i) phi_i[i] = np == 1 ? 0.0 : -pi + 2 * pi * i / (np - 1);
+  for (std::uint64_t i = 0; i < 2 * r; ++i) ndf[i] = 1.0 / (0.1 + static_cast<double>(i % r));
+  const std::uint64_t channels = spectral ? 4 : 3;
+  std::vector<double> vndf(np * nt * r * r, 1.0), values(np * nt * channels * r * r);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    values[i] = 0.1 + 0.01 * static_cast<double>(i % 37);
+  TensorFile f;
+  const std::string d = "fuzz seed";
+  f.fields.push_back(
+      UInt8Field("description", {d.size()}, std::vector<std::uint8_t>(d.begin(), d.end())));
+  f.fields.push_back(UInt8Field("jacobian", {1}, {1}));
+  f.fields.push_back(Float32Field("theta_i", {nt}, theta_i));
+  f.fields.push_back(Float32Field("phi_i", {np}, phi_i));
+  f.fields.push_back(Float32Field("ndf", {2, r}, ndf));
+  f.fields.push_back(Float32Field("sigma", {2, r}, sigma));
+  f.fields.push_back(Float32Field("vndf", {np, nt, r, r}, vndf));
+  f.fields.push_back(Float32Field("luminance", {np, nt, r, r}, vndf));
+  if (spectral) {
+    f.fields.push_back(Float32Field("wavelengths", {4}, {400, 500, 600, 700}));
+    f.fields.push_back(Float32Field("spectra", {np, nt, channels, r, r}, values));
+  } else {
+    f.fields.push_back(Float32Field("rgb", {np, nt, channels, r, r}, values));
+  }
+  if (with_valid) {
+    std::vector<std::uint8_t> valid(np * nt * r * r, 1);
+    valid[valid.size() / 2] = 0;
+    f.fields.push_back(UInt8Field("valid", {np, nt, r, r}, valid));
+  }
+  return SerializeTensorFile(f);
+}
+
+void RglBsdfSeeds(const fs::path& dir) {
+  auto write = [&dir](const char* name, const std::vector<char>& b) {
+    WriteBytes(dir / name, std::string(b.begin(), b.end()));
+  };
+  write("rgb-4x4", RglBsdfSeed(4, 3, 2, false, false));
+  write("rgb-1phi-valid", RglBsdfSeed(3, 2, 1, false, true));
+  write("spectral-3x3", RglBsdfSeed(3, 2, 1, true, false));
+  write("anisotropic", RglBsdfSeed(2, 2, 3, false, false));
 }
 
 Table SmallTable(int nh, int nd, int np, ThetaHMapping m) {
@@ -563,11 +614,12 @@ int main(int argc, char** argv) {
   const fs::path corpus = fs::path(argv[1]) / "corpus";
   const fs::path regressions = fs::path(argv[1]) / "regressions";
   for (const char* d : {"merl", "hdf5_table", "nbrdf", "exr", "factor_sidecar", "fit_report",
-                        "factor_files"}) {
+                        "factor_files", "rgl_bsdf"}) {
     fs::create_directories(corpus / d);
     fs::create_directories(regressions / d);
   }
   MerlSeeds(corpus / "merl");
+  RglBsdfSeeds(corpus / "rgl_bsdf");
   Hdf5Seeds(corpus / "hdf5_table");
   Hdf5Crafted(regressions / "hdf5_table");
   NbrdfSeeds(corpus / "nbrdf");

@@ -8,6 +8,8 @@
 #include "io/hdf5_table.h"
 #include "io/input_file.h"
 #include "io/merl.h"
+#include "io/rgl_bsdf_file.h"
+#include "io/tensor_file.h"
 
 namespace brdfit {
 
@@ -18,10 +20,14 @@ TableFormat DetectTableFormat(const fs::path& path) {
   // HDF5 format specification, "Format Signature": \211HDF\r\n\032\n at offset 0 (brdfit never
   // writes a user block, so the signature is always at 0 in its files).
   static constexpr char kSignature[8] = {'\211', 'H', 'D', 'F', '\r', '\n', '\032', '\n'};
-  const std::vector<char> head = ReadFilePrefix(path, sizeof(kSignature));
-  if (head.size() == sizeof(kSignature) &&
-      std::equal(head.begin(), head.end(), std::begin(kSignature))) {
+  const std::vector<char> head = ReadFilePrefix(path, sizeof(kTensorFileMagic));
+  if (head.size() >= sizeof(kSignature) &&
+      std::equal(std::begin(kSignature), std::end(kSignature), head.begin())) {
     return TableFormat::kHdf5;
+  }
+  if (head.size() == sizeof(kTensorFileMagic) &&
+      std::equal(head.begin(), head.end(), std::begin(kTensorFileMagic))) {
+    return TableFormat::kRglBsdf;
   }
   return TableFormat::kMerl;
 }
@@ -42,6 +48,12 @@ Table LoadTable(const fs::path& path, LoadReport* report) {
   Table t;
   if (format == TableFormat::kHdf5) {
     t = ReadHdf5Table(path);
+  } else if (format == TableFormat::kRglBsdf) {
+    RglTabulation n;
+    t = ReadRglBsdfTable(path, Grid::Merl(), &n);
+    r.uncovered_cells = n.uncovered;
+    r.not_finite_cells = n.not_finite;
+    r.clamped_cells = n.clamped;
   } else {
     MerlReadReport mr;
     t = ReadMerl(path, &mr);
@@ -60,6 +72,9 @@ void SaveTable(const Table& table, const fs::path& path, std::optional<TableForm
     throw InputError(path,
                      "cannot tell the output format from the extension (use .binary or "
                      ".h5, or give the format)");
+  }
+  if (*format == TableFormat::kRglBsdf) {
+    throw InputError(path, "brdfit does not write a table as an RGL .bsdf (write .binary or .h5)");
   }
   if (*format == TableFormat::kMerl) {
     WriteMerl(table, path);

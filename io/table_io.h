@@ -1,6 +1,8 @@
 // Format-independent table loading and saving. Loading detects the format by content (the
-// HDF5 signature at offset 0, else MERL binary), never by the file name; saving picks the
-// format explicitly or from the extension.
+// HDF5 signature at offset 0, the tensor-file signature of an RGL .bsdf, else MERL binary),
+// never by the file name; saving picks the format explicitly or from the extension. An RGL
+// .bsdf is read by tabulating it onto the MERL grid (io/rgl_bsdf_file.h); it is not written
+// as a table.
 #pragma once
 
 #include <filesystem>
@@ -12,12 +14,13 @@
 
 namespace brdfit {
 
-enum class TableFormat { kMerl, kHdf5 };
+enum class TableFormat { kMerl, kHdf5, kRglBsdf };
 
 // "binary" is accepted for "merl", "hdf5" for "h5".
 inline constexpr auto kTableFormatNames =
     MakeEnumNames<TableFormat>("table format", {{TableFormat::kMerl, "merl"},
                                                 {TableFormat::kHdf5, "h5"},
+                                                {TableFormat::kRglBsdf, "bsdf"},
                                                 {TableFormat::kMerl, "binary", true},
                                                 {TableFormat::kHdf5, "hdf5", true}});
 constexpr const auto& EnumNamesOf(TableFormat) {
@@ -34,6 +37,11 @@ std::optional<TableFormat> TableFormatFromExtension(const std::filesystem::path&
 struct LoadReport {
   TableFormat format = TableFormat::kMerl;
   std::size_t negative_cells = 0;  // MERL: cells masked because a channel was negative
+  // RGL .bsdf: cells masked because the file does not cover them (theta_i beyond its range,
+  // unmeasured samples) or its value is not finite, and cells with a channel clamped to 0.
+  std::size_t uncovered_cells = 0;
+  std::size_t not_finite_cells = 0;
+  std::size_t clamped_cells = 0;
 };
 
 Table LoadTable(const std::filesystem::path& path, LoadReport* report = nullptr);

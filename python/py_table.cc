@@ -185,19 +185,21 @@ void BindTable(py::module_& m) {
                ToString(t.grid.theta_h_mapping) + ", " + std::to_string(t.CountValid()) +
                " valid, source '" + t.provenance.source + "'>";
       });
-  m.def("load",
-        [](const std::string& input) {
-          Table t;
-          {
-            py::gil_scoped_release nogil;
-            t = pipeline::LoadInput(input);
-          }
-          py::object o = py::cast(std::move(t));
-          o.attr("input") = input;
-          return o;
-        },
-        py::arg("input"),
-        "Loads a MERL .binary or brdfit .h5 table, or tabulates nbrdf:NAME on the MERL grid");
+  m.def(
+      "load",
+      [](const std::string& input) {
+        Table t;
+        {
+          py::gil_scoped_release nogil;
+          t = pipeline::LoadInput(input);
+        }
+        py::object o = py::cast(std::move(t));
+        o.attr("input") = input;
+        return o;
+      },
+      py::arg("input"),
+      "Loads a MERL .binary or brdfit .h5 table, or tabulates an RGL .bsdf file or nbrdf:NAME "
+      "on the MERL grid");
 }
 
 }  // namespace brdfit::python

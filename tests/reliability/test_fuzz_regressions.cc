@@ -39,6 +39,7 @@ constexpr Harnesses kHarnesses[] = {
     {"factor_files", FuzzFactorFiles},
     {"bench_csv", FuzzBenchCsv},
     {"render_cache", FuzzRenderCache},
+    {"rgl_bsdf", FuzzRglBsdf},
 };
 
 struct Input {

@@ -8,11 +8,13 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "fuzz/harness_util.h"
-#include "io/hdf5_table.h"
 #include "io/exr_texture.h"
 #include "io/factor_io.h"
+#include "io/hdf5_table.h"
 #include "io/nbrdf.h"
+#include "io/rgl_bsdf_file.h"
 #include "preview/scene.h"
 
 namespace brdfit {
@@ -59,6 +61,14 @@ TEST(FuzzSeeds, ScenesAreAccepted) {
   for (const auto& e : fs::directory_iterator(kCorpus / "scene")) {
     EXPECT_NO_THROW(preview::LoadScene(e.path())) << e.path();
   }
+}
+
+TEST(FuzzSeeds, RglBsdfFilesAreAcceptedAndTheAnisotropicOneRefused) {
+  for (const char* name : {"rgb-4x4", "rgb-1phi-valid", "spectral-3x3"}) {
+    EXPECT_NO_THROW(ReadRglBsdf(kCorpus / "rgl_bsdf" / name)) << name;
+  }
+  EXPECT_EQ(ReadRglBsdf(kCorpus / "rgl_bsdf" / "rgb-1phi-valid").valid.size(), 2u * 3 * 3);
+  EXPECT_THROW(ReadRglBsdf(kCorpus / "rgl_bsdf" / "anisotropic"), InputError);
 }
 
 }  // namespace
