@@ -1,9 +1,9 @@
-// `brdfit export FITS --format gltf|glb|mitsuba|pbrt|blender|threejs [--material NAME] [--model
-// NAME] -o OUT|DIR/`: one fit of a fit report or JSON parameters (or a factorization, threejs),
-// or with a folder one per material, as a
-// glTF 2.0 asset, a Mitsuba 3 scene, a pbrt-v4 scene, a Blender Python script or a three.js
-// module (export/, docs/exports.md). What the target cannot express exactly is said in the file
-// and on stderr.
+// `brdfit export FITS --format gltf|glb|mitsuba|pbrt|blender|threejs|bsdf [--material NAME]
+// [--model NAME] -o OUT|DIR/`: one fit of a fit report or JSON parameters (or a factorization,
+// threejs and bsdf; or a table, bsdf), or with a folder one per material, as a glTF 2.0 asset,
+// a Mitsuba 3 scene, a pbrt-v4 scene, a Blender Python script, a three.js module or an RGL
+// .bsdf (export/, pipeline/bsdf_export.h, docs/exports.md). What the target cannot express
+// exactly is said in the file and on stderr.
 #include <fmt/core.h>
 
 #include <filesystem>
@@ -17,6 +17,8 @@
 #include "io/factor_io.h"
 #include "io/fit_params_json.h"
 #include "io/output_policy.h"
+#include "pipeline/bsdf_export.h"
+#include "pipeline/inputs.h"
 #include "pipeline/refit_source.h"
 #include "preview/shader_gen.h"
 
@@ -29,6 +31,7 @@ struct ExportOptions {
   std::string fits, format, material, model, out;
   bool quiet = false;
   bool no_fit = false;  // never fit the target's models on the spot
+  RglBuildOptions bsdf;  // --format bsdf resolutions
 };
 
 bool IsFactorSidecar(const std::string& path) {
@@ -203,7 +206,49 @@ int RunExportFolder(const ExportOptions& o, exports::Format format) {
   return kExitOk;
 }
 
+// --format bsdf: every analytic model evaluates exactly, so the fit exported is --model's, else
+// the chosen one, else the best (exports::SelectEntry's rule for three.js, which also evaluates
+// every model).
+int RunBsdfExport(const ExportOptions& o) {
+  if (NamesFolder(o.out)) {
+    throw InputError(o.out +
+                     ": --format bsdf writes one file (-o NAME.bsdf); --material picks the "
+                     "material of a report that holds several");
+  }
+  CheckOutputs({o.fits}, {{o.out, "-o"}});
+  pipeline::BsdfExport r;
+  if (IsFactorSidecar(o.fits)) {
+    r = pipeline::ExportFactorAsBsdf(o.fits, o.bsdf, o.out);
+  } else if (pipeline::IsBsdfTableInput(o.fits)) {
+    r = pipeline::ExportTableAsBsdf(pipeline::LoadInput(o.fits), o.fits, o.bsdf, o.out);
+  } else {
+    const std::vector<FitReportEntry> entries = ReadFitsAnyFormat(o.fits);
+    const FitReportEntry& e =
+        exports::SelectEntry(entries, o.material, o.model, exports::Format::kThreejs);
+    r = pipeline::ExportFitAsBsdf(e, o.bsdf, o.out);
+  }
+  if (r.build.unmeasured) {
+    fmt::print(stderr,
+               "brdfit: export: {} warped samples have no value in the source (masked cells): "
+               "marked unmeasured in the file's 'valid' field\n",
+               r.build.unmeasured);
+  }
+  if (r.build.negative) {
+    fmt::print(stderr, "brdfit: export: {} samples had a channel below 0, written as 0\n",
+               r.build.negative);
+  }
+  if (!o.quiet) {
+    fmt::print(
+        "{} -> {} (RGL .bsdf: {} incident elevations to {} deg, {}x{} warped samples "
+        "each, NDF of {} samples from {} power iterations)\n",
+        TerminalSafe(r.source), TerminalSafe(o.out), o.bsdf.theta_i_count, o.bsdf.theta_i_max_deg,
+        o.bsdf.warp_samples, o.bsdf.warp_samples, o.bsdf.ndf_samples, r.build.power_iterations);
+  }
+  return kExitOk;
+}
+
 int RunExport(const ExportOptions& o) {
+  if (o.format == "bsdf") return RunBsdfExport(o);
   const exports::Format format = exports::FormatFromString(o.format);
   if (o.out == "-") {
     throw InputError(
@@ -229,17 +274,30 @@ int RunExport(const ExportOptions& o) {
 Registrar reg{
     "export",
     "Write a fitted material for glTF 2.0, Mitsuba 3, pbrt-v4, Blender (a sphere scene with it) or "
-    "three.js",
+    "three.js, or a fit, factorization or table as an RGL .bsdf",
     [](CLI::App& sub) {
       auto o = std::make_shared<ExportOptions>();
       sub.add_option("fits", o->fits,
-                     "fit report (.h5), JSON parameters of brdfit fit, or (threejs) a "
-                     "factorization's .factor.json")
+                     "fit report (.h5), JSON parameters of brdfit fit, or (threejs, bsdf) a "
+                     "factorization's .factor.json, or (bsdf) a table: .binary, .h5, .bsdf, "
+                     "nbrdf:NAME")
           ->required();
       sub.add_option(
              "--format", o->format,
-             "gltf (.gltf + .bin) | glb | mitsuba | pbrt | blender (a .py) | threejs (a .mjs)")
+             "gltf (.gltf + .bin) | glb | mitsuba | pbrt | blender (a .py) | threejs (a .mjs) | "
+             "bsdf (RGL measured format: pbrt-v4 and Mitsuba 'measured')")
           ->required();
+      sub.add_option("--bsdf-warp", o->bsdf.warp_samples,
+                     "bsdf: warped samples per side and incident elevation")
+          ->check(CLI::Range(4, 1024))
+          ->capture_default_str();
+      sub.add_option("--bsdf-theta-i", o->bsdf.theta_i_count,
+                     "bsdf: incident elevations, uniform from 0 to 88 deg")
+          ->check(CLI::Range(2, 1024))
+          ->capture_default_str();
+      sub.add_option("--bsdf-ndf", o->bsdf.ndf_samples, "bsdf: NDF and projected-area samples")
+          ->check(CLI::Range(8, 4096))
+          ->capture_default_str();
       sub.add_option("--material", o->material, "material to export (when the fits hold several)");
       sub.add_option("--model", o->model,
                      "fit to export (default: the chosen fit when the format expresses it "
@@ -264,7 +322,8 @@ Registrar reg{
           "mappings.\n"
           "Examples:\n  brdfit fit gold.binary --model ggx-hc --json fits.json\n"
           "  brdfit export fits.json --format glb -o gold.glb\n"
-          "  brdfit export fits.h5 --format pbrt -o scenes/");
+          "  brdfit export fits.h5 --format pbrt -o scenes/\n"
+          "  brdfit export gold.binary --format bsdf -o gold.bsdf");
       return [o] { return RunExport(*o); };
     }};
 

@@ -142,6 +142,60 @@ double RglBsdfEvaluator::Lookup(const std::vector<double>& a, const Slices& s,
   return v;
 }
 
+double RglBsdfEvaluator::ScaleAt(double um_x, double um_y, double ui_x, double ui_y) const {
+  const double d =
+      Bilinear(b_.ndf.data(), b_.ndf_cols, PatchAt(um_x, um_y, b_.ndf_rows, b_.ndf_cols));
+  const double sigma =
+      Bilinear(b_.sigma.data(), b_.sigma_cols, PatchAt(ui_x, ui_y, b_.sigma_rows, b_.sigma_cols));
+  return d / (4 * sigma);
+}
+
+double RglBsdfEvaluator::Scale(const Vec3& wi, const Vec3& wm) const {
+  const double phi_i = std::atan2(wi.y, wi.x);
+  double um_y = PhiToU(std::atan2(wm.y, wm.x) - phi_i);
+  um_y -= std::floor(um_y);
+  return ScaleAt(ThetaToU(Elevation(wm)), um_y, ThetaToU(Elevation(wi)), PhiToU(phi_i));
+}
+
+// Marginal2D::sample of the authors' loader on one slice: the row by the marginal CDF, then the
+// column by the row-interpolated conditional CDF, each inverted within its linear patch.
+void RglBsdfEvaluator::Warp(int slice, double sx, double sy, double* u_theta, double* u_phi) const {
+  const int rows = b_.rows, cols = b_.cols;
+  const std::size_t cells = static_cast<std::size_t>(rows) * cols;
+  const double* mc = &marginal_[static_cast<std::size_t>(slice) * rows];
+  const double* cc = &conditional_[static_cast<std::size_t>(slice) * cells];
+  const double* d = &vndf_[static_cast<std::size_t>(slice) * cells];
+  constexpr double kEps = 1e-12;
+  sx = std::clamp(sx, kEps, 1 - kEps);
+  sy = std::clamp(sy, kEps, 1 - kEps);
+  // The largest index in [0, n - 2] whose value is below x (find_interval).
+  auto find = [](int n, const auto& below) {
+    int k = 0;
+    while (k + 1 <= n - 2 && below(k + 1)) ++k;
+    return k;
+  };
+  // t in [0, 1] with a t + (b - a) t^2 / 2 = s: the inverse CDF of a linear density a..b.
+  auto invert_linear = [](double a, double b, double s) {
+    if (std::abs(a - b) < 1e-4 * (a + b)) return 2 * s / (a + b);
+    return (a - std::sqrt(std::max(a * a - 2 * s * (a - b), 0.0))) / (a - b);
+  };
+  const int row = find(rows, [&](int k) { return mc[k] < sy; });
+  sy -= mc[row];
+  const std::size_t r = static_cast<std::size_t>(row) * cols;
+  const double r0 = cc[r + cols - 1], r1 = cc[r + 2 * cols - 1];
+  const double ty = r0 + r1 > 0 ? std::clamp(invert_linear(r0, r1, sy), 0.0, 1.0) : 0.5;
+  sx *= (1 - ty) * r0 + ty * r1;
+  auto conditional = [&](int k) { return (1 - ty) * cc[r + k] + ty * cc[r + cols + k]; };
+  const int col = find(cols, [&](int k) { return conditional(k) < sx; });
+  sx -= conditional(col);
+  const std::size_t o = r + col;
+  const double c0 = (1 - ty) * d[o] + ty * d[o + cols];
+  const double c1 = (1 - ty) * d[o + 1] + ty * d[o + cols + 1];
+  const double tx = c0 + c1 > 0 ? std::clamp(invert_linear(c0, c1, sx), 0.0, 1.0) : 0.5;
+  *u_theta = (col + tx) / (cols - 1);
+  *u_phi = (row + ty) / (rows - 1);
+}
+
 RglBsdfEvaluator::Result RglBsdfEvaluator::Eval(const Vec3& wi, const Vec3& wo, double* out) const {
   Result r;  // not covered until the end
   for (int c = 0; c < b_.channels; ++c) out[c] = 0;
@@ -193,11 +247,7 @@ RglBsdfEvaluator::Result RglBsdfEvaluator::Eval(const Vec3& wi, const Vec3& wo, 
     }
     out[c] = v;
   }
-  const double d =
-      Bilinear(b_.ndf.data(), b_.ndf_cols, PatchAt(um_x, um_y, b_.ndf_rows, b_.ndf_cols));
-  const double sigma =
-      Bilinear(b_.sigma.data(), b_.sigma_cols, PatchAt(ui_x, ui_y, b_.sigma_rows, b_.sigma_cols));
-  const double scale = d / (4 * sigma);
+  const double scale = ScaleAt(um_x, um_y, ui_x, ui_y);
   for (int c = 0; c < b_.channels; ++c) out[c] *= scale;
 
   r.covered = theta_i <= b_.theta_i.back() + 1e-6;

@@ -42,6 +42,7 @@ struct RglBsdf {
   std::vector<double> sigma;
   int rows = 0, cols = 0;           // the warped grid of vndf and the values
   std::vector<double> vndf;         // [phi_i][theta_i][rows][cols]
+  std::vector<double> luminance;    // as vndf: the sampling warp (not used by Eval)
   int channels = 0;                 // 3 (rgb) or the number of wavelengths
   std::vector<double> values;       // [phi_i][theta_i][channels][rows][cols]
   std::vector<double> wavelengths;  // nm; empty for an RGB file
@@ -64,6 +65,13 @@ class RglBsdfEvaluator {
   // the light, wo: towards the viewer, unit, local frame.
   Result Eval(const Vec3& wi, const Vec3& wo, double* out) const;
 
+  // The forward warp of one (phi_i, theta_i) slice (the loader's Marginal2D::sample):
+  // warped coordinates (sx, sy) in [0, 1]^2 -> the unit-square coordinates (u_theta, u_phi)
+  // of wm. Eval inverts it.
+  void Warp(int slice, double sx, double sy, double* u_theta, double* u_phi) const;
+  // D(wm) / (4 sigma(wi)), the factor Eval applies to the values.
+  double Scale(const Vec3& wi, const Vec3& wm) const;
+
  private:
   struct Slices {  // up to four (phi_i, theta_i) slices and their weights
     int count = 0;
@@ -73,6 +81,8 @@ class RglBsdfEvaluator {
   Slices SlicesAt(double phi_i, double theta_i) const;
   double Lookup(const std::vector<double>& a, const Slices& s, std::size_t slice_size,
                 std::size_t i) const;
+
+  double ScaleAt(double um_x, double um_y, double ui_x, double ui_y) const;
 
   const RglBsdf& b_;
   std::vector<double> vndf_;         // each slice divided by its integral

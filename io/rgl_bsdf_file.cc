@@ -130,7 +130,8 @@ RglBsdf RglBsdfFromTensors(const TensorFile& file, const std::filesystem::path& 
 
   const TensorField& luminance = f.Get("luminance", TensorType::kFloat32, 4);
   for (std::size_t a = 0; a < 4; ++a) f.Extent(luminance, a, vndf.shape[a], "vndf's");
-  f.Check(luminance, f.Values(luminance), 0, false);
+  b.luminance = f.Values(luminance);
+  f.Check(luminance, b.luminance, 0, false);
 
   const TensorField* rgb = file.Find("rgb");
   const TensorField* spectra = file.Find("spectra");
@@ -193,6 +194,36 @@ RglBsdf RglBsdfFromTensors(const TensorFile& file, const std::filesystem::path& 
 
 RglBsdf ReadRglBsdf(const std::filesystem::path& path) {
   return RglBsdfFromTensors(ReadTensorFile(path), path);
+}
+
+void WriteRglBsdf(const RglBsdf& b, const std::filesystem::path& path) {
+  const auto np = static_cast<std::uint64_t>(b.phi_i.size()),
+             nt = static_cast<std::uint64_t>(b.theta_i.size());
+  const auto rows = static_cast<std::uint64_t>(b.rows), cols = static_cast<std::uint64_t>(b.cols);
+  TensorFile f;
+  f.fields.push_back(UInt8Field("description", {b.description.size()},
+                                {b.description.begin(), b.description.end()}));
+  f.fields.push_back(UInt8Field("jacobian", {1}, {static_cast<std::uint8_t>(b.jacobian)}));
+  f.fields.push_back(Float32Field("theta_i", {nt}, b.theta_i));
+  f.fields.push_back(Float32Field("phi_i", {np}, b.phi_i));
+  f.fields.push_back(Float32Field(
+      "ndf", {static_cast<std::uint64_t>(b.ndf_rows), static_cast<std::uint64_t>(b.ndf_cols)},
+      b.ndf));
+  f.fields.push_back(Float32Field(
+      "sigma", {static_cast<std::uint64_t>(b.sigma_rows), static_cast<std::uint64_t>(b.sigma_cols)},
+      b.sigma));
+  f.fields.push_back(Float32Field("vndf", {np, nt, rows, cols}, b.vndf));
+  f.fields.push_back(
+      Float32Field("luminance", {np, nt, rows, cols}, b.luminance.empty() ? b.vndf : b.luminance));
+  const auto channels = static_cast<std::uint64_t>(b.channels);
+  if (b.wavelengths.empty()) {
+    f.fields.push_back(Float32Field("rgb", {np, nt, channels, rows, cols}, b.values));
+  } else {
+    f.fields.push_back(Float32Field("wavelengths", {channels}, b.wavelengths));
+    f.fields.push_back(Float32Field("spectra", {np, nt, channels, rows, cols}, b.values));
+  }
+  if (!b.valid.empty()) f.fields.push_back(UInt8Field("valid", {np, nt, rows, cols}, b.valid));
+  WriteTensorFile(f, path);
 }
 
 Table ReadRglBsdfTable(const std::filesystem::path& path, const Grid& grid, RglTabulation* counts) {

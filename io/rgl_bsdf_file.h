@@ -30,6 +30,10 @@ RglBsdf ReadRglBsdf(const std::filesystem::path& path);
 // The same from a parsed tensor file (`path` names it in messages).
 RglBsdf RglBsdfFromTensors(const TensorFile& file, const std::filesystem::path& path);
 
+// Writes the fields above (float32; `valid` only when the BRDF has one; `luminance` the vndf
+// when empty) atomically. The authors' loader wants a square warped grid (rows == cols).
+void WriteRglBsdf(const RglBsdf& bsdf, const std::filesystem::path& path);
+
 // Reads and tabulates onto `grid` (core/rgl_bsdf.h TabulateRglBsdf). Provenance: the file as
 // source, generator "rgl-bsdf", its description in parameters_json as {"description": ...}.
 Table ReadRglBsdfTable(const std::filesystem::path& path, const Grid& grid = Grid::Merl(),
