@@ -12,8 +12,11 @@
 #include "cli/command.h"
 #include "cli/terminal_text.h"
 #include "core/error.h"
+#include "core/provenance.h"
 #include "export/fit_targets.h"
+#include "export/scene_text.h"
 #include "export/write_export.h"
+#include "io/atomic_file.h"
 #include "io/factor_io.h"
 #include "io/fit_params_json.h"
 #include "io/output_policy.h"
@@ -31,7 +34,8 @@ struct ExportOptions {
   std::string fits, format, material, model, out;
   bool quiet = false;
   bool no_fit = false;  // never fit the target's models on the spot
-  RglBuildOptions bsdf;  // --format bsdf resolutions
+  RglBuildOptions bsdf;    // --format bsdf resolutions
+  std::string bsdf_scene;  // --bsdf-scene: "", "pbrt" or "mitsuba"
 };
 
 bool IsFactorSidecar(const std::string& path) {
@@ -215,17 +219,50 @@ int RunBsdfExport(const ExportOptions& o) {
                      ": --format bsdf writes one file (-o NAME.bsdf); --material picks the "
                      "material of a report that holds several");
   }
-  CheckOutputs({o.fits}, {{o.out, "-o"}});
+  RglBuildOptions build = o.bsdf;
+  fs::path scene;
+  if (!o.bsdf_scene.empty()) {
+    // pbrt-v4's measured material reads spectral files only; Mitsuba's reads them in its
+    // spectral variants: a scene gets a spectral file.
+    build.spectral = true;
+    scene = fs::path(o.out).replace_extension(o.bsdf_scene == "pbrt" ? ".pbrt" : ".xml");
+    const std::string name = fs::path(o.out).filename().string();
+    for (const char ch : name) {
+      const auto c = static_cast<unsigned char>(ch);
+      if (c < 0x20 || c >= 0x7f || ch == '"' || ch == '\\') {
+        throw InputError(o.out +
+                         ": a scene cannot name this file (quotes, backslashes and "
+                         "characters outside printable ASCII cannot be written in a pbrt "
+                         "string): choose another -o name");
+      }
+    }
+  }
+  std::vector<PlannedOutput> outs = {{o.out, "-o"}};
+  if (!scene.empty()) outs.push_back({scene.string(), "--bsdf-scene"});
+  CheckOutputs({o.fits}, outs);
   pipeline::BsdfExport r;
   if (IsFactorSidecar(o.fits)) {
-    r = pipeline::ExportFactorAsBsdf(o.fits, o.bsdf, o.out);
+    r = pipeline::ExportFactorAsBsdf(o.fits, build, o.out);
   } else if (pipeline::IsBsdfTableInput(o.fits)) {
-    r = pipeline::ExportTableAsBsdf(pipeline::LoadInput(o.fits), o.fits, o.bsdf, o.out);
+    r = pipeline::ExportTableAsBsdf(pipeline::LoadInput(o.fits), o.fits, build, o.out);
   } else {
     const std::vector<FitReportEntry> entries = ReadFitsAnyFormat(o.fits);
     const FitReportEntry& e =
         exports::SelectEntry(entries, o.material, o.model, exports::Format::kThreejs);
-    r = pipeline::ExportFitAsBsdf(e, o.bsdf, o.out);
+    r = pipeline::ExportFitAsBsdf(e, build, o.out);
+  }
+  if (!scene.empty()) {
+    const std::vector<std::string> header = {
+        "brdfit " + std::string(BrdfitVersion()) + " export --format bsdf --bsdf-scene " +
+            o.bsdf_scene,
+        "source: " + r.source, "material: " + fs::path(o.out).filename().string()};
+    const std::string bsdf_name = fs::path(o.out).filename().string();
+    WriteTextAtomically(
+        scene,
+        o.bsdf_scene == "pbrt"
+            ? exports::PbrtMeasuredScene(
+                  bsdf_name, header, fs::path(o.out).filename().replace_extension(".exr").string())
+            : exports::MitsubaMeasuredScene(bsdf_name, header));
   }
   if (r.build.unmeasured) {
     fmt::print(stderr,
@@ -233,17 +270,24 @@ int RunBsdfExport(const ExportOptions& o) {
                "marked unmeasured in the file's 'valid' field\n",
                r.build.unmeasured);
   }
+  if (r.build.spectral_clamped) {
+    fmt::print(stderr,
+               "brdfit: export: {} spectral values below 0 (saturated colours) written as 0\n",
+               r.build.spectral_clamped);
+  }
   if (r.build.negative) {
     fmt::print(stderr, "brdfit: export: {} samples had a channel below 0, written as 0\n",
                r.build.negative);
   }
   if (!o.quiet) {
     fmt::print(
-        "{} -> {} (RGL .bsdf: {} incident elevations to {} deg, {}x{} warped samples "
+        "{} -> {} (RGL .bsdf, {}: {} incident elevations to {} deg, {}x{} warped samples "
         "each, NDF of {} samples from {} power iterations)\n",
-        TerminalSafe(r.source), TerminalSafe(o.out), o.bsdf.theta_i_count, o.bsdf.theta_i_max_deg,
-        o.bsdf.warp_samples, o.bsdf.warp_samples, o.bsdf.ndf_samples, r.build.power_iterations);
+        TerminalSafe(r.source), TerminalSafe(o.out), build.spectral ? "spectral 360-830 nm" : "RGB",
+        o.bsdf.theta_i_count, o.bsdf.theta_i_max_deg, o.bsdf.warp_samples, o.bsdf.warp_samples,
+        o.bsdf.ndf_samples, r.build.power_iterations);
   }
+  if (!o.quiet && !scene.empty()) fmt::print("scene {}\n", TerminalSafe(scene.string()));
   return kExitOk;
 }
 
@@ -295,6 +339,13 @@ Registrar reg{
                      "bsdf: incident elevations, uniform from 0 to 88 deg")
           ->check(CLI::Range(2, 1024))
           ->capture_default_str();
+      sub.add_flag("--bsdf-spectral", o->bsdf.spectral,
+                   "bsdf: spectral values (360-830 nm), which pbrt-v4's 'measured' material "
+                   "needs; default RGB");
+      sub.add_option("--bsdf-scene", o->bsdf_scene,
+                     "bsdf: also write OUT's pbrt-v4 (.pbrt) or Mitsuba 3 (.xml) sphere scene "
+                     "with the measured material reading it (implies --bsdf-spectral)")
+          ->check(CLI::IsMember({"pbrt", "mitsuba"}));
       sub.add_option("--bsdf-ndf", o->bsdf.ndf_samples, "bsdf: NDF and projected-area samples")
           ->check(CLI::Range(8, 4096))
           ->capture_default_str();

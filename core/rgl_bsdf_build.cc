@@ -1,5 +1,7 @@
 #include "core/rgl_bsdf_build.h"
 
+#include "core/spectral_rgb.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -194,6 +196,24 @@ RglBsdf BuildRglBsdf(const BrdfSource& f, const RglBuildOptions& o, RglBuildRepo
   }
   if (rep.unmeasured) b.valid = std::move(valid);
   b.luminance = std::move(luminance);
+  if (o.spectral) {
+    for (int l = 360; l <= 830; l += 10) b.wavelengths.push_back(l);
+    const auto basis = SrgbBasisSpectra(b.wavelengths);
+    const std::size_t nw = b.wavelengths.size();
+    std::vector<double> spectra(slices * nw * cells);
+    for (std::size_t s = 0; s < slices; ++s) {
+      for (std::size_t i = 0; i < cells; ++i) {
+        for (std::size_t k = 0; k < nw; ++k) {
+          double v = 0;
+          for (int c = 0; c < 3; ++c) v += b.values[(s * 3 + c) * cells + i] * basis[c][k];
+          rep.spectral_clamped += v < 0;
+          spectra[(s * nw + k) * cells + i] = std::max(v, 0.0);
+        }
+      }
+    }
+    b.values = std::move(spectra);
+    b.channels = static_cast<int>(nw);
+  }
   if (report) *report = rep;
   return b;
 }

@@ -37,6 +37,11 @@ struct RglBuildOptions {
   int theta_i_count = 23;  // incident elevations, uniform in [0, theta_i_max]
   double theta_i_max_deg = 88;
   int power_iterations = 32;  // at most; stops when D changes by less than 1e-9 (relative)
+  // Spectral values (fields `spectra`, `wavelengths`: 360-830 nm every 10 nm) instead of
+  // `rgb`: what pbrt-v4's `measured` material reads. Each RGB value becomes
+  // sum_c rgb_c B_c(lambda) with core/spectral_rgb.h's SrgbBasisSpectra, which brdfit's reader
+  // converts back to the same RGB; a grey is a flat spectrum.
+  bool spectral = false;
   std::string description;
 };
 
@@ -45,6 +50,7 @@ struct RglBuildReport {
   double power_change = 0;     // the last relative change of D
   std::size_t unmeasured = 0;  // warped samples the source had no value for (valid = 0)
   std::size_t negative = 0;    // samples with a channel below zero, clamped to 0
+  std::size_t spectral_clamped = 0;  // spectral values below zero (saturated colours), set to 0
 };
 
 // Throws std::invalid_argument for options out of range, std::runtime_error if the source's

@@ -1,5 +1,6 @@
 #include "core/spectral_rgb.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -54,6 +55,49 @@ std::array<std::vector<double>, 3> SrgbWeights(const std::vector<double>& wl) {
     for (double& v : w[c]) v /= white;
   }
   return w;
+}
+
+std::array<std::vector<double>, 3> SrgbBasisSpectra(const std::vector<double>& wl) {
+  const auto w = SrgbWeights(wl);
+  const std::size_t n = wl.size();
+  auto ramp = [](double l, double a, double b) { return std::clamp((l - a) / (b - a), 0.0, 1.0); };
+  std::array<std::vector<double>, 3> band;  // R, G, B
+  for (auto& b : band) b.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    band[2][k] = 1 - ramp(wl[k], 490, 510);
+    band[0][k] = ramp(wl[k], 580, 600);
+    band[1][k] = 1 - band[0][k] - band[2][k];
+  }
+  // a[c][j] = channel c of band j; the basis is band * inverse(a).
+  double a[3][3];
+  for (int c = 0; c < 3; ++c) {
+    for (int j = 0; j < 3; ++j) {
+      a[c][j] = 0;
+      for (std::size_t k = 0; k < n; ++k) a[c][j] += w[c][k] * band[j][k];
+    }
+  }
+  const double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                     a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                     a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  if (!(std::abs(det) > 1e-6)) {
+    throw std::invalid_argument("SrgbBasisSpectra: the wavelengths cannot separate R, G and B");
+  }
+  double inv[3][3];
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      // Cofactor of a[j][i] over the determinant (the adjugate's transpose).
+      const int r0 = (j + 1) % 3, r1 = (j + 2) % 3, c0 = (i + 1) % 3, c1 = (i + 2) % 3;
+      inv[i][j] = (a[r0][c0] * a[r1][c1] - a[r0][c1] * a[r1][c0]) / det;
+    }
+  }
+  std::array<std::vector<double>, 3> basis;
+  for (int c = 0; c < 3; ++c) {
+    basis[c].assign(n, 0.0);
+    for (std::size_t k = 0; k < n; ++k) {
+      for (int j = 0; j < 3; ++j) basis[c][k] += band[j][k] * inv[j][c];
+    }
+  }
+  return basis;
 }
 
 }  // namespace brdfit

@@ -24,4 +24,13 @@ std::array<double, 3> Cie1931Xyz(double lambda_nm);
 // strictly increasing wavelengths whose span reaches some of the visible range.
 std::array<std::vector<double>, 3> SrgbWeights(const std::vector<double>& wavelengths_nm);
 
+// The way back, for writing spectral files: three spectra B_c on `wavelengths` with
+// SrgbWeights(B_c) = the unit vector e_c, so that sum_c rgb_c B_c converts back to rgb exactly.
+// They start as box-like bands (blue below 490-510 nm, red above 580-600 nm, green between,
+// linear ramps: a partition of unity) and are mixed by the inverse of their 3 x 3 sRGB image.
+// Their sum stays the constant 1 (the bands sum to 1 and white maps to white), so a grey is a
+// flat spectrum and renders the same under any illuminant; saturated primaries dip a few per
+// cent below zero in the other bands (min -0.05), which a writer clamps and counts.
+std::array<std::vector<double>, 3> SrgbBasisSpectra(const std::vector<double>& wavelengths_nm);
+
 }  // namespace brdfit

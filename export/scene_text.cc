@@ -29,6 +29,33 @@ std::string PbrtString(const std::string& s) {
   return out;
 }
 
+// An XML attribute value (between double quotes).
+std::string XmlAttribute(const std::string& s) {
+  std::string out;
+  for (const char ch : s) {
+    switch (ch) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += ch;
+    }
+  }
+  return out;
+}
+
 std::string Rgb3(const Rgb& v, const char* sep) {
   return fmt::format("{:.9g}{}{:.9g}{}{:.9g}", v[0], sep, v[1], sep, v[2]);
 }
@@ -44,17 +71,9 @@ std::string RoughConductor(double alpha, const Rgb& reflectance, const std::stri
       in, alpha, Rgb3(reflectance, ", "));
 }
 
-}  // namespace
-
-std::string MitsubaScene(const MitsubaBlend& b, const Provenance& p) {
-  std::string s = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<!--\n";
-  for (const std::string& line : p.Lines()) s += "  " + CommentSafe(line) + "\n";
-  s += "  Material: blendbsdf(weight w) of diffuse(R) and roughconductor(ggx, alpha,\n"
-       "  material=none, specular_reflectance S) = (1 - w) R / pi + w S D G1 G1 / (4 cos_i cos_o)";
-  s += b.second ? ";\n  two lobes: the roughconductor is a blendbsdf(v) of two, (1 - w) R / pi +\n"
-                  "  w ((1 - v) S lobe + v S2 lobe2).\n"
-                : ".\n";
-  s += "  Render: mitsuba -m scalar_rgb this.xml (docs/exports.md)\n-->\n";
+// <scene>, the integrator and the sensor every Mitsuba 3 export shares (the material follows).
+std::string MitsubaFrameOpen() {
+  std::string s;
   s += "<scene version=\"3.0.0\">\n";
   s += "  <integrator type=\"path\">\n    <integer name=\"max_depth\" value=\"3\"/>\n"
        "  </integrator>\n";
@@ -66,21 +85,12 @@ std::string MitsubaScene(const MitsubaBlend& b, const Provenance& p) {
        "    </sampler>\n"
        "    <film type=\"hdrfilm\">\n      <integer name=\"width\" value=\"256\"/>\n"
        "      <integer name=\"height\" value=\"256\"/>\n    </film>\n  </sensor>\n";
-  s += fmt::format(
-      "  <bsdf type=\"blendbsdf\" id=\"brdfit-material\">\n"
-      "    <float name=\"weight\" value=\"{:.9g}\"/>\n"
-      "    <bsdf type=\"diffuse\">\n      <rgb name=\"reflectance\" value=\"{}\"/>\n    </bsdf>\n",
-      b.weight, Rgb3(b.diffuse_reflectance, ", "));
-  if (b.second) {
-    s += fmt::format(
-        "    <bsdf type=\"blendbsdf\">\n      <float name=\"weight\" value=\"{:.9g}\"/>\n"
-        "{}{}    </bsdf>\n",
-        b.second->weight, RoughConductor(b.alpha, b.specular_reflectance, "      "),
-        RoughConductor(b.second->alpha, b.second->specular_reflectance, "      "));
-  } else {
-    s += RoughConductor(b.alpha, b.specular_reflectance, "    ");
-  }
-  s += "  </bsdf>\n";
+  return s;
+}
+
+// The sphere with the material "brdfit-material", the light, </scene>.
+std::string MitsubaFrameClose() {
+  std::string s;
   s += "  <shape type=\"sphere\">\n    <ref id=\"brdfit-material\"/>\n  </shape>\n";
   s += "  <emitter type=\"directional\">\n    <vector name=\"direction\" value=\"-1, -1, -1\"/>\n"
        "    <rgb name=\"irradiance\" value=\"3, 3, 3\"/>\n  </emitter>\n";
@@ -88,16 +98,9 @@ std::string MitsubaScene(const MitsubaBlend& b, const Provenance& p) {
   return s;
 }
 
-std::string PbrtScene(const PbrtMix& m, const Provenance& p, const std::string& image_name) {
+// The camera, film, sampler, integrator and light every pbrt-v4 export shares.
+std::string PbrtFrame(const std::string& image_name) {
   std::string s;
-  for (const std::string& line : p.Lines()) s += "# " + CommentSafe(line) + "\n";
-  s += "# Material: mix(amount a) of diffuse(R) and conductor(reflectance r, roughness alpha,\n"
-       "# remaproughness false) = (1 - a) R / pi + a F_r D G / (4 cos_i cos_o)";
-  s += m.second ? ";\n# two lobes: brdfit-specular is a mix(amount v) of two conductors, (1 - a) R "
-                  "/ pi +\n"
-                  "# a ((1 - v) F_r D G / (4 cos_i cos_o) + v F_r2 D2 G2 / (4 cos_i cos_o)).\n"
-                : ".\n";
-  s += "# Render: pbrt this.pbrt (docs/exports.md)\n\n";
   // pbrt-v4's LookAt puts Cross(up, dir) on the image's right: a left-handed view, the mirror
   // image of the other exports' and brdfit's preview. Scale -1 1 1 (applied to the camera
   // transform) mirrors it back, so that the light from (1, 1, 1) lights the upper right.
@@ -113,6 +116,51 @@ std::string PbrtScene(const PbrtMix& m, const Provenance& p, const std::string& 
   s += "WorldBegin\n\n";
   s += "LightSource \"distant\" \"point3 from\" [ 1 1 1 ] \"point3 to\" [ 0 0 0 ]\n"
        "    \"rgb L\" [ 3 3 3 ]\n\n";
+  return s;
+}
+
+}  // namespace
+
+std::string MitsubaScene(const MitsubaBlend& b, const Provenance& p) {
+  std::string s = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<!--\n";
+  for (const std::string& line : p.Lines()) s += "  " + CommentSafe(line) + "\n";
+  s += "  Material: blendbsdf(weight w) of diffuse(R) and roughconductor(ggx, alpha,\n"
+       "  material=none, specular_reflectance S) = (1 - w) R / pi + w S D G1 G1 / (4 cos_i cos_o)";
+  s += b.second ? ";\n  two lobes: the roughconductor is a blendbsdf(v) of two, (1 - w) R / pi +\n"
+                  "  w ((1 - v) S lobe + v S2 lobe2).\n"
+                : ".\n";
+  s += "  Render: mitsuba -m scalar_rgb this.xml (docs/exports.md)\n-->\n";
+  s += MitsubaFrameOpen();
+  s += fmt::format(
+      "  <bsdf type=\"blendbsdf\" id=\"brdfit-material\">\n"
+      "    <float name=\"weight\" value=\"{:.9g}\"/>\n"
+      "    <bsdf type=\"diffuse\">\n      <rgb name=\"reflectance\" value=\"{}\"/>\n    </bsdf>\n",
+      b.weight, Rgb3(b.diffuse_reflectance, ", "));
+  if (b.second) {
+    s += fmt::format(
+        "    <bsdf type=\"blendbsdf\">\n      <float name=\"weight\" value=\"{:.9g}\"/>\n"
+        "{}{}    </bsdf>\n",
+        b.second->weight, RoughConductor(b.alpha, b.specular_reflectance, "      "),
+        RoughConductor(b.second->alpha, b.second->specular_reflectance, "      "));
+  } else {
+    s += RoughConductor(b.alpha, b.specular_reflectance, "    ");
+  }
+  s += "  </bsdf>\n";
+  s += MitsubaFrameClose();
+  return s;
+}
+
+std::string PbrtScene(const PbrtMix& m, const Provenance& p, const std::string& image_name) {
+  std::string s;
+  for (const std::string& line : p.Lines()) s += "# " + CommentSafe(line) + "\n";
+  s += "# Material: mix(amount a) of diffuse(R) and conductor(reflectance r, roughness alpha,\n"
+       "# remaproughness false) = (1 - a) R / pi + a F_r D G / (4 cos_i cos_o)";
+  s += m.second ? ";\n# two lobes: brdfit-specular is a mix(amount v) of two conductors, (1 - a) R "
+                  "/ pi +\n"
+                  "# a ((1 - v) F_r D G / (4 cos_i cos_o) + v F_r2 D2 G2 / (4 cos_i cos_o)).\n"
+                : ".\n";
+  s += "# Render: pbrt this.pbrt (docs/exports.md)\n\n";
+  s += PbrtFrame(image_name);
   s += fmt::format(
       "MakeNamedMaterial \"brdfit-diffuse\" \"string type\" [ \"diffuse\" ]\n"
       "    \"rgb reflectance\" [ {} ]\n",
@@ -140,6 +188,37 @@ std::string PbrtScene(const PbrtMix& m, const Provenance& p, const std::string& 
       "    \"string materials\" [ \"brdfit-diffuse\" \"brdfit-specular\" ]\n"
       "    \"float amount\" [ {:.9g} ]\n\n",
       m.amount);
+  s += "AttributeBegin\n  NamedMaterial \"brdfit-material\"\n"
+       "  Shape \"sphere\" \"float radius\" [ 1 ]\nAttributeEnd\n";
+  return s;
+}
+
+std::string MitsubaMeasuredScene(const std::string& bsdf_name,
+                                 const std::vector<std::string>& header) {
+  std::string s = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<!--\n";
+  for (const std::string& line : header) s += "  " + CommentSafe(line) + "\n";
+  s += "  Material: measured (the RGL .bsdf beside this file, Dupuy & Jakob 2018).\n"
+       "  Render: mitsuba -m scalar_spectral this.xml (docs/exports.md)\n-->\n";
+  s += MitsubaFrameOpen();
+  s += fmt::format(
+      "  <bsdf type=\"measured\" id=\"brdfit-material\">\n"
+      "    <string name=\"filename\" value=\"{}\"/>\n  </bsdf>\n",
+      XmlAttribute(bsdf_name));
+  s += MitsubaFrameClose();
+  return s;
+}
+
+std::string PbrtMeasuredScene(const std::string& bsdf_name, const std::vector<std::string>& header,
+                              const std::string& image_name) {
+  std::string s;
+  for (const std::string& line : header) s += "# " + CommentSafe(line) + "\n";
+  s += "# Material: measured (the RGL .bsdf beside this file, Dupuy & Jakob 2018).\n";
+  s += "# Render: pbrt this.pbrt (docs/exports.md)\n\n";
+  s += PbrtFrame(image_name);
+  s += fmt::format(
+      "MakeNamedMaterial \"brdfit-material\" \"string type\" [ \"measured\" ]\n"
+      "    \"string filename\" [ \"{}\" ]\n\n",
+      PbrtString(bsdf_name));
   s += "AttributeBegin\n  NamedMaterial \"brdfit-material\"\n"
        "  Shape \"sphere\" \"float radius\" [ 1 ]\nAttributeEnd\n";
   return s;

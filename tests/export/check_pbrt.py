@@ -23,7 +23,12 @@ Must be caught (outside the tolerance): the roughness trap ("bool remaproughness
 default, which reads the roughness as a perceptual one; measured 12.93 / 69.39) and the two-lobe
 export with its inner mix amount set to 0, the first conductor for both lobes (8.79 / 40.99).
 Measured and reported: gold-metallic-paint's lambert+ggx-hc 0.28-0.29 / 2.85-3.57, the two-lobe
-grey 0.17-0.18 / 1.57-2.03. Reported only (approximate by construction, docs/exports.md): a coloured ks (the conductor's
+grey 0.17-0.18 / 1.57-2.03.
+The measured route (docs/exports.md, "RGL .bsdf"): a grey lambert+ggx written as a spectral RGL
+.bsdf (`brdfit export --format bsdf --bsdf-spectral`) and rendered by pbrt-v4's `measured`
+material must match with the same tolerance (measured 0.35 / 2.95); the coloured grey case is
+reported (0.60 / 3.58: pbrt lights the spectrum with D65, brdfit's spectral convention is E);
+the .bsdf of alpha 0.3 under the alpha 0.15 preview must be caught (8.71 / 21.37). Reported only (approximate by construction, docs/exports.md): a coloured ks (the conductor's
 Fresnel rises to white at grazing; pbrt's spectral upsampling of the colours) and the two-lobe
 export against brdfit's separable-masking lambert+ggx+ggx.
 Exit 0 ok, 1 a case is outside its tolerance, 77 (ctest SKIP) when pbrt-v4 is missing or in the
@@ -97,6 +102,17 @@ def lobe_params(kd, lobes):
     return p
 
 
+def measured_scene(text, bsdf):
+    """The exported scene with its material replaced by pbrt-v4's `measured` one reading `bsdf`
+    (the filename without brackets, so that render() finds the film's line alone)."""
+    use = 'AttributeBegin\n  NamedMaterial "brdfit-material"\n'
+    if text.count(use) != 1:
+        raise RuntimeError("the export's material use is not the expected one")
+    return text.replace(use, f'MakeNamedMaterial "brdfit-measured" "string type" [ "measured" ] '
+                             f'"string filename" "{os.path.basename(bsdf)}"\n'
+                             'AttributeBegin\n  NamedMaterial "brdfit-measured"\n')
+
+
 class Bench:
     def __init__(self, o):
         self.o = o
@@ -106,6 +122,18 @@ class Bench:
 
     def export(self, name, fit):
         return open(export_fit(self.o, name, fit, "pbrt", ".pbrt")).read()
+
+    def bsdf(self, name, fit):
+        """`brdfit export --format bsdf --bsdf-spectral` of the fit (pbrt-v4 reads spectra)."""
+        fits = os.path.join(self.o.work, name + "-bsdf.json")
+        json.dump({"format": "brdfit-fit-params", "format_version": 1, "fits": [fit]},
+                  open(fits, "w"))
+        out = os.path.join(self.o.work, name + ".bsdf")
+        r = subprocess.run([self.o.brdfit, "export", fits, "--format", "bsdf", "--bsdf-spectral",
+                            "-q", "-o", out], capture_output=True, text=True)
+        if r.returncode != 0:
+            raise RuntimeError(f"{name}: brdfit export --format bsdf failed: {r.stderr[-2000:]}")
+        return out
 
     def render(self, name, text, seed=0, spp=SPP):
         """pbrt-v4 of the exported text, the camera at brdfit's preview distance, PNG output."""
@@ -176,6 +204,27 @@ def main():
         renders[name] = (ref, img)
         mean, worst = compare_blocks(ref, img)
         verdict(f"{name:5s} {fit['model']:16s} pbrt-v4 vs brdfit preview", mean, worst, must)
+
+    # The measured route: the fit written as a spectral RGL .bsdf and rendered by pbrt-v4's
+    # `measured` material. A flat (grey) fit must match; the coloured grey case is reported
+    # (pbrt renders the spectrum under its D65 light, brdfit's spectral convention is E).
+    flat = fit_of("flat", "lambert+ggx",
+                  lobe_params((0.25, 0.25, 0.25), [("ggx", (0.30, 0.30, 0.30), 0.15)]))
+    for name, fit, must in (("flat", flat, "match"), ("grey", grey, "report")):
+        scene = measured_scene(b.export(name + "-m", fit), b.bsdf(name + "-m", fit))
+        img = b.render(name + "-measured", scene)
+        ref = renders[name][0] if name in renders else b.preview(name + "-m", fit)
+        mean, worst = compare_blocks(ref, img)
+        renders[name + "-measured"] = (ref, img)
+        verdict(f"{name:5s} {fit['model']:16s} as .bsdf, pbrt-v4 measured vs brdfit preview",
+                mean, worst, must)
+    # Planted: the .bsdf of a rougher lobe (alpha 0.3) under the flat fit's preview.
+    rough = fit_of("flat", "lambert+ggx",
+                   lobe_params((0.25, 0.25, 0.25), [("ggx", (0.30, 0.30, 0.30), 0.30)]))
+    scene = measured_scene(b.export("rough-m", rough), b.bsdf("rough-m", rough))
+    img = b.render("planted-rough-measured", scene, spp=PLANTED_SPP)
+    verdict("planted .bsdf of alpha 0.3 for 0.15", *compare_blocks(renders["flat-measured"][0], img),
+            "differ")
 
     # Noise: the grey case with another seed.
     img1 = b.render("grey-seed1", text["grey"], seed=1)

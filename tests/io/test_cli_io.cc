@@ -242,6 +242,13 @@ TEST(CliRglBsdf, InfoAndFitReadTheFile) {
   ExpectOneLineError(dir, cut, "field 'rgb'");
 }
 
+// The description of a written .bsdf (non-empty when it reads as one with spectra).
+std::string tensor_check(const std::string& path) {
+  const TensorFile f = ReadTensorFile(path);
+  const TensorField* d = f.Find("description");
+  return f.Find("spectra") && d ? std::string(d->bytes.begin(), d->bytes.end()) : "";
+}
+
 // `export --format bsdf` from a synthetic table, and a fit of the file it wrote recovers the
 // table's parameters (measured: alpha 0.151 for 0.15, kd and ks within 1.5 %); the output may
 // not be an input, nor a folder.
@@ -270,6 +277,32 @@ TEST(CliRglBsdf, ExportedTableFitsBackToItsParameters) {
   EXPECT_NEAR(p["lambert.kd_r"].get<double>(), 0.3, 0.3 * 0.05);
   EXPECT_NEAR(p["lambert.kd_b"].get<double>(), 0.1, 0.1 * 0.05);
   EXPECT_NEAR(p["ggx.ks_g"].get<double>(), 0.6, 0.6 * 0.03);
+
+  // --bsdf-scene: a spectral file and the renderer's scene that reads it, beside it.
+  for (const std::string& kind : {std::string("pbrt"), std::string("mitsuba")}) {
+    const std::string out = (dir.path() / ("s-" + kind + ".bsdf")).string();
+    const CliResult sc = RunCli({"export", table, "--format", "bsdf", "--bsdf-scene", kind,
+                                 "--bsdf-warp", "8", "--bsdf-theta-i", "4", "-o", out},
+                                dir.path());
+    ASSERT_EQ(sc.exit_code, 0) << sc.err;
+    EXPECT_THAT(sc.out, HasSubstr("spectral 360-830 nm"));
+    const std::vector<char> text = testing_io::ReadBytes(
+        std::filesystem::path(out).replace_extension(kind == "pbrt" ? ".pbrt" : ".xml"));
+    const std::string scene(text.begin(), text.end());
+    EXPECT_THAT(
+        scene,
+        HasSubstr(
+            kind == "pbrt"
+                ? "\"string type\" [ \"measured\" ]\n    \"string filename\" [ \"s-pbrt.bsdf\" ]"
+                : "<bsdf type=\"measured\" id=\"brdfit-material\">\n    <string "
+                  "name=\"filename\" value=\"s-mitsuba.bsdf\"/>"));
+    EXPECT_NE(tensor_check(out), "");
+  }
+  const CliResult quote = RunCli({"export", table, "--format", "bsdf", "--bsdf-scene", "pbrt", "-o",
+                                  (dir.path() / "a\"b.bsdf").string()},
+                                 dir.path());
+  EXPECT_EQ(quote.exit_code, 2);
+  EXPECT_THAT(quote.err, HasSubstr("a scene cannot name this file"));
 
   const CliResult onto = RunCli({"export", table, "--format", "bsdf", "-o", table}, dir.path());
   EXPECT_EQ(onto.exit_code, 2);

@@ -224,6 +224,20 @@ TEST(SpectralRgb, WhiteIsWhiteAndTheWeightsFollowTheObserver) {
   EXPECT_GT(r[0], std::max(r[1], r[2]));
   EXPECT_GT(g[1], std::max(g[0], g[2]));
   EXPECT_GT(b[2], std::max(b[0], b[1]));
+  // The basis for writing spectra: back to the unit vectors, and a flat white.
+  const auto basis = SrgbBasisSpectra(wl);
+  for (int c = 0; c < 3; ++c) {
+    for (int d = 0; d < 3; ++d) {
+      double v = 0;
+      for (std::size_t k = 0; k < wl.size(); ++k)
+        v += w[static_cast<std::size_t>(d)][k] * basis[static_cast<std::size_t>(c)][k];
+      EXPECT_NEAR(v, c == d ? 1.0 : 0.0, 1e-12) << c << d;
+    }
+  }
+  for (std::size_t k = 0; k < wl.size(); ++k) {
+    EXPECT_NEAR(basis[0][k] + basis[1][k] + basis[2][k], 1.0, 1e-12) << wl[k];
+    for (int c = 0; c < 3; ++c) EXPECT_GT(basis[static_cast<std::size_t>(c)][k], -0.06);
+  }
   // y-bar peaks at 555 nm with value ~1 (Wyman et al. 2013, Eq. 2 vs CIE 1931).
   EXPECT_NEAR(Cie1931Xyz(555)[1], 1.0, 0.01);
   EXPECT_NEAR(Cie1931Xyz(600)[0], 1.06, 0.02);
@@ -514,6 +528,35 @@ TEST(RglBsdfWriter, TablesSurviveTheRoundTrip) {
   EXPECT_LT(e.median, 0.02);
   EXPECT_LT(e.p90, 0.1);
   EXPECT_LT(lost, t.CountValid() / 20);
+}
+
+// A spectral file (what pbrt-v4 reads) holds the same BRDF: brdfit's reader turns it back into
+// the RGB file's values, and the authors' spectral loader agrees with brdfit's reading of it.
+TEST(RglBsdfWriter, SpectralFilesReadBackAsTheirRgb) {
+  ScratchDir dir;
+  const BrdfSource f = ModelFunction("lambert+ggx", {0.3, 0.2, 0.1, 0.6, 0.5, 0.4, 0.2});
+  RglBuildOptions o;
+  o.theta_i_count = 8;
+  o.warp_samples = 16;
+  WriteRglBsdf(BuildRglBsdf(f, o), dir.path() / "rgb.bsdf");
+  o.spectral = true;
+  RglBuildReport rep;
+  WriteRglBsdf(BuildRglBsdf(f, o, &rep), dir.path() / "spectral.bsdf");
+  EXPECT_EQ(rep.spectral_clamped, 0u);
+  const Table a = ReadRglBsdfTable(dir.path() / "rgb.bsdf");
+  const Table b = ReadRglBsdfTable(dir.path() / "spectral.bsdf");
+  ASSERT_EQ(a.valid, b.valid);
+  double worst = 0;
+  for (std::size_t i = 0; i < a.grid.NumCells(); ++i) {
+    if (!a.valid[i]) continue;
+    for (int c = 0; c < 3; ++c)
+      worst = std::max(worst, std::abs(b.Value(i)[c] / a.Value(i)[c] - 1));
+  }
+  EXPECT_LT(worst, 1e-5);  // float32 storage of both
+  const fs::path oracle = BuildOracle();
+  if (oracle.empty() || oracle == fs::path("FAILED")) return;
+  CompareWithOracle(oracle / "powitacq_eval_spectral", dir.path() / "spectral.bsdf", true,
+                    dir.path());
 }
 
 }  // namespace
