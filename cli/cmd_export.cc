@@ -346,6 +346,11 @@ Registrar reg{
                      "bsdf: also write OUT's pbrt-v4 (.pbrt) or Mitsuba 3 (.xml) sphere scene "
                      "with the measured material reading it (implies --bsdf-spectral)")
           ->check(CLI::IsMember({"pbrt", "mitsuba"}));
+      sub.add_option("--bsdf-spread", o->bsdf.ndf_spread,
+                     "bsdf: weight of the cosine NDF mixed into the stored one, so that warped "
+                     "samples also cover the hemisphere away from a sharp peak")
+          ->check(CLI::Range(0.0, 0.99))
+          ->capture_default_str();
       sub.add_option("--bsdf-ndf", o->bsdf.ndf_samples, "bsdf: NDF and projected-area samples")
           ->check(CLI::Range(8, 4096))
           ->capture_default_str();

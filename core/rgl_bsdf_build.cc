@@ -113,6 +113,15 @@ RglBsdf BuildRglBsdf(const BrdfSource& f, const RglBuildOptions& o, RglBuildRepo
     if (rep.power_change < 1e-9) break;
   }
 
+  if (!(o.ndf_spread >= 0 && o.ndf_spread < 1)) {
+    throw std::invalid_argument("the NDF spread must be in [0, 1)");
+  }
+  if (o.ndf_spread > 0) {
+    std::vector<double> spread = d.nodes();
+    for (double& v : spread) v = (1 - o.ndf_spread) * v + o.ndf_spread / kPi;
+    d = NodeNdf(std::move(spread));
+  }
+
   RglBsdf b;
   b.description = o.description;
   b.jacobian = true;

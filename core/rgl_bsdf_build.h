@@ -33,10 +33,15 @@ using BrdfSource = std::function<bool(const Vec3& wi, const Vec3& wo, double rgb
 
 struct RglBuildOptions {
   int ndf_samples = 128;   // NDF and sigma samples along theta (u = sqrt(theta / (pi/2)))
-  int warp_samples = 32;   // the warped grid, warp_samples x warp_samples per theta_i
+  int warp_samples = 64;   // the warped grid, warp_samples x warp_samples per theta_i
   int theta_i_count = 23;  // incident elevations, uniform in [0, theta_i_max]
   double theta_i_max_deg = 88;
   int power_iterations = 32;  // at most; stops when D changes by less than 1e-9 (relative)
+  // The NDF stored (and warped by) is (1 - w) D + w / pi, D from the power iteration and 1/pi
+  // the cosine-distributed one: a sharp peak would otherwise take nearly every warped sample
+  // and leave the rest of the hemisphere to interpolation across a few. The values divide by
+  // the stored NDF, so the file stays exact at its samples whatever w is.
+  double ndf_spread = 0.1;
   // Spectral values (fields `spectra`, `wavelengths`: 360-830 nm every 10 nm) instead of
   // `rgb`: what pbrt-v4's `measured` material reads. Each RGB value becomes
   // sum_c rgb_c B_c(lambda) with core/spectral_rgb.h's SrgbBasisSpectra, which brdfit's reader

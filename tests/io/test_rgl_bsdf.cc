@@ -415,6 +415,7 @@ TEST(RglBsdfWriter, PowerIterationRecoversTheGgxNdf) {
     RglBuildOptions o;
     o.warp_samples = 8;
     o.theta_i_count = 3;
+    o.ndf_spread = 0;  // the power iteration's own NDF
     const RglBsdf b = BuildRglBsdf(ModelFunction("ggx", {0.8, 0.8, 0.8, alpha}), o, &rep);
     EXPECT_LT(rep.power_change, 1e-9) << alpha;
     std::vector<double> rel;
@@ -525,8 +526,9 @@ TEST(RglBsdfWriter, TablesSurviveTheRoundTrip) {
       "  MERL -> .bsdf -> MERL: relative error median %.2e, p90 %.2e; %zu of %zu valid "
       "cells beyond theta_i 88 deg masked\n",
       e.median, e.p90, lost, t.CountValid());
-  EXPECT_LT(e.median, 0.02);
-  EXPECT_LT(e.p90, 0.1);
+  // Measured with the defaults: median 7.8e-4, p90 3.4e-3.
+  EXPECT_LT(e.median, 4e-3);
+  EXPECT_LT(e.p90, 1.5e-2);
   EXPECT_LT(lost, t.CountValid() / 20);
 }
 
