@@ -23,14 +23,14 @@ Must be caught (outside the tolerance): the roughness trap ("bool remaproughness
 default, which reads the roughness as a perceptual one; measured 12.93 / 69.39) and the two-lobe
 export with its inner mix amount set to 0, the first conductor for both lobes (8.79 / 40.99).
 Measured and reported: gold-metallic-paint's lambert+ggx-hc 0.28-0.29 / 2.85-3.57, the two-lobe
-grey 0.17-0.18 / 1.57-2.03.
+grey 0.17-0.18 / 1.57-2.03. Reported only (approximate by construction, docs/exports.md): a coloured ks (the conductor's
+Fresnel rises to white at grazing; pbrt's spectral upsampling of the colours) and the two-lobe
+export against brdfit's separable-masking lambert+ggx+ggx.
 The measured route (docs/exports.md, "RGL .bsdf"): a grey lambert+ggx written as a spectral RGL
 .bsdf (`brdfit export --format bsdf --bsdf-spectral`) and rendered by pbrt-v4's `measured`
 material must match with the same tolerance (measured 0.11 / 1.30); the coloured grey case is
 reported (0.53 / 1.63: pbrt lights the spectrum with D65, brdfit's spectral convention is E);
-the .bsdf of alpha 0.3 under the alpha 0.15 preview must be caught (8.78 / 21.37). Reported only (approximate by construction, docs/exports.md): a coloured ks (the conductor's
-Fresnel rises to white at grazing; pbrt's spectral upsampling of the colours) and the two-lobe
-export against brdfit's separable-masking lambert+ggx+ggx.
+the .bsdf of alpha 0.3 under the alpha 0.15 preview must be caught (8.78 / 21.37).
 Exit 0 ok, 1 a case is outside its tolerance, 77 (ctest SKIP) when pbrt-v4 is missing or in the
 sanitizer build.
 """
