@@ -155,7 +155,8 @@ Registrar reg{"info", "Describe a table: format, grid, valid cells, value ranges
               [](CLI::App& sub) {
                 auto opts = std::make_shared<InfoOptions>();
                 sub.add_option("file", opts->path,
-                               "MERL .binary or brdfit .h5 table, or nbrdf:NAME (an NBRDF network "
+                               "MERL .binary, brdfit .h5 or RGL .bsdf table, or nbrdf:NAME (an "
+                               "NBRDF network "
                                "of ../shared/data/merl_nbrdf.zip)")
                     ->required();
                 sub.add_flag("--json", opts->json, "machine-readable output");

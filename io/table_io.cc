@@ -74,7 +74,9 @@ void SaveTable(const Table& table, const fs::path& path, std::optional<TableForm
                      ".h5, or give the format)");
   }
   if (*format == TableFormat::kRglBsdf) {
-    throw InputError(path, "brdfit does not write a table as an RGL .bsdf (write .binary or .h5)");
+    throw InputError(path,
+                     "a table is not written as an RGL .bsdf here (write .binary or .h5; "
+                     "brdfit export TABLE --format bsdf writes one)");
   }
   if (*format == TableFormat::kMerl) {
     WriteMerl(table, path);
