@@ -4,7 +4,6 @@
 #include <fmt/core.h>
 
 #include <filesystem>
-#include <optional>
 #include <string>
 
 #include "cli/command.h"
@@ -27,30 +26,19 @@ struct ConvertOptions {
 
 int RunConvert(const ConvertOptions& o) {
   const fs::path out = o.out;
-  const std::optional<TableFormat> format =
-      o.format.empty() ? TableFormatFromExtension(out) : FromString<TableFormat>(o.format);
-  if (!format) {
-    throw InputError(out,
-                     "cannot tell the format from the extension: use .binary or .h5, or "
-                     "--format merl|h5");
-  }
+  const TableFormat format = OutputTableFormat(out, o.format);
   std::vector<fs::path> inputs;
   if (!IsNbrdfInput(o.input)) inputs.push_back(o.input);
   CheckOutputs(inputs, {{out, "-o"}});
   const Table t = pipeline::LoadInput(o.input);
-  if (*format == TableFormat::kMerl && !(t.grid == Grid::Merl())) {
-    throw InputError(out, fmt::format("MERL files hold only the 90,90,180 grid with sqrt mapping "
-                                      "(the input is {},{},{} {}); write .h5 instead",
-                                      t.grid.n_theta_h, t.grid.n_theta_d, t.grid.n_phi_d,
-                                      ToString(t.grid.theta_h_mapping)));
-  }
+  CheckFormatHoldsGrid(format, t.grid, out);
   SaveTable(t, out, format);
   if (!o.quiet) {
     fmt::print("{} -> {} ({}; {} of {} cells valid, the others masked{})\n", TerminalSafe(o.input),
                TerminalSafe(out.string()),
-               *format == TableFormat::kMerl ? "MERL binary" : "brdfit HDF5 table", t.CountValid(),
+               format == TableFormat::kMerl ? "MERL binary" : "brdfit HDF5 table", t.CountValid(),
                t.grid.NumCells(),
-               *format == TableFormat::kMerl ? ": written as -1, MERL's convention" : "");
+               format == TableFormat::kMerl ? ": written as -1, MERL's convention" : "");
   }
   return kExitOk;
 }

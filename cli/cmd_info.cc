@@ -77,6 +77,7 @@ void PrintText(const InfoOptions& o, const Table& t, InfoFormat format, const Lo
                r.not_finite_cells);
   }
   fmt::print("\n");
+  for (const std::string& note : r.notes) fmt::print("  note: {}\n", TerminalSafe(note));
   if (format == InfoFormat::kRglBsdf && r.clamped_cells) {
     fmt::print("  clamped to 0 (a channel below 0, outside the sRGB gamut): {} cells\n",
                r.clamped_cells);
@@ -145,6 +146,7 @@ int RunInfo(const InfoOptions& o) {
     j["not_covered_by_file"] = report.uncovered_cells;
     j["not_finite_in_file"] = report.not_finite_cells;
     j["clamped_to_zero"] = report.clamped_cells;
+    j["notes"] = report.notes;
   }
   if (format != InfoFormat::kMerl) j["provenance"] = ProvenanceJson(t.provenance);
   fmt::print("{}\n", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace));

@@ -148,15 +148,6 @@ SynthResult SynthesizeFromNbrdf(const fs::path& zip, const std::string& material
   return r;
 }
 
-void CheckFormatFitsGrid(TableFormat f, const Grid& g, const fs::path& out) {
-  if (f == TableFormat::kMerl && !(g == Grid::Merl())) {
-    throw InputError(out,
-                     fmt::format("MERL files hold only the 90,90,180 grid with sqrt mapping "
-                                 "(asked for {},{},{} {}); write .h5 instead",
-                                 g.n_theta_h, g.n_theta_d, g.n_phi_d, ToString(g.theta_h_mapping)));
-  }
-}
-
 void PrintSummary(const fs::path& out, TableFormat f, const SynthResult& r) {
   const Table& t = r.table;
   const Provenance& p = t.provenance;
@@ -198,15 +189,9 @@ int RunSynth(const SynthCliOptions& o) {
   std::vector<fs::path> inputs;
   if (!o.nbrdf.empty()) inputs.push_back(pipeline::NbrdfArchive(o.nbrdf_zip));
   CheckOutputs(inputs, {{out, "-o"}});
-  const std::optional<TableFormat> format =
-      o.format.empty() ? TableFormatFromExtension(out) : FromString<TableFormat>(o.format);
-  if (!format) {
-    throw InputError(out,
-                     "cannot tell the format from the extension: use .binary or .h5, or "
-                     "--format merl|h5");
-  }
+  const TableFormat format = OutputTableFormat(out, o.format);
   const Grid grid = ParseGrid(o.grid, o.mapping);
-  CheckFormatFitsGrid(*format, grid, out);
+  CheckFormatHoldsGrid(format, grid, out);
   if (!(o.noise >= 0 && o.noise <= kMaxNoise)) {
     throw InputError(fmt::format("--noise {}: expected a sigma in [0, {}] (log-normal)", o.noise,
                                  kMaxNoise));
@@ -229,8 +214,8 @@ int RunSynth(const SynthCliOptions& o) {
     r = SynthesizeFromNbrdf(pipeline::NbrdfArchive(o.nbrdf_zip), o.nbrdf, grid, so);
   }
   CheckFinite(r.table, o.noise);
-  SaveTable(r.table, out, *format);
-  PrintSummary(out, *format, r);
+  SaveTable(r.table, out, format);
+  PrintSummary(out, format, r);
   return kExitOk;
 }
 

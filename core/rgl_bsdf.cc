@@ -268,6 +268,7 @@ Table TabulateRglBsdf(const RglBsdf& b, const Grid& grid, RglTabulation* counts)
   std::array<std::vector<double>, 3> weights;
   if (spectral) weights = SrgbWeights(b.wavelengths);
   RglTabulation n;
+  n.notes = b.notes;
   Table t = Table::Empty(grid);
   std::vector<double> ch(static_cast<std::size_t>(b.channels));
   for (std::size_t idx = 0; idx < grid.NumCells(); ++idx) {

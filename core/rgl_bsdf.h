@@ -47,6 +47,7 @@ struct RglBsdf {
   std::vector<double> values;       // [phi_i][theta_i][channels][rows][cols]
   std::vector<double> wavelengths;  // nm; empty for an RGB file
   std::vector<std::uint8_t> valid;  // empty, or [phi_i][theta_i][rows][cols]: 0 = not measured
+  std::vector<std::string> notes;   // what the reader read but did not use, and why
 };
 
 // The precomputed inverse warp of one RglBsdf (which must outlive it).
@@ -96,6 +97,7 @@ struct RglTabulation {
   std::size_t uncovered = 0;      // theta_i beyond the file's range or unmeasured (masked)
   std::size_t not_finite = 0;     // masked
   std::size_t clamped = 0;        // cells with a channel below zero, clamped to 0
+  std::vector<std::string> notes;  // the file's (RglBsdf::notes)
 };
 
 // f_r at every cell centre of `grid` (wi = the light, as every brdfit table), in linear sRGB:

@@ -172,10 +172,15 @@ RglBsdf RglBsdfFromTensors(const TensorFile& file, const std::filesystem::path& 
   f.Check(values, b.values, -HUGE_VAL, false);
 
   if (const TensorField* valid = file.Find("valid")) {
-    // Optional per-sample mask on the warped grid.
-    const TensorField& v = f.Get("valid", TensorType::kUInt8, 4);
-    for (std::size_t a = 0; a < 4; ++a) f.Extent(v, a, vndf.shape[a], "vndf's");
-    b.valid = valid->bytes;
+    // Optional per-sample mask on the warped grid. The format's readers ignore it; one of
+    // another layout is reported and left out rather than refusing the measurement.
+    if (valid->dtype == TensorType::kUInt8 && valid->shape == vndf.shape) {
+      b.valid = valid->bytes;
+    } else {
+      b.notes.push_back("field 'valid' (" + std::string(TensorTypeName(valid->dtype)) + " " +
+                        valid->ShapeString() + ") is not a uint8 mask of vndf's shape " +
+                        vndf.ShapeString() + ": not used");
+    }
   }
 
   // Densities that integrate to zero cannot be inverted.

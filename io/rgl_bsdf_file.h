@@ -11,7 +11,8 @@
 //   luminance   f32[np, nt, H, W]         the luminance warp (sampling only; checked, unused)
 //   rgb         f32[np, nt, 3, H, W]      the values (RGB files), or
 //   spectra     f32[np, nt, nw, H, W] and wavelengths f32[nw] (nm)   (spectral files)
-//   valid       u8[np, nt, H, W]          optional: 0 where a sample was not measured
+//   valid       u8[np, nt, H, W]          optional: 0 where a sample was not measured (another
+//                                         layout is left out with a note, RglBsdf::notes)
 //
 // Read strictly: a missing or malformed field, a non-finite or negative density, a zero
 // projected area, an anisotropic file (np > 2: not supported) is an InputError naming the file

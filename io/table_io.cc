@@ -54,6 +54,7 @@ Table LoadTable(const fs::path& path, LoadReport* report) {
     r.uncovered_cells = n.uncovered;
     r.not_finite_cells = n.not_finite;
     r.clamped_cells = n.clamped;
+    r.notes = n.notes;
   } else {
     MerlReadReport mr;
     t = ReadMerl(path, &mr);
@@ -61,6 +62,27 @@ Table LoadTable(const fs::path& path, LoadReport* report) {
   }
   if (report) *report = r;
   return t;
+}
+
+TableFormat OutputTableFormat(const fs::path& out, const std::string& format_option) {
+  const std::optional<TableFormat> format = format_option.empty()
+                                                ? TableFormatFromExtension(out)
+                                                : FromString<TableFormat>(format_option);
+  if (!format) {
+    throw InputError(out,
+                     "cannot tell the format from the extension: use .binary or .h5, or "
+                     "--format merl|h5");
+  }
+  return *format;
+}
+
+void CheckFormatHoldsGrid(TableFormat format, const Grid& g, const fs::path& out) {
+  if (format == TableFormat::kMerl && !(g == Grid::Merl())) {
+    throw InputError(out, "MERL files hold only the 90,90,180 grid with sqrt mapping (this is " +
+                              std::to_string(g.n_theta_h) + "," + std::to_string(g.n_theta_d) +
+                              "," + std::to_string(g.n_phi_d) + " " +
+                              std::string(ToString(g.theta_h_mapping)) + "); write .h5 instead");
+  }
 }
 
 void SaveTable(const Table& table, const fs::path& path, std::optional<TableFormat> format) {

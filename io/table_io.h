@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/enum_names.h"
 #include "core/table.h"
@@ -42,9 +43,17 @@ struct LoadReport {
   std::size_t uncovered_cells = 0;
   std::size_t not_finite_cells = 0;
   std::size_t clamped_cells = 0;
+  std::vector<std::string> notes;  // what the reader left out and why (RGL .bsdf)
 };
 
 Table LoadTable(const std::filesystem::path& path, LoadReport* report = nullptr);
+
+// The format of an output table: `format_option` ("merl", "h5", ...) when not empty, else the
+// extension; InputError naming `out` when neither says (or the option names no format).
+TableFormat OutputTableFormat(const std::filesystem::path& out, const std::string& format_option);
+
+// InputError naming `out` when `format` cannot hold `grid`: MERL holds only its own grid.
+void CheckFormatHoldsGrid(TableFormat format, const Grid& grid, const std::filesystem::path& out);
 
 // format = nullopt: from the extension; InputError if the extension says nothing.
 void SaveTable(const Table& table, const std::filesystem::path& path,

@@ -149,6 +149,14 @@ TEST(RglBsdf, EachMalformedFieldIsNamed) {
   FieldOf(f, "ndf")->dtype = TensorType::kFloat64;
   FieldOf(f, "ndf")->bytes.resize(FieldOf(f, "ndf")->bytes.size() * 2);
   EXPECT_NE(ErrorOf(f, p).find("field 'ndf' is float64, expected float32"), std::string::npos);
+  // A 'valid' field of another layout is left out with a note, not a refusal.
+  f = good;
+  f.fields.push_back(UInt8Field("valid", {16, 16}, std::vector<std::uint8_t>(256, 1)));
+  WriteTensorFile(f, p);
+  const RglBsdf with_note = ReadRglBsdf(p);
+  EXPECT_TRUE(with_note.valid.empty());
+  ASSERT_EQ(with_note.notes.size(), 1u);
+  EXPECT_NE(with_note.notes[0].find("field 'valid' (uint8 [16, 16])"), std::string::npos);
   // Anisotropic: phi_i with more than two values.
   f = good;
   *FieldOf(f, "phi_i") = Float32Field("phi_i", {3}, {-3, 0, 3});
