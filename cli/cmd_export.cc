@@ -253,8 +253,7 @@ int RunBsdfExport(const ExportOptions& o) {
   }
   if (!scene.empty()) {
     const std::vector<std::string> header = {
-        "brdfit " + std::string(BrdfitVersion()) + " export --format bsdf --bsdf-scene " +
-            o.bsdf_scene,
+        "brdfit " + std::string(BrdfitVersion()) + " export, format bsdf, scene " + o.bsdf_scene,
         "source: " + r.source, "material: " + fs::path(o.out).filename().string()};
     const std::string bsdf_name = fs::path(o.out).filename().string();
     WriteTextAtomically(

@@ -328,6 +328,20 @@ TEST(CliRglBsdf, ExportedTableFitsBackToItsParameters) {
                   "name=\"filename\" value=\"s-mitsuba.bsdf\"/>"));
     EXPECT_NE(tensor_check(out), "");
   }
+  // A hostile name in the Mitsuba scene is an escaped XML attribute, in its comment harmless.
+  const std::string hostile = (dir.path() / "a&<b>--'.bsdf").string();
+  const CliResult mx = RunCli({"export", table, "--format", "bsdf", "--bsdf-scene", "mitsuba",
+                               "--bsdf-warp", "8", "--bsdf-theta-i", "4", "-o", hostile},
+                              dir.path());
+  ASSERT_EQ(mx.exit_code, 0) << mx.err;
+  {
+    const std::vector<char> x =
+        testing_io::ReadBytes(std::filesystem::path(hostile).replace_extension(".xml"));
+    const std::string xml(x.begin(), x.end());
+    EXPECT_THAT(xml, HasSubstr("value=\"a&amp;&lt;b&gt;--&apos;.bsdf\""));
+    const std::size_t open = xml.find("<!--") + 4, close = xml.find("-->");
+    EXPECT_EQ(xml.substr(open, close - open).find("--"), std::string::npos);  // no early "--"
+  }
   const CliResult quote = RunCli({"export", table, "--format", "bsdf", "--bsdf-scene", "pbrt", "-o",
                                   (dir.path() / "a\"b.bsdf").string()},
                                  dir.path());
