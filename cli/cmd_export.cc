@@ -220,21 +220,18 @@ int RunBsdfExport(const ExportOptions& o) {
                      "material of a report that holds several");
   }
   RglBuildOptions build = o.bsdf;
+  const std::string bsdf_name = fs::path(o.out).filename().string();
   fs::path scene;
   if (!o.bsdf_scene.empty()) {
     // pbrt-v4's measured material reads spectral files only; Mitsuba's reads them in its
     // spectral variants: a scene gets a spectral file.
     build.spectral = true;
     scene = fs::path(o.out).replace_extension(o.bsdf_scene == "pbrt" ? ".pbrt" : ".xml");
-    const std::string name = fs::path(o.out).filename().string();
-    for (const char ch : name) {
-      const auto c = static_cast<unsigned char>(ch);
-      if (c < 0x20 || c >= 0x7f || ch == '"' || ch == '\\') {
-        throw InputError(o.out +
-                         ": a scene cannot name this file (quotes, backslashes and "
-                         "characters outside printable ASCII cannot be written in a pbrt "
-                         "string): choose another -o name");
-      }
+    if (!exports::PbrtStringHolds(bsdf_name)) {
+      throw InputError(o.out +
+                       ": a scene cannot name this file (quotes, backslashes and "
+                       "characters outside printable ASCII cannot be written in a pbrt "
+                       "string): choose another -o name");
     }
   }
   std::vector<PlannedOutput> outs = {{o.out, "-o"}};
@@ -243,19 +240,17 @@ int RunBsdfExport(const ExportOptions& o) {
   pipeline::BsdfExport r;
   if (IsFactorSidecar(o.fits)) {
     r = pipeline::ExportFactorAsBsdf(o.fits, build, o.out);
-  } else if (pipeline::IsBsdfTableInput(o.fits)) {
-    r = pipeline::ExportTableAsBsdf(pipeline::LoadInput(o.fits), o.fits, build, o.out);
-  } else {
-    const std::vector<FitReportEntry> entries = ReadFitsAnyFormat(o.fits);
+  } else if (const auto fits = pipeline::BsdfInputFits(o.fits)) {
     const FitReportEntry& e =
-        exports::SelectEntry(entries, o.material, o.model, exports::Format::kThreejs);
+        exports::SelectEntry(*fits, o.material, o.model, exports::Format::kThreejs);
     r = pipeline::ExportFitAsBsdf(e, build, o.out);
+  } else {
+    r = pipeline::ExportTableAsBsdf(pipeline::LoadInput(o.fits), o.fits, build, o.out);
   }
   if (!scene.empty()) {
     const std::vector<std::string> header = {
         "brdfit " + std::string(BrdfitVersion()) + " export, format bsdf, scene " + o.bsdf_scene,
-        "source: " + r.source, "material: " + fs::path(o.out).filename().string()};
-    const std::string bsdf_name = fs::path(o.out).filename().string();
+        "source: " + r.source, "material: " + bsdf_name};
     WriteTextAtomically(
         scene,
         o.bsdf_scene == "pbrt"

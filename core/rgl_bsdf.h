@@ -59,7 +59,9 @@ class RglBsdfEvaluator {
   struct Result {
     bool above = false;  // both directions above the horizon
     // theta_i within the file's range, every sample used measured, and the VNDF not zero
-    // along wm's row (where the inverse warp is undefined); out is 0 where this is false.
+    // along wm's row. out is 0 below the horizon and where the inverse warp is undefined (that
+    // row); beyond theta_i's range or on unmeasured samples it holds what the authors' loader
+    // returns there (the last slice, the stored values).
     bool covered = false;
   };
   // out[channel] = f_r(wi, wo) cos(theta_o) per channel of the file (unclipped). wi: towards

@@ -1,22 +1,18 @@
 #include "core/rgl_bsdf_build.h"
 
-#include "core/spectral_rgb.h"
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
+
+#include "core/luminance.h"
+#include "core/spectral_rgb.h"
 
 namespace brdfit {
 
 namespace {
 
 constexpr double kHalfPi = kPi / 2;
-
-// Rec. 709 / sRGB luminance weights (IEC 61966-2-1).
-double Luminance(const double rgb[3]) {
-  return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
-}
 
 // An isotropic NDF given at nodes u_j = j / (n - 1), theta = (pi/2) u^2, linear in u between
 // them (as the file's bilinear lookup reads it).
@@ -80,7 +76,7 @@ RglBsdf BuildRglBsdf(const BrdfSource& f, const RglBuildOptions& o, RglBuildRepo
     const double t = std::min(theta_nodes[static_cast<std::size_t>(j)], 89.5 * kPi / 180);
     const Vec3 w{std::sin(t), 0, std::cos(t)};
     double rgb[3] = {0, 0, 0};
-    const double y = f(w, w, rgb) ? Luminance(rgb) : 0.0;
+    const double y = f(w, w, rgb) ? Rec709Luminance(rgb) : 0.0;
     retro[static_cast<std::size_t>(j)] = std::isfinite(y) ? std::max(y, 0.0) : 0.0;
   }
   if (*std::max_element(retro.begin(), retro.end()) <= 0) {
@@ -131,11 +127,15 @@ RglBsdf BuildRglBsdf(const BrdfSource& f, const RglBuildOptions& o, RglBuildRepo
   }
   b.ndf_rows = b.sigma_rows = 2;
   b.ndf_cols = b.sigma_cols = n;
+  std::vector<double> sigma_row(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j) {
+    sigma_row[static_cast<std::size_t>(j)] =
+        ProjectedArea(d, theta_nodes[static_cast<std::size_t>(j)]);
+  }
+  // Two identical rows (phi = -pi, pi) of each: isotropic.
   for (int row = 0; row < 2; ++row) {
-    for (int j = 0; j < n; ++j) {
-      b.ndf.push_back(d.nodes()[static_cast<std::size_t>(j)]);
-      b.sigma.push_back(ProjectedArea(d, theta_nodes[static_cast<std::size_t>(j)]));
-    }
+    b.ndf.insert(b.ndf.end(), d.nodes().begin(), d.nodes().end());
+    b.sigma.insert(b.sigma.end(), sigma_row.begin(), sigma_row.end());
   }
 
   // 3. The VNDF per slice, with the Jacobian of the unit square's map to the sphere.
@@ -197,7 +197,7 @@ RglBsdf BuildRglBsdf(const BrdfSource& f, const RglBuildOptions& o, RglBuildRepo
           const std::size_t s = p * nt + k;
           for (int c = 0; c < 3; ++c) b.values[(s * 3 + c) * cells + i] = rgb[c];
           valid[s * cells + i] = ok;
-          luminance[s * cells + i] = Luminance(rgb);
+          luminance[s * cells + i] = Rec709Luminance(rgb);
         }
         rep.unmeasured += !ok;
       }

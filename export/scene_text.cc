@@ -2,6 +2,8 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
+
 #include "export/comment_text.h"
 
 namespace brdfit::exports {
@@ -19,13 +21,16 @@ std::string CommentSafe(const std::string& s) {
   return out;
 }
 
+// A character a pbrt string holds as it is: printable ASCII but '"' and '\\'.
+bool PbrtChar(char ch) {
+  const unsigned char c = static_cast<unsigned char>(ch);
+  return c >= 0x20 && c < 0x7f && ch != '"' && ch != '\\';
+}
+
 // A string value for pbrt ("..." without quotes or newlines).
 std::string PbrtString(const std::string& s) {
   std::string out;
-  for (const char ch : s) {
-    const unsigned char c = static_cast<unsigned char>(ch);
-    out += c >= 0x20 && c < 0x7f && ch != '"' && ch != '\\' ? ch : '_';
-  }
+  for (const char ch : s) out += PbrtChar(ch) ? ch : '_';
   return out;
 }
 
@@ -191,6 +196,10 @@ std::string PbrtScene(const PbrtMix& m, const Provenance& p, const std::string& 
   s += "AttributeBegin\n  NamedMaterial \"brdfit-material\"\n"
        "  Shape \"sphere\" \"float radius\" [ 1 ]\nAttributeEnd\n";
   return s;
+}
+
+bool PbrtStringHolds(const std::string& s) {
+  return std::all_of(s.begin(), s.end(), PbrtChar);
 }
 
 std::string MitsubaMeasuredScene(const std::string& bsdf_name,

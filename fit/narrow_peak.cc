@@ -5,21 +5,17 @@
 #include <cmath>
 #include <limits>
 
+#include "core/luminance.h"
 #include "core/model_choice.h"
 
 namespace brdfit {
 
 namespace {
 
-// Rec. 709 luminance of linear RGB.
-double Luminance(const double rgb[3]) {
-  return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
-}
-
 double LuminanceAt(const ModelInfo& model, const std::vector<double>& params, double theta_h) {
   double rgb[3] = {0, 0, 0};
   model.eval(params.data(), MakeGeometry(HalfDiffAngles{theta_h, 0.0, 0.0}), rgb);
-  return Luminance(rgb);
+  return Rec709Luminance(rgb);
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "core/luminance.h"
 #include "fit/block_compress.h"
 #include "fit/param_layout.h"
 #include "models/geometry.h"
@@ -35,12 +36,6 @@ struct PolishPixels {
   std::size_t size() const { return geometry.size(); }
 };
 
-// Rec. 709 luminance (ITU-R BT.709-6, item 3.3), in any arithmetic type.
-template <class T>
-T PolishLuminance(const T* rgb) {
-  return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
-}
-
 // The four residuals of pixel i from the model's f (T: double or a Jet).
 template <class T>
 void PixelResiduals(const PolishPixels& px, std::size_t i, const T* f, T r[4]) {
@@ -51,10 +46,10 @@ void PixelResiduals(const PolishPixels& px, std::size_t i, const T* f, T r[4]) {
     L[c] = f[c] * px.cos_l[i];
     r[c] = px.lin_w[i] * (L[c] - px.measured[i][c]);
   }
-  const double ym = PolishLuminance(px.measured[i].data());
+  const double ym = Rec709Luminance(px.measured[i].data());
   if (px.rel_w[i] > 0) {
     // Catalog models are non-negative (models/param.h); the max only guards rounding.
-    T y = PolishLuminance(L);
+    T y = Rec709Luminance(L);
     if (y < T(0)) y = T(0);
     r[3] = px.rel_w[i] * log((y + px.delta[i]) / (ym + px.delta[i]));
   } else {

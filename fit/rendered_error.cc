@@ -7,15 +7,11 @@
 #include <string>
 #include <utility>
 
+#include "core/luminance.h"
 #include "core/rendered_regions.h"
 
 namespace brdfit {
 namespace {
-
-// Rec. 709 luminance of linear RGB (ITU-R BT.709-6, item 3.3), as preview/comparison.cc.
-double Luminance(const double* rgb) {
-  return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
-}
 
 // sRGB OETF (IEC 61966-2-1): linear [0, 1] -> encoded [0, 1].
 double SrgbOetf(double x) {
@@ -190,20 +186,21 @@ std::array<std::vector<std::size_t>, kRenderedRegions> BodyPixels(const Rendered
     if (g == static_cast<std::size_t>(LightRegion::kRim)) continue;
     double peak_y = 0;
     for (std::size_t i = ref.begin[k]; i < ref.begin[k + 1]; ++i) {
-      peak_y = std::max(peak_y, Luminance(ref.pixels[i].measured.data()));
+      peak_y = std::max(peak_y, Rec709Luminance(ref.pixels[i].measured.data()));
     }
     for (std::size_t i = ref.begin[k]; i < ref.begin[k + 1]; ++i) {
-      if (Luminance(ref.pixels[i].measured.data()) > ref.luminance_floor * peak_y) {
+      if (Rec709Luminance(ref.pixels[i].measured.data()) > ref.luminance_floor * peak_y) {
         compared[g].push_back(i);
       }
     }
   }
   for (std::size_t g = 0; g < compared.size(); ++g) {
     std::vector<double> y;
-    for (const std::size_t i : compared[g]) y.push_back(Luminance(ref.pixels[i].measured.data()));
+    for (const std::size_t i : compared[g])
+      y.push_back(Rec709Luminance(ref.pixels[i].measured.data()));
     const double median = Percentile(y, 50);
     for (const std::size_t i : compared[g]) {
-      if (Luminance(ref.pixels[i].measured.data()) <= median) body[g].push_back(i);
+      if (Rec709Luminance(ref.pixels[i].measured.data()) <= median) body[g].push_back(i);
     }
   }
   return body;
@@ -319,7 +316,7 @@ double BodyColorError(const double* L, const std::vector<std::size_t>& body) {
       a[c] += p[3 + c];
     }
   }
-  const double ym = Luminance(m.data()), ya = Luminance(a.data());
+  const double ym = Rec709Luminance(m.data()), ya = Rec709Luminance(a.data());
   if (!(ym > 0) || !(ya > 0)) return 0;
   for (int c = 0; c < 3; ++c) {
     m[c] /= ym;
@@ -365,8 +362,8 @@ RenderedError ScoreRadiances(const RenderedReference& ref, const std::vector<dou
         peak = std::max(peak, m[c]);
         sq += (m[3 + c] - m[c]) * (m[3 + c] - m[c]);
       }
-      peak_y = std::max(peak_y, Luminance(m));
-      all_lum.push_back(Luminance(m));
+      peak_y = std::max(peak_y, Rec709Luminance(m));
+      all_lum.push_back(Rec709Luminance(m));
     }
     if (!(peak > 0) || !(peak_y > 0)) return Fail(r, which + ": the measured image is black");
     sq_sum += sq;
@@ -375,11 +372,11 @@ RenderedError ScoreRadiances(const RenderedReference& ref, const std::vector<dou
     std::vector<double> errors;
     for (std::size_t i = begin[k]; i < begin[k + 1]; ++i) {
       const double* m = L + 6 * i;
-      const double ym = Luminance(m);
+      const double ym = Rec709Luminance(m);
       if (!(ym > ref.luminance_floor * peak_y)) continue;
       // |x| / y == |x / y| exactly for y > 0: the signed error's magnitude is the metric's.
-      errors.push_back(std::abs(Luminance(m + 3) - ym) / ym);
-      if (pixel_errors) (*pixel_errors)[i] = (Luminance(m + 3) - ym) / ym;
+      errors.push_back(std::abs(Rec709Luminance(m + 3) - ym) / ym);
+      if (pixel_errors) (*pixel_errors)[i] = (Rec709Luminance(m + 3) - ym) / ym;
     }
     le.compared_pixels = errors.size();
     r.compared_pixels += errors.size();
@@ -415,14 +412,15 @@ RenderedError ScoreRadiances(const RenderedReference& ref, const std::vector<dou
         peak = std::max(peak, m[c]);
         sq += (m[3 + c] - m[c]) * (m[3 + c] - m[c]);
       }
-      peak_y = std::max(peak_y, Luminance(m));
+      peak_y = std::max(peak_y, Rec709Luminance(m));
     }
     if (!(peak > 0) || !(peak_y > 0)) return Fail(r, "the environment's measured image is black");
     std::vector<double> errors;
     for (std::size_t i = 0; i < n; ++i) {
       const double* m = E + 6 * i;
-      const double ym = Luminance(m);
-      if (ym > ref.luminance_floor * peak_y) errors.push_back(std::abs(Luminance(m + 3) - ym) / ym);
+      const double ym = Rec709Luminance(m);
+      if (ym > ref.luminance_floor * peak_y)
+        errors.push_back(std::abs(Rec709Luminance(m + 3) - ym) / ym);
     }
     RenderedRegionError& g = r.regions[static_cast<std::size_t>(LightRegion::kEnvironment)];
     g.lights = 1;

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 
+#include "core/luminance.h"
 #include "core/model_choice.h"
 #include "core/rendered_regions.h"
 #include "fit/bounded_lm.h"
@@ -57,7 +58,7 @@ bool Reweight(const ModelOps& ops, const RenderedReference& ref,
     double peak_y = 0;
     // The light's peak over all its pixels, as the metric's floor.
     for (std::size_t i = ref.begin[k]; i < ref.begin[k + 1]; ++i) {
-      peak_y = std::max(peak_y, PolishLuminance(ref.pixels[i].measured.data()));
+      peak_y = std::max(peak_y, Rec709Luminance(ref.pixels[i].measured.data()));
     }
     for (std::size_t i = begin[k]; i < begin[k + 1]; ++i) {
       double f[3], L[3];
@@ -68,10 +69,10 @@ bool Reweight(const ModelOps& ops, const RenderedReference& ref,
       }
       px.delta[i] = o.delta_fraction * peak_y;
       if (!(px.delta[i] > 0)) return false;
-      const double ym = PolishLuminance(px.measured[i].data());
+      const double ym = Rec709Luminance(px.measured[i].data());
       // The metric's compared pixels (fit/rendered_error.h, luminance_floor).
       if (ym > ref.luminance_floor * peak_y) {
-        err[i] = std::abs(PolishLuminance(L) - ym) / ym;
+        err[i] = std::abs(Rec709Luminance(L) - ym) / ym;
         ++compared[g];
       }
     }

@@ -46,16 +46,19 @@ BsdfExport Write(const std::function<bool(const Vec3&, const Vec3&, Rgb*)>& eval
 
 }  // namespace
 
-bool IsBsdfTableInput(const std::string& input) {
-  if (IsNbrdfInput(input)) return true;
-  if (input.ends_with(".json")) return false;
-  if (DetectTableFormat(input) != TableFormat::kHdf5) return true;
+std::optional<std::vector<FitReportEntry>> BsdfInputFits(const std::string& input) {
+  if (IsNbrdfInput(input)) return std::nullopt;
+  if (!input.ends_with(".json") && DetectTableFormat(input) != TableFormat::kHdf5) {
+    return std::nullopt;
+  }
   try {
-    ReadFitsAnyFormat(input);
-    return false;
+    return ReadFitsAnyFormat(input);
   } catch (const InputError& e) {
-    if (std::string(e.what()).find(kFitReportFormat) == std::string::npos) throw;
-    return true;  // an HDF5 file of another format: a table (LoadTable says if it is not one)
+    if (input.ends_with(".json") ||
+        std::string(e.what()).find(kFitReportFormat) == std::string::npos) {
+      throw;
+    }
+    return std::nullopt;  // an HDF5 file of another format: a table (LoadTable says if not)
   }
 }
 

@@ -6,7 +6,9 @@
 #include <array>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "core/rgl_bsdf_build.h"
 #include "core/table.h"
@@ -19,10 +21,10 @@ struct BsdfExport {
   RglBuildReport build;
 };
 
-// Whether an input of `export --format bsdf` is a table (a measurement converted) rather than
-// fits: nbrdf:NAME, a MERL or .bsdf file, or an HDF5 file that is not a fit report. A JSON file
-// is fits; a damaged fit report's error is rethrown.
-bool IsBsdfTableInput(const std::string& input);
+// The fits an input of `export --format bsdf` holds, read once, or nullopt when it is a table
+// (a measurement converted): nbrdf:NAME, a MERL or .bsdf file, or an HDF5 file that is not a
+// fit report. A JSON file is fits; a damaged fit report's error is rethrown.
+std::optional<std::vector<FitReportEntry>> BsdfInputFits(const std::string& input);
 
 // The fit of a report entry (an analytic model at its parameters). InputError if its model is
 // unknown or its parameters do not match.
