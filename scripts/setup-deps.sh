@@ -12,6 +12,7 @@ PACKAGES=(
   libegl-dev libgl-dev libegl1-mesa-dev libgl1-mesa-dri libglfw3-dev libtinyobjloader-dev
   libjs-chart.js chromium xvfb xauth time
   python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest  # python/ (docs/python.md)
+  python3-venv python3-pip python3-setuptools python3-wheel dpkg-dev  # pip install ., cpack -G DEB
   parallel slurmctld slurmd slurm-client  # the sharded-batch recipes and their tests (docs/scale.md)
   blender  # Blender 3.4: export.blender_render renders the Blender exports (docs/exports.md)
   libopengl0 libglx0  # ../shared/tools/pbrt-v4's run-time libraries beside OpenEXR (export.pbrt_render)

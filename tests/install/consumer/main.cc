@@ -1,10 +1,14 @@
 // Synthesizes a lambert+ggx table, writes it, loads it back through pipeline::LoadInput, fits
-// it and checks the parameters come back: the installed headers and libraries work together.
+// it, checks the parameters come back and exports the fit as glTF (the export layer): the
+// installed headers and libraries work together.
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
 #include "core/synth.h"
+#include "export/gltf.h"
+#include "export/lobe_material.h"
+#include "export/targets.h"
 #include "fit/fitter.h"
 #include "io/table_io.h"
 #include "models/registry.h"
@@ -29,6 +33,11 @@ int main(int argc, char** argv) {
   for (std::size_t i = 0; i < truth.size(); ++i) worst = std::fmax(worst, std::fabs(r.params[i] - truth[i]));
   std::printf("status %d, largest parameter error %.3g\n", static_cast<int>(r.status), worst);
   if (r.Failed() || !(worst < 1e-3)) return 1;
+  // glTF roughness is sqrt(alpha) (export/targets.h): the export layer saw the fitted alpha.
+  const brdfit::exports::GltfPbr pbr = brdfit::exports::ToGltf(brdfit::exports::FromFit(r));
+  const brdfit::exports::GltfFiles gltf = brdfit::exports::BuildGltf(pbr, {}, "");
+  std::printf("glTF roughness %.4f, %zu bytes of JSON\n", pbr.roughness, gltf.json.size());
+  if (!(std::fabs(pbr.roughness - std::sqrt(truth[6])) < 1e-3) || gltf.json.empty()) return 4;
   std::printf("recovered\n");
   return 0;
 }
