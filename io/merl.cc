@@ -94,6 +94,21 @@ Table ReadMerl(const fs::path& path, MerlReadReport* report) {
   if (fd.fd < 0) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
   std::int32_t dims[3];
   if (!ReadAt(fd.fd, dims, sizeof(dims), 0)) throw InputError(path, "truncated header");
+  // A file that is a MERL table of another grid has the size its header implies (or MERL's):
+  // that gets the dimension that differs. Anything else (a text file, another format) is not
+  // a MERL table at all, and is told so rather than given a dimension out of its first bytes.
+  if (dims[0] != kMerlDims[0] || dims[1] != kMerlDims[1] || dims[2] != kMerlDims[2]) {
+    const double implied = static_cast<double>(kMerlHeaderBytes) +
+                           3.0 * sizeof(double) * dims[0] * double(dims[1]) * dims[2];
+    if (size != kMerlFileBytes &&
+        !(dims[0] > 0 && dims[1] > 0 && dims[2] > 0 && implied == static_cast<double>(size))) {
+      throw InputError(
+          path, fmt::format("not a table brdfit reads: no HDF5 or RGL .bsdf signature, and not a "
+                            "MERL .binary (its header would give a {} x {} x {} grid, MERL's is "
+                            "90 x 90 x 180 in {} bytes; the file is {} bytes)",
+                            dims[0], dims[1], dims[2], kMerlFileBytes, size));
+    }
+  }
   for (int k = 0; k < 3; ++k) {
     if (dims[k] != kMerlDims[k]) {
       throw InputError(path, fmt::format("header dimension {} ({} bins) is {}, expected {}", k + 1,

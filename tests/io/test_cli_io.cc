@@ -60,6 +60,17 @@ TEST(CliInfoErrors, WrongSize) {
   ExpectOneLineError(dir, dir / "size.binary", "file is 34992013 bytes, expected 34992012");
 }
 
+// A text file given as a table (a path mistyped, /etc/passwd) is not read as a MERL header.
+TEST(CliInfoErrors, TextFileIsNotATable) {
+  ScratchDir dir;
+  const std::string text =
+      "root:x:0:0:root:/root:/bin/bash\nbin:x:2:2:bin:/bin:/usr/sbin/nologin\n";
+  testing_io::WriteBytes(dir / "passwd", text.data(), text.size());
+  ExpectOneLineError(dir, dir / "passwd",
+                     "not a table brdfit reads: no HDF5 or RGL .bsdf signature, and not a MERL "
+                     ".binary (its header would give a 1953460082 x 809138234 x 1916416058 grid");
+}
+
 TEST(CliInfoErrors, TruncatedBody) {
   ScratchDir dir;
   auto b = MerlBytes();
