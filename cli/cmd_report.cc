@@ -134,7 +134,7 @@ Registrar reg{
       sub.add_flag("--no-slices", o->no_slices, "skip the theta_h slices");
       sub.add_option("--render-lights", o->render_lights,
                      "lights of the renders beside each material, degrees from the view (among "
-                     "the rendered-image metric's 0,30,45,60,70,80)")
+                     "the rendered-image metric's 0,30,45,60,70,80,95,110,125,140,152,165)")
           ->delimiter(',')
           ->capture_default_str();
       sub.add_flag("--no-renders", o->no_renders,

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/image.h"
+#include "core/luminance.h"
 #include "fit/rendered_error.h"
 #include "io/image_io.h"
 #include "models/registry.h"
@@ -46,18 +47,43 @@ std::string SpherePng(const RenderedImage& r, const std::vector<double>& radianc
   return EncodePng(img);
 }
 
-std::string ErrorPng(const RenderedImage& r) {
+// The relative luminance error map (fit/rendered_error.h RenderedImage::rel_error) with an
+// absolute luminance floor: the metric's floor in its own image of the same light
+// (RenderedErrorOptions::luminance_floor times that image's peak Y_m). A picture at another
+// resolution samples a narrow peak higher, and its own relative floor would hide pixels the
+// metric compares.
+std::string ErrorPng(const RenderedImage& r, double floor_y) {
   Image img(r.resolution, r.resolution);
   for (std::size_t i = 0; i < r.state.size(); ++i) {
     switch (r.state[i]) {
       case State::kOff: Put(&img, i, report::kViewBackground); break;
       case State::kUnlit: Put(&img, i, report::kViewUnlit); break;
       case State::kMasked: Put(&img, i, report::kViewMasked); break;
-      case State::kBelowFloor: Put(&img, i, report::kViewBelowFloor); break;
-      case State::kCompared: Put(&img, i, report::ErrorColor(r.rel_error[i])); break;
+      case State::kBelowFloor:
+      case State::kCompared: {
+        const double ym = Rec709Luminance(&r.measured[3 * i]);
+        if (!(ym > floor_y)) {
+          Put(&img, i, report::kViewBelowFloor);
+          break;
+        }
+        const double ya = Rec709Luminance(&r.approx[3 * i]);
+        Put(&img, i, report::ErrorColor((ya - ym) / ym));
+        break;
+      }
     }
   }
   return EncodePng(img);
+}
+
+// The peak measured luminance of a light's image over its lit, unmasked pixels.
+double PeakMeasuredLuminance(const RenderedImage& r) {
+  double peak = 0;
+  for (std::size_t i = 0; i < r.state.size(); ++i) {
+    if (r.state[i] == State::kCompared || r.state[i] == State::kBelowFloor) {
+      peak = std::max(peak, Rec709Luminance(&r.measured[3 * i]));
+    }
+  }
+  return peak;
 }
 
 }  // namespace
@@ -118,18 +144,33 @@ report::MaterialViews RenderMaterialViews(const Table& table, const report::Mate
     v.missing = "No renders: the rendered-image metric failed: " + images.metric.problem;
     return v;
   }
-  v.resolution = images.metric.resolution;
+  // The pictures: the same scene and tone mapping (the metric's exposure, which pools every
+  // light of the metric's images) at kViewResolution, for the shown lights only, so that a
+  // highlight spans more than a few pixels. Their numbers are the metric's own images'.
+  v.resolution = kViewResolution;
+  v.metric_resolution = images.metric.resolution;
   v.exposure = images.metric.exposure;
-  for (const double a : light_deg) {
+  RenderedErrorOptions display = options;
+  display.resolution = kViewResolution;
+  display.light_angles_deg = light_deg;
+  display.environment.samples = 0;
+  const RenderedImages shown = RenderImages(PrepareRenderedReference(table, display), approx);
+  if (shown.lights.size() != light_deg.size()) {
+    v.missing = "No renders: the approximation is not finite at the renders' resolution.";
+    return v;
+  }
+  for (std::size_t j = 0; j < light_deg.size(); ++j) {
+    const double a = light_deg[j];
     const auto k = static_cast<std::size_t>(
         std::find(options.light_angles_deg.begin(), options.light_angles_deg.end(), a) -
         options.light_angles_deg.begin());
-    const RenderedImage& img = images.lights[k];
+    const RenderedImage& img = shown.lights[j];
     report::RenderedView view;
     view.light_deg = a;
     view.measured_png = SpherePng(img, img.measured, v.exposure);
     view.approx_png = SpherePng(img, img.approx, v.exposure);
-    view.error_png = ErrorPng(img);
+    view.error_png =
+        ErrorPng(img, options.luminance_floor * PeakMeasuredLuminance(images.lights[k]));
     view.psnr_db = images.metric.lights[k].psnr_db;
     view.median_rel_error = images.metric.lights[k].median_rel_error;
     v.lights.push_back(std::move(view));

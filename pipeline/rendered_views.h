@@ -11,6 +11,10 @@
 
 namespace brdfit::pipeline {
 
+// The side of the pictures, pixels: three times the metric's images (RenderedErrorOptions), so
+// that a highlight a few of the metric's pixels wide is seen as a shape.
+inline constexpr int kViewResolution = 192;
+
 // The lights shown by default (degrees from the view direction; among the metric's lights).
 std::vector<double> DefaultViewLights();
 

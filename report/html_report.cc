@@ -225,12 +225,17 @@ figure img { max-width: 100%; border: 1px solid var(--line); } figcaption { colo
 #report-errors { display: none; background: var(--bad); border: 1px solid #d33; padding: 8px; }
 nav a { margin-right: 12px; } code { background: #f3f5f7; padding: 0 3px; }
 details { margin: 6px 0; } summary { cursor: pointer; color: var(--muted); }
-.scroll { overflow-x: auto; max-width: 100%; } td.stages { white-space: normal; min-width: 9em; max-width: 14em; text-align: left; font-size: 12px; }
+.scroll { overflow-x: auto; max-width: 100%; } td.stages { white-space: normal; min-width: 16em; max-width: 30em; text-align: left; font-size: 12px; }
 th.wrap { white-space: normal; min-width: 6em; max-width: 11em; vertical-align: bottom; }
 .views { display: flex; flex-wrap: wrap; gap: 12px 28px; align-items: flex-start; margin: 8px 0; }
 .view { display: grid; grid-template-columns: repeat(3, 160px); gap: 4px 6px; }
 .view .cap { grid-column: 1 / 4; color: var(--muted); }
-.view img { width: 160px; height: 160px; image-rendering: pixelated; border: 0; display: block; }
+.view img { width: 160px; height: 160px; border: 0; display: block; cursor: zoom-in; }
+#lightbox { display: none; position: fixed; inset: 0; z-index: 10; background: rgba(0,0,0,0.88);
+  flex-direction: column; align-items: center; justify-content: center; gap: 12px; cursor: zoom-out; }
+#lightbox .row { display: flex; gap: 12px; } #lightbox p { color: #eee; margin: 0; }
+#lightbox img { width: min(31vw, 78vh); height: min(31vw, 78vh); image-rendering: pixelated; }
+td.status { white-space: normal; text-align: left; min-width: 14em; }
 .view span { color: var(--muted); font-size: 12px; text-align: center; }
 .legend { display: flex; align-items: center; gap: 8px; flex-wrap: wrap; color: var(--muted); font-size: 12px; }
 .legend .bar { width: 300px; height: 12px; border: 1px solid var(--line); }
@@ -318,6 +323,42 @@ constexpr const char* kBootstrap = R"js(
 })();
 )js";
 
+// Last script of the page, independent of Chart.js: a click on a render shows its view's three
+// pictures enlarged (a click or Escape closes them); <body data-wide-tables> counts the tables
+// wider than the page at the window's width (the browser tests read it).
+constexpr const char* kPageScript = R"js(
+(function () {
+  var box = document.createElement('div');
+  box.id = 'lightbox';
+  box.setAttribute('role', 'dialog');
+  function close() { box.style.display = 'none'; box.textContent = ''; }
+  box.addEventListener('click', close);
+  document.addEventListener('keydown', function (e) { if (e.key === 'Escape') close(); });
+  document.body.appendChild(box);
+  document.querySelectorAll('.view').forEach(function (view) {
+    var imgs = view.querySelectorAll('img'), cap = view.querySelector('.cap');
+    imgs.forEach(function (img) {
+      img.title = 'click to enlarge';
+      img.addEventListener('click', function () {
+        box.textContent = '';
+        var row = document.createElement('div');
+        row.className = 'row';
+        imgs.forEach(function (i) { var c = i.cloneNode(); c.removeAttribute('title'); row.appendChild(c); });
+        var p = document.createElement('p');
+        p.textContent = (cap ? cap.textContent + ' \u2014 ' : '') +
+            'measured, fit, luminance error (click or Escape to close)';
+        box.appendChild(row);
+        box.appendChild(p);
+        box.style.display = 'flex';
+      });
+    });
+  });
+  var wide = 0;
+  document.querySelectorAll('.scroll').forEach(function (d) { if (d.scrollWidth > d.clientWidth + 1) wide++; });
+  document.body.setAttribute('data-wide-tables', String(wide));
+})();
+)js";
+
 class Page {
  public:
   explicit Page(const Report& r) : report_(r), palette_(r) {}
@@ -350,7 +391,8 @@ class Page {
                        charts_);
     out += "<div id=\"report-errors\"></div>\n";
     out += body_;
-    out += "<script>" + std::string(kBootstrap) + "</script>\n</body>\n</html>\n";
+    out += "<script>" + std::string(kBootstrap) + "</script>\n";
+    out += "<script>" + std::string(kPageScript) + "</script>\n</body>\n</html>\n";
     return out;
   }
 
@@ -551,7 +593,14 @@ class Page {
           std::count_if(m.entries.begin(), m.entries.end(), [](const Entry& e) { return Usable(e); }));
       const std::string of =
           usable > kMaxMetricBars ? fmt::format(" (the best {} of {})", kMaxMetricBars, usable) : "";
-      Chart(MetricsChart("Metrics: " + m.name + of, m), "bar chart of the metrics of " + m.name);
+      const json regions = RegionPsnrChart("Rendered PSNR per region: " + m.name + of, m);
+      if (!regions.is_null()) {
+        Chart(regions, "bar chart of the rendered PSNR per region of " + m.name);
+      }
+      for (std::size_t k = 0; k < kNumErrorMetrics; ++k) {
+        Chart(MetricsChart(fmt::format("{}: {}{}", kErrorMetrics[k].name, m.name, of), m, k),
+              fmt::format("bar chart of {} of {}", kErrorMetrics[k].name, m.name));
+      }
     }
     for (const Slice& s : m.slices) {
       Chart(SliceChart(fmt::format("{}: θd = {:.1f}°, φd = {:.1f}°", m.name, s.theta_d_deg,
@@ -599,15 +648,47 @@ class Page {
       return fmt::format("<td{}>{}</td>", std::isfinite(v) && v == b ? " class=\"bestv\"" : "",
                          Num(v, spec));
     };
+    // Two tables of the same rows, so that each fits the page: accuracy, then cost.
+    auto name_cell = [&](std::size_t i) {
+      return fmt::format("<td class=\"l\">{}{}</td>", static_cast<int>(i) == best ? "★ " : "",
+                         HtmlEscape(m.entries[i].name));
+    };
+    auto row_class = [&](std::size_t i) {
+      return static_cast<int>(i) == best ? " class=\"best\""
+             : m.entries[i].Failed()     ? " class=\"failed\""
+                                         : "";
+    };
     body_ +=
         "<div class=\"scroll\"><table><tr><th class=\"l\">approximation</th>"
         "<th>PSNR (dB)</th><th class=\"wrap\">median lum. err.</th>"
-        "<th class=\"wrap\">front · side · rim · environment (dB)</th>"
-        "<th class=\"l\">loss</th><th class=\"l\">budget</th><th class=\"l\">status</th>" +
+        "<th class=\"wrap\">front · side · rim · environment (dB)</th>" +
         ErrorMetricHeaders() +
-        "<th>cells</th>"
-        "<th class=\"wrap\">memory · params</th><th class=\"wrap\">fetches / light</th>"
-        "<th class=\"wrap\">fetches / fragment</th><th>time (ms)</th>"
+        "<th class=\"l\">loss</th><th class=\"l\">budget</th><th class=\"l\">status</th></tr>\n";
+    for (const std::size_t i : order) {
+      const Entry& e = m.entries[i];
+      const bool ok = Usable(e);
+      const bool rendered = HasRendered(e);
+      std::string status = HtmlEscape(e.status);
+      if (!e.message.empty()) status += " <span class=\"muted\">(" + HtmlEscape(e.message) + ")</span>";
+      const double psnr = rendered ? e.metrics.rendered.psnr_db : NAN;
+      const double lum = rendered ? 100 * e.metrics.rendered.median_rel_error : NAN;
+      body_ += fmt::format(
+          "<tr{}>{}{}{}<td>{}</td>{}<td class=\"l\">{}</td><td class=\"l\">{}</td>"
+          "<td class=\"status\">{}</td></tr>\n",
+          row_class(i), name_cell(i), cell(psnr, best_psnr, "{:.2f}"),
+          fmt::format("<td{}>{}</td>", rendered && lum == 100 * best_lum ? " class=\"bestv\"" : "",
+                      rendered ? fmt::format("{:.1f} %", lum) : "–"),
+          RegionsText(e),
+          ErrorMetricCells(e.metrics,
+                           [&, k = std::size_t{0}](double v) mutable {
+                             return cell(ok ? v : NAN, best_error[k++]);
+                           }),
+          HtmlEscape(e.loss), HtmlEscape(e.budget), status);
+    }
+    body_ +=
+        "</table></div>\n<div class=\"scroll\"><table><tr><th class=\"l\">approximation</th>"
+        "<th>cells</th><th class=\"wrap\">memory · params</th><th class=\"wrap\">fetches / "
+        "light</th><th class=\"wrap\">fetches / fragment</th><th>time (ms)</th>"
         "<th class=\"l\">stages (ms)</th><th>iter.</th><th>Pareto</th></tr>\n";
     for (const std::size_t i : order) {
       const Entry& e = m.entries[i];
@@ -615,30 +696,10 @@ class Page {
       for (const auto& [name, ms] : e.times_ms) {
         stages += (stages.empty() ? "" : " · ") + fmt::format("{} {}", name, Num(ms, "{:.1f}"));
       }
-      const bool ok = Usable(e);
-      const bool rendered = HasRendered(e);
-      const char* cls = static_cast<int>(i) == best ? " class=\"best\""
-                        : e.Failed()                ? " class=\"failed\""
-                                                    : "";
-      std::string status = HtmlEscape(e.status);
-      if (!e.message.empty()) status += " <span class=\"muted\">(" + HtmlEscape(e.message) + ")</span>";
-      const double psnr = rendered ? e.metrics.rendered.psnr_db : NAN;
-      const double lum = rendered ? 100 * e.metrics.rendered.median_rel_error : NAN;
       body_ += fmt::format(
-          "<tr{}><td class=\"l\">{}{}</td>{}{}<td>{}</td><td class=\"l\">{}</td><td "
-          "class=\"l\">{}</td>"
-          "<td class=\"l\">{}</td>{}<td>{}</td>{}{}<td class=\"stages\">{}</td><td>{}</td>"
-          "<td>{}</td></tr>\n",
-          cls, static_cast<int>(i) == best ? "★ " : "", HtmlEscape(e.name),
-          cell(psnr, best_psnr, "{:.2f}"),
-          fmt::format("<td{}>{}</td>", rendered && lum == 100 * best_lum ? " class=\"bestv\"" : "",
-                      rendered ? fmt::format("{:.1f} %", lum) : "–"),
-          RegionsText(e), HtmlEscape(e.loss), HtmlEscape(e.budget), status,
-          ErrorMetricCells(e.metrics,
-                           [&, k = std::size_t{0}](double v) mutable {
-                             return cell(ok ? v : NAN, best_error[k++]);
-                           }),
-          e.metrics.cells, CostCells(e), cell(e.time_ms, ok ? best_time : NAN, "{:.1f}"), stages,
+          "<tr{}>{}<td>{}</td>{}{}<td class=\"stages\">{}</td><td>{}</td><td>{}</td></tr>\n",
+          row_class(i), name_cell(i), e.metrics.cells, CostCells(e),
+          cell(e.time_ms, Usable(e) ? best_time : NAN, "{:.1f}"), stages,
           e.kind == Entry::Kind::kFit ? std::to_string(e.iterations) : std::string("–"),
           front.count(i) ? "◆" : "");
     }
@@ -675,10 +736,12 @@ class Page {
       return;
     }
     body_ += "<p class=\"muted\"><b>Renders</b> of <b>" + HtmlEscape(v.entry_key) +
-             fmt::format("</b> (★) in the metric's scene: a sphere seen from above, {}² pixels, one "
-                         "directional light; exposure 1/Y₉₉ of the measured images, clamped, sRGB "
-                         "(as the tone-mapped PSNR).</p>\n<div class=\"views\">\n",
-                         v.resolution);
+             fmt::format(
+                 "</b> (★) in the metric's scene: a sphere seen from above, one directional "
+                 "light, {}² pixels (click to enlarge); exposure 1/Y₉₉ of the measured "
+                 "images, clamped, sRGB (as the tone-mapped PSNR). PSNR and error are the "
+                 "metric's, over its {}² images.</p>\n<div class=\"views\">\n",
+                 v.resolution, v.metric_resolution);
     auto img = [](const std::string& png, const std::string& alt) {
       return fmt::format("<img alt=\"{}\" src=\"data:image/png;base64,{}\">", HtmlEscape(alt),
                          Base64(png));

@@ -1,10 +1,13 @@
 #include "report/report_charts.h"
 
+#include "core/rendered_regions.h"
+
 #include <fmt/core.h>
 
 #include <algorithm>
-#include <functional>
+#include <array>
 #include <cmath>
+#include <functional>
 
 namespace brdfit::report {
 
@@ -184,30 +187,65 @@ json SliceChart(const std::string& title, const Slice& slice, const Palette& pal
   return {{"type", "scatter"}, {"data", {{"datasets", datasets}}}, {"options", options}};
 }
 
-json MetricsChart(const std::string& title, const Material& m) {
+json MetricsChart(const std::string& title, const Material& m, std::size_t metric) {
+  const ErrorMetricField& field = kErrorMetrics[metric];
   json labels = json::array();
-  std::vector<json> data(kNumErrorMetrics, json::array());
+  json data = json::array();
   std::size_t drawn = 0;
   for (const std::size_t i : RankEntries(m.entries)) {
     const Entry& e = m.entries[i];
     if (e.Failed() || !e.metrics.ok) continue;
     if (drawn++ == kMaxMetricBars) break;
     labels.push_back(e.name + " (" + e.budget + ")");
-    for (std::size_t k = 0; k < kNumErrorMetrics; ++k) {
-      data[k].push_back(Value(e.metrics.*kErrorMetrics[k].value));
+    data.push_back(Value(e.metrics.*field.value));
+  }
+  // Tableau 10's colours, one per error metric (core/metrics.h kErrorMetrics).
+  static constexpr const char* kMetricColors[] = {"#4e79a7", "#f28e2b", "#59a14f",
+                                                  "#e15759", "#76b7b2", "#edc948"};
+  json datasets = json::array();
+  datasets.push_back({{"label", field.name},
+                      {"data", std::move(data)},
+                      {"backgroundColor", kMetricColors[metric % std::size(kMetricColors)]}});
+  json options = BaseOptions(title);
+  const std::string unit = *field.unit ? std::string(" (") + field.unit + ")" : "";
+  options["scales"] = {
+      {"y", Axis("logarithmic", std::string(field.name) + unit + ", log scale; lower is better")}};
+  options["plugins"]["legend"]["display"] = false;
+  return {{"type", "bar"},
+          {"data", {{"labels", labels}, {"datasets", datasets}}},
+          {"options", options}};
+}
+
+json RegionPsnrChart(const std::string& title, const Material& m) {
+  json labels = json::array();
+  std::array<json, kLightRegions> data;
+  data.fill(json::array());
+  std::array<bool, kLightRegions> judged{};
+  std::size_t drawn = 0;
+  for (const std::size_t i : RankEntries(m.entries)) {
+    const Entry& e = m.entries[i];
+    if (e.Failed() || !e.metrics.ok || !e.metrics.rendered.ok) continue;
+    if (drawn++ == kMaxMetricBars) break;
+    labels.push_back(e.name + " (" + e.budget + ")");
+    const auto regions = RenderedRegions(e.metrics.rendered);
+    for (int r = 0; r < kLightRegions; ++r) {
+      judged[r] = judged[r] || regions[r].lights > 0;
+      data[r].push_back(regions[r].lights > 0 ? Value(regions[r].psnr_db) : json(nullptr));
     }
   }
-  // One bar series per error metric (core/metrics.h kErrorMetrics), Tableau 10's colours.
-  static constexpr const char* kColors[] = {"#4e79a7", "#f28e2b", "#59a14f",
-                                            "#e15759", "#76b7b2", "#edc948"};
+  if (drawn == 0) return nullptr;
+  // The regions' colours: warm to cool from the light near the camera to the one behind.
+  static constexpr const char* kRegionColors[kLightRegions] = {"#f28e2b", "#59a14f", "#4e79a7",
+                                                               "#b07aa1"};
   json datasets = json::array();
-  for (std::size_t k = 0; k < kNumErrorMetrics; ++k) {
-    datasets.push_back({{"label", kErrorMetrics[k].name},
-                        {"data", std::move(data[k])},
-                        {"backgroundColor", kColors[k % std::size(kColors)]}});
+  for (int r = 0; r < kLightRegions; ++r) {
+    if (!judged[r]) continue;
+    datasets.push_back({{"label", RegionName(static_cast<LightRegion>(r))},
+                        {"data", std::move(data[r])},
+                        {"backgroundColor", kRegionColors[r]}});
   }
   json options = BaseOptions(title);
-  options["scales"] = {{"y", Axis("logarithmic", "error (log scale; lower is better)")}};
+  options["scales"] = {{"y", Axis("linear", "rendered PSNR (dB; higher is better)")}};
   return {{"type", "bar"},
           {"data", {{"labels", labels}, {"datasets", datasets}}},
           {"options", options}};

@@ -41,11 +41,17 @@ std::vector<ParetoPoint> BenchPoints(const std::vector<BenchPoint>& bench,
 // as dashed lines.
 nlohmann::json SliceChart(const std::string& title, const Slice& slice, const Palette& palette);
 
-// The error metrics (core/metrics.h kErrorMetrics) of the usable entries of a material (bars,
-// log y): the first
-// kMaxMetricBars by RankEntries.
+// One error metric (core/metrics.h kErrorMetrics[metric]) of the usable entries of a material,
+// one bar each on that metric's own log axis: the first kMaxMetricBars by RankEntries. One chart
+// per metric, since their ranges differ by orders of magnitude.
 inline constexpr std::size_t kMaxMetricBars = 40;
-nlohmann::json MetricsChart(const std::string& title, const Material& m);
+nlohmann::json MetricsChart(const std::string& title, const Material& m, std::size_t metric);
+
+// The rendered PSNR (dB, linear y) per region of the domain (core/rendered_regions.h) of the
+// usable entries of a material that have a rendered error, grouped by entry: the first
+// kMaxMetricBars by RankEntries. Regions no entry judged are left out; null when no entry has a
+// rendered error.
+nlohmann::json RegionPsnrChart(const std::string& title, const Material& m);
 
 // Best log_rmse per material (x) and model (one dataset each), over the whole report.
 nlohmann::json SummaryChart(const std::string& title, const Report& report, const Palette& palette);

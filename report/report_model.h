@@ -91,7 +91,8 @@ struct RenderedView {
 };
 struct MaterialViews {
   std::string entry_key;  // Entry::Key() of the approximation drawn
-  int resolution = 0;     // the images are N x N
+  int resolution = 0;     // the pictures are N x N (pipeline/rendered_views.h)
+  int metric_resolution = 0;  // of the metric's images, whose numbers the captions give
   double exposure = 0;    // 1 / Y99 of the measured images, as the tone-mapped PSNR
   std::vector<RenderedView> lights;
   std::string missing;  // why there are no images (empty when there are)

@@ -108,12 +108,13 @@ std::string FindChromium() {
   return "";
 }
 
-PageCheck LoadPage(const fs::path& html, const fs::path& work_dir, int timeout_s) {
+PageCheck LoadPage(const fs::path& html, const fs::path& work_dir, int timeout_s, int width) {
   PageCheck r;
   fs::create_directories(work_dir);
   const fs::path out = work_dir / "dom.html", err = work_dir / "chromium.log";
-  r.exit_code = RunChromium({"--dump-dom", "file://" + fs::absolute(html).string()}, work_dir,
-                            timeout_s, out, err);
+  std::vector<std::string> args = {"--dump-dom", "file://" + fs::absolute(html).string()};
+  if (width > 0) args.insert(args.begin(), fmt::format("--window-size={},900", width));
+  r.exit_code = RunChromium(args, work_dir, timeout_s, out, err);
   r.dom = ReadFile(out);
   r.log = ReadFile(err);
   std::smatch m;
@@ -127,6 +128,9 @@ PageCheck LoadPage(const fs::path& html, const fs::path& work_dir, int timeout_s
     }
     if (std::regex_search(tag, a, std::regex(R"(data-charts-rendered="(\d+)\")"))) {
       r.charts_rendered = std::stoi(a[1]);
+    }
+    if (std::regex_search(tag, a, std::regex(R"(data-wide-tables="(\d+)\")"))) {
+      r.wide_tables = std::stoi(a[1]);
     }
     if (std::regex_search(tag, a, std::regex(R"(data-errors="([^"]*)\")"))) {
       const auto j = nlohmann::json::parse(HtmlUnescape(a[1]), nullptr, false);

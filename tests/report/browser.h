@@ -19,15 +19,17 @@ struct PageCheck {
   bool has_body_marker = false;       // <body data-charts-expected=...> found
   int charts_expected = -1, charts_rendered = -1;
   int canvases_marked_rendered = 0;   // <canvas ... data-rendered="1">
+  int wide_tables = -1;               // <body data-wide-tables>: tables wider than the page
   std::vector<std::string> page_errors;     // <body data-errors> (window.__errors)
   std::vector<std::string> console_lines;   // Chromium's CONSOLE log lines (any level)
   std::string log;                          // Chromium's stderr, for failure messages
 };
 
-// Loads `html` (a local file) in a fresh profile under `work_dir`; waits for scripts up to a
-// virtual-time budget; kills the browser after `timeout_s` seconds.
+// Loads `html` (a local file) in a fresh profile under `work_dir`, in a window `width` pixels
+// wide (0: Chromium's default); waits for scripts up to a virtual-time budget; kills the browser
+// after `timeout_s` seconds.
 PageCheck LoadPage(const std::filesystem::path& html, const std::filesystem::path& work_dir,
-                   int timeout_s = 120);
+                   int timeout_s = 120, int width = 0);
 
 // Screenshot of the top `height` pixels of the page at `width`. Returns the browser's exit code.
 int Screenshot(const std::filesystem::path& html, const std::filesystem::path& png,

@@ -4,12 +4,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <fmt/core.h>
+
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
 
+#include "core/metrics.h"
 #include "core/model_choice.h"
 #include "factor/factor_form.h"
 #include "io/fit_report.h"
@@ -259,8 +262,11 @@ TEST_F(Cli, ReportOnAFitReportDrawsSlicesFromItsTables) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("2 materials, 2 results"), std::string::npos) << r.out;
   const std::string html = ReadText(dir_ / "r.html");
-  // Summary + per material: Pareto, metrics, 4 slices.
-  EXPECT_NE(html.find("data-charts-expected=\"13\""), std::string::npos);
+  // Summary + per material: Pareto, one chart per error metric, 4 slices (no rendered errors:
+  // no per-region chart).
+  EXPECT_NE(
+      html.find(fmt::format("data-charts-expected=\"{}\"", 1 + 2 * (1 + kNumErrorMetrics + 4))),
+      std::string::npos);
   EXPECT_NE(html.find("plastic: θd = "), std::string::npos);
   EXPECT_NE(html.find("ggx.alpha"), std::string::npos);  // parameters listed
 }

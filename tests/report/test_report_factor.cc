@@ -118,12 +118,13 @@ TEST(ReportFactor, HtmlTableShowsMemoryAndFetchesOfFactorizationsAndParametersOf
   r.GetOrAddMaterial("gold").entries.push_back(fit);
   const std::string html = RenderHtml(r, "/* Chart stand-in */");
   const FactorCost c = r.FindMaterial("gold")->entries[0].cost;
-  // The rows of the metrics table start with the approximation (the summary's with the
-  // material): the factorization's has its memory, fetches per light and per fragment.
+  // The rows of the cost table (after the accuracy table, headed by "cells") start with the
+  // approximation: the factorization's has its memory, fetches per light and per fragment.
+  const std::string cost = html.substr(html.find("<th>cells</th>"));
   auto row_of = [&](const std::string& name) {
     std::smatch m;
     const std::regex re("<tr[^>]*><td class=\"l\">(★ )?" + name + "</td>.*?</tr>");
-    return std::regex_search(html, m, re) ? m.str() : std::string();
+    return std::regex_search(cost, m, re) ? m.str() : std::string();
   };
   const std::string row = row_of("factor:mccool\\+d r2");
   ASSERT_FALSE(row.empty());

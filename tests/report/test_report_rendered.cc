@@ -116,6 +116,64 @@ TEST(RenderedCharts, PsnrSummaryHasABarForEveryRenderedModelChosenIncluded) {
   }
 }
 
+// The per-region chart: one dataset per judged region, one bar per rendered entry, the
+// region's PSNR on one linear dB axis; a region no entry judged has no dataset; a fit without a
+// rendered error has no group.
+TEST(RenderedCharts, RegionPsnrChartHasOneDatasetPerJudgedRegion) {
+  Report r = TwoFits();
+  Material& m = r.materials[0];
+  m.entries.push_back(Fit("lambert", 0.05));  // no rendered error
+  const double psnr[2][3] = {{48.9, 36.0, 23.7}, {41.0, 30.5, 28.2}};
+  for (int i = 0; i < 2; ++i) {
+    for (int g = 0; g < 3; ++g) {
+      m.entries[i].metrics.rendered.regions[g].lights = 3;
+      m.entries[i].metrics.rendered.regions[g].psnr_db = psnr[i][g];
+      m.entries[i].metrics.rendered.regions[g].median_rel_error = 0.1;
+    }
+  }
+  const nlohmann::json chart = RegionPsnrChart("t", m);
+  EXPECT_EQ(chart["type"], "bar");
+  EXPECT_EQ(chart["options"]["scales"]["y"]["type"], "linear");
+  EXPECT_NE(chart["options"]["scales"]["y"]["title"]["text"].get<std::string>().find("dB"),
+            std::string::npos);
+  ASSERT_EQ(chart["data"]["labels"].size(), 2u);
+  const auto& sets = chart["data"]["datasets"];
+  ASSERT_EQ(sets.size(), 3u) << "front, side, rim; the environment was not judged";
+  const char* names[] = {"front", "side", "rim"};
+  // Entries in RankEntries' order: lambert+ggx (the higher whole-domain score from its regions)
+  // first.
+  for (int g = 0; g < 3; ++g) {
+    EXPECT_EQ(sets[g]["label"], names[g]);
+    EXPECT_DOUBLE_EQ(sets[g]["data"][0].get<double>(), psnr[0][g]);
+    EXPECT_DOUBLE_EQ(sets[g]["data"][1].get<double>(), psnr[1][g]);
+  }
+  // No rendered error anywhere: no chart.
+  for (Entry& e : m.entries) e.metrics.rendered = {};
+  EXPECT_TRUE(RegionPsnrChart("t", m).is_null());
+}
+
+// One error metric per chart: its own log axis, titled with its name, one dataset.
+TEST(RenderedCharts, EachErrorMetricHasItsOwnChartAndAxis) {
+  const Report r = TwoFits();
+  for (std::size_t k = 0; k < kNumErrorMetrics; ++k) {
+    const nlohmann::json chart = MetricsChart("t", r.materials[0], k);
+    ASSERT_EQ(chart["data"]["datasets"].size(), 1u);
+    EXPECT_EQ(chart["data"]["datasets"][0]["label"], kErrorMetrics[k].name);
+    const auto& y = chart["options"]["scales"]["y"];
+    EXPECT_EQ(y["type"], "logarithmic");
+    EXPECT_EQ(y["title"]["text"].get<std::string>().rfind(kErrorMetrics[k].name, 0), 0u);
+    // Bars in RankEntries' order: lambert+ward (the higher rendered score, 30.55 - 20 * 0.563)
+    // first.
+    const auto& data = chart["data"]["datasets"][0]["data"];
+    ASSERT_EQ(data.size(), 2u);
+    EXPECT_EQ(chart["data"]["labels"][0], "lambert+ward (full)");
+    for (std::size_t i = 0; i < 2; ++i) {
+      EXPECT_DOUBLE_EQ(data[i].get<double>(),
+                       r.materials[0].entries[1 - i].metrics.*kErrorMetrics[k].value);
+    }
+  }
+}
+
 TEST(RenderedHtml, PsnrAndLuminanceErrorLeadTheTablesAndPickTheStar) {
   const std::string html = RenderHtml(TwoFits(), "");
   // The metric table: approximation, then PSNR and luminance error.
@@ -202,7 +260,8 @@ TEST(RenderedViews, ExactFitIsWhiteAndTwiceTheTableIsFullRed) {
   const MaterialViews same = pipeline::RenderMaterialViews(table, mat, {}, {45, 80});
   ASSERT_TRUE(same.missing.empty()) << same.missing;
   ASSERT_EQ(same.lights.size(), 2u);
-  EXPECT_EQ(same.resolution, 64);
+  EXPECT_EQ(same.resolution, pipeline::kViewResolution);
+  EXPECT_EQ(same.metric_resolution, 64);
   EXPECT_EQ(same.entry_key, mat.entries[0].Key());
   std::vector<double> twice = truth;
   for (double& kd : twice) kd *= 2;  // f = kd / pi: linear
@@ -214,13 +273,14 @@ TEST(RenderedViews, ExactFitIsWhiteAndTwiceTheTableIsFullRed) {
     const Image fit = Decode(same.lights[k].approx_png, scratch.path());
     const Image err = Decode(same.lights[k].error_png, scratch.path());
     const Image err2 = Decode(bright.lights[k].error_png, scratch.path());
-    ASSERT_EQ(meas.width, 64);
+    const int n = pipeline::kViewResolution;
+    ASSERT_EQ(meas.width, n);
     EXPECT_GT(same.lights[k].psnr_db, 150);  // round-off only
     EXPECT_LT(same.lights[k].median_rel_error, 1e-12);
     EXPECT_EQ(bright.lights[k].median_rel_error, 1.0);
     int white = 0, red = 0, lit = 0;
-    for (int y = 0; y < 64; ++y) {
-      for (int x = 0; x < 64; ++x) {
+    for (int y = 0; y < n; ++y) {
+      for (int x = 0; x < n; ++x) {
         const float* a = meas.At(x, y);
         const float* b = fit.At(x, y);
         for (int c = 0; c < 3; ++c) ASSERT_NEAR(a[c], b[c], 1.01f / 255) << x << "," << y;

@@ -104,9 +104,12 @@ TEST(ReportScaling, ThePageDrawsABoundedNumberOfResultsPerMaterial) {
     ++columns;
   }
   EXPECT_EQ(columns, 1u + 3) << "median lum. err. + one per model";
-  // The metrics chart draws the best kMaxMetricBars and says so.
-  EXPECT_NE(html.find(fmt::format("Metrics: t (the best {} of 600)", kMaxMetricBars)),
-            std::string::npos);
+  // Each metric's chart draws the best kMaxMetricBars and says so.
+  for (const ErrorMetricField& f : kErrorMetrics) {
+    EXPECT_NE(html.find(fmt::format("{}: t (the best {} of 600)", f.name, kMaxMetricBars)),
+              std::string::npos)
+        << f.name;
+  }
   // The Pareto chart: one dataset per model and budget (+ the front), not one per fit.
   for (const char* m : kModels) {
     EXPECT_NE(html.find(std::string("\"label\":\"") + m + " · full\""), std::string::npos) << m;

@@ -3,6 +3,8 @@
 // comparison's rules, factorization sidecars, input classification and the HTML structure.
 #include <gtest/gtest.h>
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -19,6 +21,7 @@
 #include "report/bench_csv.h"
 #include "report/compare.h"
 #include "report/html_report.h"
+#include "report/report_charts.h"
 #include "report/report_inputs.h"
 #include "report/report_slices.h"
 #include "tests/report/report_fixture.h"
@@ -428,8 +431,9 @@ TEST(Html, StructureOfTheFixtureReport) {
   std::smatch m;
   ASSERT_TRUE(std::regex_search(html, m, std::regex(R"(data-charts-expected="(\d+)\")")));
   const int expected = std::stoi(m[1]);
-  // Summary + 2 bench materials + per material (Pareto, metrics, 4 slices).
-  EXPECT_EQ(expected, 1 + 2 + 2 * (2 + 4));
+  // Summary + 2 bench materials + per material (Pareto, one chart per error metric, 4 slices;
+  // no rendered errors, so no per-region chart).
+  EXPECT_EQ(expected, 1 + 2 + 2 * (1 + static_cast<int>(kNumErrorMetrics) + 4));
   EXPECT_EQ(Count(html, "<canvas id=\"chart-"), expected);
   EXPECT_EQ(Count(html, "<script type=\"application/json\" data-chart="), expected);
   // Every chart configuration is valid JSON with a type.
@@ -443,8 +447,9 @@ TEST(Html, StructureOfTheFixtureReport) {
   }
   EXPECT_EQ(parsed, expected);
   // Best fit of each material starred; the failed fit flagged; title escaped; render inlined.
-  EXPECT_EQ(Count(html, "<tr class=\"best\">"), 2);
-  EXPECT_EQ(Count(html, "<tr class=\"failed\">"), 2);
+  // (each row is in a material's accuracy table and its cost table).
+  EXPECT_EQ(Count(html, "<tr class=\"best\">"), 2 * 2);
+  EXPECT_EQ(Count(html, "<tr class=\"failed\">"), 2 * 2);
   EXPECT_NE(html.find("fixture report &lt;with&gt; &quot;markup&quot; &amp; ampersands"),
             std::string::npos);
   EXPECT_EQ(html.find("<with>"), std::string::npos);
@@ -455,10 +460,12 @@ TEST(Html, StructureOfTheFixtureReport) {
 }
 
 TEST(Html, ChartsWithoutDataBecomeNotes) {
-  // Fits without times (a parameters JSON): no Pareto plot, but metrics and a summary.
+  // Fits without times (a parameters JSON): no Pareto plot, but one chart per error metric and a
+  // summary.
   Report r = OneMaterialForHtml();
   const std::string html = RenderHtml(r, "");
-  EXPECT_NE(html.find("data-charts-expected=\"2\""), std::string::npos);
+  EXPECT_NE(html.find(fmt::format("data-charts-expected=\"{}\"", 1 + kNumErrorMetrics)),
+            std::string::npos);
   EXPECT_NE(html.find("No data to plot: scatter plot of fit time"), std::string::npos);
 }
 
