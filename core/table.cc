@@ -59,6 +59,44 @@ bool Grid::CellAboveHorizon(std::size_t idx) const {
   return wi.z > 0 && wo.z > 0;
 }
 
+std::vector<std::uint8_t> Grid::AboveHorizonMask() const {
+  // CellAboveHorizon's FromHalfDiff(centre, phi_h = 0) spelt out (models/geometry.h): with
+  // d = (sin td cos pd, sin td sin pd, cos td) and (s, c) = (sin th, cos th),
+  //   wi = RotateY(d, th):  wi.x = c d.x + s d.z,  wi.z = -s d.x + c d.z
+  //   h = (s, 0, c),  wo.z = 2 (wi.h) c - wi.z,  wi.h = wi.x s + wi.z c
+  // in the same order of operations (the rotation by phi_h = 0 and the products with h's zero
+  // y component add zeros only), so each cell's answer is CellAboveHorizon's.
+  std::vector<double> sin_h(n_theta_h), cos_h(n_theta_h), sin_d(n_theta_d), cos_d(n_theta_d),
+      cos_p(n_phi_d);
+  for (int i = 0; i < n_theta_h; ++i) {
+    const double t = CellCentre(i, 0, 0).theta_h;
+    sin_h[i] = std::sin(t);
+    cos_h[i] = std::cos(t);
+  }
+  for (int i = 0; i < n_theta_d; ++i) {
+    const double t = CellCentre(0, i, 0).theta_d;
+    sin_d[i] = std::sin(t);
+    cos_d[i] = std::cos(t);
+  }
+  for (int i = 0; i < n_phi_d; ++i) cos_p[i] = std::cos(CellCentre(0, 0, i).phi_d);
+  std::vector<std::uint8_t> mask(NumCells());
+  for (int ih = 0; ih < n_theta_h; ++ih) {
+    const double s = sin_h[ih], c = cos_h[ih];
+    for (int id = 0; id < n_theta_d; ++id) {
+      std::uint8_t* row = &mask[Index(ih, id, 0)];
+      const double dz = cos_d[id];
+      for (int ip = 0; ip < n_phi_d; ++ip) {
+        const double dx = sin_d[id] * cos_p[ip];
+        const double wi_x = c * dx + s * dz;
+        const double wi_z = -s * dx + c * dz;
+        const double wo_z = 2.0 * (wi_x * s + wi_z * c) * c - wi_z;
+        row[ip] = wi_z > 0 && wo_z > 0;
+      }
+    }
+  }
+  return mask;
+}
+
 Table Table::Empty(const Grid& grid) {
   Table t;
   t.grid = grid;

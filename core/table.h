@@ -81,6 +81,9 @@ struct Grid {
 
   // True if both directions at the cell centre are strictly above the horizon.
   bool CellAboveHorizon(std::size_t idx) const;
+  // CellAboveHorizon of every cell (1 above, 0 below), indexed as Index: the same arithmetic on
+  // the axes' sines and cosines computed once per bin instead of once per cell.
+  std::vector<std::uint8_t> AboveHorizonMask() const;
 
   // The taps of Table::LookupTrilinear at a (its interpolation weights, before the table's mask
   // drops invalid cells).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 namespace brdfit {
 
@@ -42,10 +43,9 @@ TableStats ComputeTableStats(const Table& t, const std::vector<double>& incidenc
   TableStats s;
   const Grid& g = t.grid;
   s.cells = g.NumCells();
-  std::array<std::vector<double>, 3> values;
-  for (auto& v : values) v.reserve(s.cells);
+  const std::vector<std::uint8_t> above_horizon = g.AboveHorizonMask();
   for (std::size_t i = 0; i < s.cells; ++i) {
-    const bool above = g.CellAboveHorizon(i);
+    const bool above = above_horizon[i];
     s.below_horizon += !above;
     if (!t.valid[i]) {
       s.masked_above_horizon += above;
@@ -53,26 +53,30 @@ TableStats ComputeTableStats(const Table& t, const std::vector<double>& incidenc
     }
     ++s.valid;
     s.valid_below_horizon += !above;
-    for (int c = 0; c < 3; ++c) values[c].push_back(t.Value(i)[c]);
   }
+  // One channel at a time through one buffer (a third of the memory of three copies), left
+  // uninitialised: every element is written before it is read.
+  const std::size_t n = s.valid;
+  const auto buffer = std::make_unique_for_overwrite<double[]>(n);
+  double* const v = buffer.get();
   for (int c = 0; c < 3; ++c) {
-    auto& v = values[c];
     ChannelSummary& cs = s.channels[c];
-    if (v.empty()) {
+    if (n == 0) {
       cs.min = cs.median = cs.max = std::numeric_limits<double>::quiet_NaN();
       continue;
     }
-    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < s.cells; ++i) {
+      if (t.valid[i]) v[k++] = t.Value(i)[c];
+    }
+    const auto [lo, hi] = std::minmax_element(v, v + n);
     cs.min = *lo;
     cs.max = *hi;
     // Median: the middle element, or the mean of the two middle ones for an even count.
-    const std::size_t mid = v.size() / 2;
-    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
+    const std::size_t mid = n / 2;
+    std::nth_element(v, v + mid, v + n);
     cs.median = v[mid];
-    if (v.size() % 2 == 0) {
-      cs.median = 0.5 * (cs.median + *std::max_element(
-                                         v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid)));
-    }
+    if (n % 2 == 0) cs.median = 0.5 * (cs.median + *std::max_element(v, v + mid));
   }
   for (double deg : incidence_deg) s.albedo.push_back(EstimateAlbedo(t, deg * kPi / 180.0));
   return s;

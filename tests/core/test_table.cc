@@ -36,6 +36,26 @@ TEST(Grid, MerlGeometricallyInvalidFractionAtBinCentres) {
   EXPECT_NEAR(fraction, 0.248, 0.005);
 }
 
+// The mask computed from the axes' sines and cosines answers as CellAboveHorizon in every cell
+// of the MERL grid and of small grids of both theta_h mappings (odd and even bin counts).
+TEST(Grid, AboveHorizonMaskIsCellAboveHorizonEverywhere) {
+  for (const Grid& g :
+       {Grid::Merl(), Grid{16, 12, 24, ThetaHMapping::kLinear}, Grid{7, 9, 5, ThetaHMapping::kSqrt},
+        Grid{1, 1, 1, ThetaHMapping::kLinear}}) {
+    const std::vector<std::uint8_t> mask = g.AboveHorizonMask();
+    ASSERT_EQ(mask.size(), g.NumCells());
+    std::size_t above = 0;
+    for (std::size_t idx = 0; idx < g.NumCells(); ++idx) {
+      ASSERT_EQ(mask[idx] != 0, g.CellAboveHorizon(idx)) << idx << " of " << g.NumCells();
+      above += mask[idx];
+    }
+    if (g.NumCells() > 100) {
+      EXPECT_GT(above, 0u);
+      EXPECT_LT(above, g.NumCells());  // both answers occur
+    }
+  }
+}
+
 TEST(Table, TrilinearReproducesAffineFunctionOfIndexCoordinates) {
   Grid g{8, 8, 16, ThetaHMapping::kLinear};
   Table t = Table::Empty(g);
