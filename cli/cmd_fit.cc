@@ -420,9 +420,10 @@ Registrar reg{
       sub.add_option(
           "--target", o->target,
           "gltf | threejs | blender | mitsuba | pbrt: without --model, fit the model the "
-          "target renders exactly (lambert+ggx-hc for gltf and pbrt, lambert+ggx for "
-          "blender and mitsuba, any for threejs); print per fit whether its export is "
-          "exact and what it approximates");
+          "target renders exactly (lambert+ggx-hc for gltf and pbrt; lambert+ggx, "
+          "lambert+ggx+ggx, burley-2012+ggx for mitsuba, and oren-nayar-fujii+ggx too for "
+          "blender; any for threejs); print per fit whether its export is exact and what it "
+          "approximates");
       return [o, model_opt] {
         o->models_given = model_opt->count() > 0;
         return RunFit(*o);

@@ -25,9 +25,9 @@ const std::vector<FitTarget>& Targets() {
        "masking) per lobe: exact; its Principled BSDF material is approximate"},
       {"mitsuba",
        Format::kMitsuba,
-       {"lambert+ggx", "lambert+ggx+ggx"},
-       "Mitsuba 3 blendbsdf of diffuse and roughconductor (separable masking), a nested "
-       "blendbsdf for two lobes: exact"},
+       {"lambert+ggx", "lambert+ggx+ggx", "burley-2012+ggx"},
+       "Mitsuba 3 blendbsdf of a body (diffuse: Lambert; principled with specular 0: Burley "
+       "2012) and roughconductor (separable masking), a nested blendbsdf for two lobes: exact"},
       {"pbrt",
        Format::kPbrt,
        {"lambert+ggx-hc"},

@@ -134,13 +134,33 @@ std::string MitsubaScene(const MitsubaBlend& b, const Provenance& p) {
   s += b.second ? ";\n  two lobes: the roughconductor is a blendbsdf(v) of two, (1 - w) R / pi +\n"
                   "  w ((1 - v) S lobe + v S2 lobe2).\n"
                 : ".\n";
+  if (b.body == Body::kBurley2012) {
+    s += "  The body is principled(base_color R, roughness r, specular 0, metallic 0) in place of\n"
+         "  diffuse: with specular 0 (eta 1) its specular lobe is 0 and it is Burley 2012's\n"
+         "  diffuse R / pi ((1 - FL/2)(1 - FO/2) + RR (FL + FO + FL FO (RR - 1))), RR = 2 r "
+         "cos_d^2;\n"
+         "  main_specular_sampling_rate 0 samples its diffuse alone.\n";
+  }
   s += "  Render: mitsuba -m scalar_rgb this.xml (docs/exports.md)\n-->\n";
   s += MitsubaFrameOpen();
   s += fmt::format(
       "  <bsdf type=\"blendbsdf\" id=\"brdfit-material\">\n"
-      "    <float name=\"weight\" value=\"{:.9g}\"/>\n"
-      "    <bsdf type=\"diffuse\">\n      <rgb name=\"reflectance\" value=\"{}\"/>\n    </bsdf>\n",
-      b.weight, Rgb3(b.diffuse_reflectance, ", "));
+      "    <float name=\"weight\" value=\"{:.9g}\"/>\n",
+      b.weight);
+  if (b.body == Body::kBurley2012) {
+    s += fmt::format(
+        "    <bsdf type=\"principled\">\n      <rgb name=\"base_color\" value=\"{}\"/>\n"
+        "      <float name=\"roughness\" value=\"{:.9g}\"/>\n"
+        "      <float name=\"specular\" value=\"0\"/>\n"
+        "      <float name=\"metallic\" value=\"0\"/>\n"
+        "      <float name=\"main_specular_sampling_rate\" value=\"0\"/>\n    </bsdf>\n",
+        Rgb3(b.diffuse_reflectance, ", "), b.body_roughness);
+  } else {
+    s += fmt::format(
+        "    <bsdf type=\"diffuse\">\n      <rgb name=\"reflectance\" value=\"{}\"/>\n"
+        "    </bsdf>\n",
+        Rgb3(b.diffuse_reflectance, ", "));
+  }
   if (b.second) {
     s += fmt::format(
         "    <bsdf type=\"blendbsdf\">\n      <float name=\"weight\" value=\"{:.9g}\"/>\n"

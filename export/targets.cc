@@ -108,7 +108,7 @@ Rgb LambertBody(const LobeMaterial& m, const char* target_name, Fidelity* f) {
     f->approximations.push_back(fmt::format(
         "{} has a Lambert diffuse: the fit's Burley 2012 body (r = {:.4g}) is exported as Lambert "
         "kd = {}, equal at normal incidence and view; its grazing retro-reflection and darkening "
-        "are lost (Blender's Principled BSDF carries it)",
+        "are lost (Blender's Principled BSDF and Mitsuba 3's principled carry it)",
         target_name, m.body_roughness, Fmt3(m.kd)));
     return m.kd;
   }
@@ -211,7 +211,13 @@ MitsubaBlend ToMitsuba(const LobeMaterial& m) {
   b.alpha = m.alpha;
   NoteMasking(m, Masking::kSeparable, "Mitsuba 3 roughconductor", &f);
   const Rgb ks = ConstantWeight(m, "Mitsuba 3", &f);
-  const Rgb kd = LambertBody(m, "Mitsuba 3's diffuse", &f);
+  // Burley 2012's body is Mitsuba's principled diffuse (targets.h); others become Lambert.
+  const bool principled_body = m.body == Body::kBurley2012;
+  const Rgb kd = principled_body ? m.kd : LambertBody(m, "Mitsuba 3's diffuse", &f);
+  if (principled_body) {
+    b.body = Body::kBurley2012;
+    b.body_roughness = m.body_roughness;
+  }
   // (1 - w) R / pi + w S lobe with R = kd / (1 - w), S = ks / w; w splits the two so that both
   // reflectances stay in [0, 1] when kd + ks <= 1. A second lobe shares w with the first by the
   // inner weight v = max ks2 / (max ks + max ks2): S = ks / (w (1 - v)), S2 = ks2 / (w v), every

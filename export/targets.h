@@ -47,9 +47,17 @@ GltfPbr ToGltf(const LobeMaterial& m);
 // material="none", specular_reflectance): (1 - w) R / pi + w S D G1 G1 / (4 cos_i cos_o).
 // A second lobe: the roughconductor becomes blendbsdf(second->weight = v) of the two
 // roughconductors, (1 - w) R / pi + w ((1 - v) S lobe + v S2 lobe2).
+// A Burley 2012 body is Mitsuba's principled BSDF in place of the diffuse, base_color R,
+// roughness r, specular 0 (eta 1: its dielectric Fresnel, hence its specular lobe, is 0),
+// metallic 0: its diffuse alone, R / pi ((1 - FL/2)(1 - FO/2) + RR (FL + FO + FL FO (RR - 1))),
+// RR = 2 r cos_d^2 (Mitsuba 3 src/bsdfs/principled.cpp, eval), which is Burley 2012's
+// (1 + (F_D90 - 1) FL)(1 + (F_D90 - 1) FO) with F_D90 = 0.5 + RR (models/burley.h): exact.
+// Fujii's Oren-Nayar has no Mitsuba 3 plugin: it becomes a Lambert diffuse (approximate).
 struct MitsubaBlend {
   double weight = 0;
-  Rgb diffuse_reflectance{};
+  Body body = Body::kLambert;  // kLambert (diffuse) or kBurley2012 (principled)
+  double body_roughness = 0;   // the principled body's roughness r = sqrt(alpha)
+  Rgb diffuse_reflectance{};   // diffuse reflectance, or the principled body's base_color
   Rgb specular_reflectance{};
   double alpha = 0;
   struct Second {
