@@ -184,12 +184,9 @@ std::array<std::vector<std::size_t>, kRenderedRegions> BodyPixels(const Rendered
   for (int k = 0; k < ref.counts.num_lights; ++k) {
     const auto g = static_cast<std::size_t>(RegionOfLight(ref.counts.lights[k].light_deg));
     if (g == static_cast<std::size_t>(LightRegion::kRim)) continue;
-    double peak_y = 0;
+    const double floor_y = ref.luminance_floor * ref.peak_y[static_cast<std::size_t>(k)];
     for (std::size_t i = ref.begin[k]; i < ref.begin[k + 1]; ++i) {
-      peak_y = std::max(peak_y, Rec709Luminance(ref.pixels[i].measured.data()));
-    }
-    for (std::size_t i = ref.begin[k]; i < ref.begin[k + 1]; ++i) {
-      if (Rec709Luminance(ref.pixels[i].measured.data()) > ref.luminance_floor * peak_y) {
+      if (Rec709Luminance(ref.pixels[i].measured.data()) > floor_y) {
         compared[g].push_back(i);
       }
     }
@@ -220,8 +217,10 @@ RenderedReference PrepareRenderedReference(const Table& measured, const Rendered
   ref.begin = {0};
   ref.pixels.reserve(plan.lit.size());
   std::size_t p = 0;
+  ref.peak_y.assign(static_cast<std::size_t>(r.num_lights), 0.0);
   for (int k = 0; k < r.num_lights; ++k) {
     RenderedLightError& le = r.lights[static_cast<std::size_t>(k)];
+    double& peak_y = ref.peak_y[static_cast<std::size_t>(k)];
     for (; p < plan.lit.size() && plan.lit[p].light == k; ++p) {
       const RenderedPlan::Pixel& px = plan.lit[p];
       const auto m = measured.LookupTaps(px.taps);
@@ -233,6 +232,7 @@ RenderedReference PrepareRenderedReference(const Table& measured, const Rendered
       const double c = px.cos_l;
       ref.pixels.push_back({px.wi, px.wo, c, {(*m)[0] * c, (*m)[1] * c, (*m)[2] * c}, px.x,
                             px.y});
+      peak_y = std::max(peak_y, Rec709Luminance(ref.pixels.back().measured.data()));
       ++le.lit_pixels;
     }
     ref.begin.push_back(ref.pixels.size());
@@ -253,7 +253,10 @@ RenderedReference PrepareRenderedReference(const Table& measured, const Rendered
       ref.env_samples.push_back({s.wi, s.weight});
     }
     out.end = ref.env_samples.size();
-    if (out.end > out.begin) ref.env_pixels.push_back(out);
+    if (out.end > out.begin) {
+      ref.env_pixels.push_back(out);
+      ref.env_peak_y = std::max(ref.env_peak_y, Rec709Luminance(out.measured.data()));
+    }
   }
   return ref;
 }
@@ -355,14 +358,15 @@ RenderedError ScoreRadiances(const RenderedReference& ref, const std::vector<dou
     RenderedLightError& le = r.lights[static_cast<std::size_t>(k)];
     const std::string which = "the light at " + std::to_string(le.light_deg) + " deg";
     if (le.lit_pixels == 0) return Fail(r, which + " lights no pixel with a valid measurement");
-    double peak = 0, peak_y = 0, sq = 0;
+    // The measured half of L is ref.pixels' measured (Radiances), so ref.peak_y[k] is its peak.
+    const double peak_y = ref.peak_y[static_cast<std::size_t>(k)];
+    double peak = 0, sq = 0;
     for (std::size_t i = begin[k]; i < begin[k + 1]; ++i) {
       const double* m = L + 6 * i;
       for (int c = 0; c < 3; ++c) {
         peak = std::max(peak, m[c]);
         sq += (m[3 + c] - m[c]) * (m[3 + c] - m[c]);
       }
-      peak_y = std::max(peak_y, Rec709Luminance(m));
       all_lum.push_back(Rec709Luminance(m));
     }
     if (!(peak > 0) || !(peak_y > 0)) return Fail(r, which + ": the measured image is black");
@@ -405,14 +409,14 @@ RenderedError ScoreRadiances(const RenderedReference& ref, const std::vector<dou
   if (!ref.env_pixels.empty()) {
     const double* E = L + 6 * ref.pixels.size();
     const std::size_t n = ref.env_pixels.size();
-    double peak = 0, peak_y = 0, sq = 0;
+    const double peak_y = ref.env_peak_y;
+    double peak = 0, sq = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const double* m = E + 6 * i;
       for (int c = 0; c < 3; ++c) {
         peak = std::max(peak, m[c]);
         sq += (m[3 + c] - m[c]) * (m[3 + c] - m[c]);
       }
-      peak_y = std::max(peak_y, Rec709Luminance(m));
     }
     if (!(peak > 0) || !(peak_y > 0)) return Fail(r, "the environment's measured image is black");
     std::vector<double> errors;

@@ -69,6 +69,10 @@ struct RenderedReference {
   std::vector<Pixel> pixels;           // light after light
   std::vector<Masked> masked;          // lit pixels whose measured lookup is invalid
   std::vector<std::size_t> begin;      // light k: pixels [begin[k], begin[k + 1])
+  // Light k's brightest measured pixel, Rec. 709 luminance of `measured` (0 for a light with no
+  // pixel): what the luminance floor scales (luminance_floor * peak_y[k]) wherever the metric's
+  // compared pixels are picked (the score, the body's pixels, the rendered polish).
+  std::vector<double> peak_y;
   // Per region, the body's pixels (RenderedError::body_color_error): those compared (Y_m above
   // the floor of their light's image) at or below the region's median Y_m; empty for the rim.
   // Measured quantities only, so fixed per table.
@@ -88,6 +92,7 @@ struct RenderedReference {
   };
   std::vector<EnvPixel> env_pixels;
   std::vector<EnvSample> env_samples;
+  double env_peak_y = 0;  // the environment image's brightest measured pixel, as peak_y
   std::size_t env_masked_samples = 0;
   double luminance_floor = 0, exposure_percentile = 0;
   bool Empty() const { return pixels.empty() && counts.num_lights == 0; }

@@ -55,11 +55,8 @@ bool Reweight(const ModelOps& ops, const RenderedReference& ref,
   for (int k = 0; k < ref.counts.num_lights; ++k) {
     const auto g = static_cast<std::size_t>(RegionOfLight(ref.counts.lights[k].light_deg));
     region_of[static_cast<std::size_t>(k)] = g;
-    double peak_y = 0;
     // The light's peak over all its pixels, as the metric's floor.
-    for (std::size_t i = ref.begin[k]; i < ref.begin[k + 1]; ++i) {
-      peak_y = std::max(peak_y, Rec709Luminance(ref.pixels[i].measured.data()));
-    }
+    const double peak_y = ref.peak_y[static_cast<std::size_t>(k)];
     for (std::size_t i = begin[k]; i < begin[k + 1]; ++i) {
       double f[3], L[3];
       ops.eval(p.data(), px.geometry[i], f);

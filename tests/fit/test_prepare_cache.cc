@@ -68,6 +68,8 @@ void ExpectSameReference(const RenderedReference& a, const RenderedReference& b)
                 a.masked[i].y == b.masked[i].y);
   }
   EXPECT_EQ(a.begin, b.begin);
+  EXPECT_EQ(a.peak_y, b.peak_y);
+  EXPECT_EQ(a.env_peak_y, b.env_peak_y);
   EXPECT_EQ(a.counts.lit_pixels, b.counts.lit_pixels);
   EXPECT_EQ(a.counts.masked_pixels, b.counts.masked_pixels);
   EXPECT_EQ(a.counts.sphere_pixels, b.counts.sphere_pixels);

@@ -434,6 +434,37 @@ TEST(RenderedError, MaskedCellsAreExcludedNotZero) {
   EXPECT_NE(bad.problem.find("not finite"), std::string::npos) << bad.problem;
 }
 
+// The reference's per-light peak luminance, which the luminance floor scales wherever compared
+// pixels are picked, is the brightest of that light's measured pixels (masked ones left out),
+// recomputed here from the pixels; the environment's the same over its pixels.
+TEST(RenderedError, EachLightsPeakIsItsBrightestMeasuredPixel) {
+  const Table t = SynthModel("lambert+ggx", Params("lambert+ggx", {"ggx.alpha=0.1"}), SmallGrid());
+  Table holed = t;
+  for (std::size_t i = 0; i < holed.grid.NumCells(); i += 7) {
+    holed.valid[i] = 0;
+    for (int c = 0; c < 3; ++c) holed.Value(i)[c] = std::numeric_limits<double>::quiet_NaN();
+  }
+  for (const Table* table : {&t, static_cast<const Table*>(&holed)}) {
+    const RenderedReference ref = PrepareRenderedReference(*table);
+    ASSERT_EQ(ref.peak_y.size(), static_cast<std::size_t>(ref.counts.num_lights));
+    for (int k = 0; k < ref.counts.num_lights; ++k) {
+      double y = 0;
+      for (std::size_t i = ref.begin[k]; i < ref.begin[k + 1]; ++i) {
+        const auto& m = ref.pixels[i].measured;
+        y = std::max(y, 0.2126 * m[0] + 0.7152 * m[1] + 0.0722 * m[2]);
+      }
+      EXPECT_EQ(ref.peak_y[static_cast<std::size_t>(k)], y) << k;
+      EXPECT_GT(y, 0) << k;
+    }
+    ASSERT_FALSE(ref.env_pixels.empty());
+    double env = 0;
+    for (const auto& p : ref.env_pixels) {
+      env = std::max(env, 0.2126 * p.measured[0] + 0.7152 * p.measured[1] + 0.0722 * p.measured[2]);
+    }
+    EXPECT_EQ(ref.env_peak_y, env);
+  }
+}
+
 TEST(RenderedError, FailuresAreReportedWithFiniteNumbers) {
   const Table t = SynthModel("lambert", Params("lambert", {}), SmallGrid());
   const BrdfFunction nan = [](const Vec3&, const Vec3& wo) {
