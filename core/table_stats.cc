@@ -1,24 +1,34 @@
 #include "core/table_stats.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
-#include <memory>
 
 namespace brdfit {
 
 AlbedoEstimate EstimateAlbedo(const Table& t, double theta_i, int n_t, int n_phi) {
   const Vec3 wi = FromSpherical(theta_i, 0.0);
   const double dt = 1.0 / n_t, dphi = kPi / n_phi;
+  // The nodes' cos and sin of phi_h, the same for every theta_h: h below is FromSpherical's
+  // products of the same values (models/geometry.h), computed once per node instead of per
+  // direction.
+  std::vector<double> cos_phi(static_cast<std::size_t>(n_phi)), sin_phi(cos_phi.size());
+  for (int ip = 0; ip < n_phi; ++ip) {
+    cos_phi[static_cast<std::size_t>(ip)] = std::cos((ip + 0.5) * dphi);
+    sin_phi[static_cast<std::size_t>(ip)] = std::sin((ip + 0.5) * dphi);
+  }
   std::array<double, 3> sum{0, 0, 0};
   double covered = 0, total = 0;
   for (int it = 0; it < n_t; ++it) {
     const double tt = (it + 0.5) * dt;
     const double theta_h = kPi / 2 * tt * tt;
     const double jac_t = kPi * tt * dt;  // d theta_h = pi t dt
-    const double sin_h = std::sin(theta_h);
+    const double sin_h = std::sin(theta_h), cos_h = std::cos(theta_h);
     for (int ip = 0; ip < n_phi; ++ip) {
-      const Vec3 h = FromSpherical(theta_h, (ip + 0.5) * dphi);
+      const std::size_t k = static_cast<std::size_t>(ip);
+      const Vec3 h{sin_h * cos_phi[k], sin_h * sin_phi[k], cos_h};
       const double wi_h = Dot(wi, h);
       if (wi_h <= 0) continue;
       const Vec3 wo = 2.0 * wi_h * h - wi;
@@ -39,6 +49,116 @@ AlbedoEstimate EstimateAlbedo(const Table& t, double theta_i, int n_t, int n_phi
   return a;
 }
 
+namespace {
+
+// A key whose unsigned order is the numeric order of finite doubles: the IEEE 754 bits with the
+// sign bit set for a non-negative value and every bit inverted for a negative one (-0 sorts just
+// below +0; they compare equal as doubles). FromOrderKey inverts it bit for bit.
+std::uint64_t OrderKey(double v) {
+  const auto b = std::bit_cast<std::uint64_t>(v);
+  return (b >> 63) ? ~b : b | (std::uint64_t{1} << 63);
+}
+double FromOrderKey(std::uint64_t k) {
+  return std::bit_cast<double>((k >> 63) ? k & ~(std::uint64_t{1} << 63) : ~k);
+}
+
+// Where ranks lo and hi = lo or lo + 1 fall in a 16-bit histogram: the buckets b_lo <= b_hi
+// holding them and `below`, the count in the buckets before b_lo.
+struct RankBuckets {
+  std::size_t b_lo = 0, b_hi = 0, below = 0;
+};
+RankBuckets FindRanks(const std::vector<std::uint32_t>& count, std::size_t lo, std::size_t hi) {
+  RankBuckets r;
+  while (r.below + count[r.b_lo] <= lo) r.below += count[r.b_lo++];
+  std::size_t through = r.below + count[r.b_lo];
+  r.b_hi = r.b_lo;
+  while (through <= hi) through += count[++r.b_hi];
+  return r;
+}
+
+// The keys of 0-based rank lo and hi = lo or lo + 1 among the keys `for_each_key` visits
+// (valid: weight 1, else 0), by radix selection 16 bits at a time, given `count`, the first
+// pass's histogram of the top digit: when the two ranks fall in different buckets, rank lo is
+// the largest key of its bucket and rank hi the smallest of its own (one more pass); else the
+// keys of their bucket are gathered and the next digit decides, down to a few thousand keys,
+// which nth_element orders.
+template <class ForEachKey>
+std::array<std::uint64_t, 2> SelectRanks(std::vector<std::uint32_t>& count,
+                                         const ForEachKey& for_each_key, std::size_t lo,
+                                         std::size_t hi) {
+  int shift = 48;
+  RankBuckets r = FindRanks(count, lo, hi);
+  if (r.b_lo != r.b_hi) {
+    std::uint64_t k_lo = 0, k_hi = ~std::uint64_t{0};
+    for_each_key([&](std::uint64_t k, bool valid) {
+      const std::size_t b = k >> shift;
+      if (valid && b == r.b_lo) k_lo = std::max(k_lo, k);
+      if (valid && b == r.b_hi) k_hi = std::min(k_hi, k);
+    });
+    return {k_lo, k_hi};
+  }
+  std::vector<std::uint64_t> keys;
+  keys.reserve(count[r.b_lo]);
+  for_each_key([&](std::uint64_t k, bool valid) {
+    if (valid && (k >> shift) == r.b_lo) keys.push_back(k);
+  });
+  lo -= r.below;
+  hi -= r.below;
+  // The gathered keys share every digit above `shift`: the next digit orders them.
+  while (keys.size() > 4096 && shift > 0) {
+    shift -= 16;
+    std::fill(count.begin(), count.end(), 0u);
+    for (const std::uint64_t k : keys) ++count[(k >> shift) & 0xFFFF];
+    r = FindRanks(count, lo, hi);
+    if (r.b_lo != r.b_hi) {
+      std::uint64_t k_lo = 0, k_hi = ~std::uint64_t{0};
+      for (const std::uint64_t k : keys) {
+        const std::size_t b = (k >> shift) & 0xFFFF;
+        if (b == r.b_lo) k_lo = std::max(k_lo, k);
+        if (b == r.b_hi) k_hi = std::min(k_hi, k);
+      }
+      return {k_lo, k_hi};
+    }
+    std::erase_if(keys, [&](std::uint64_t k) { return ((k >> shift) & 0xFFFF) != r.b_lo; });
+    lo -= r.below;
+    hi -= r.below;
+  }
+  const auto at = [&](std::size_t rank) {
+    const auto it = keys.begin() + static_cast<std::ptrdiff_t>(rank);
+    std::nth_element(keys.begin(), it, keys.end());
+    return *it;
+  };
+  const std::uint64_t k_lo = at(lo);
+  return {k_lo, hi == lo ? k_lo : at(hi)};
+}
+
+// Channel c over the valid cells: min, max, and the median (the middle element, or the mean of
+// the two middle ones for an even count n), the elements a full sort would put there. One pass
+// gives the extremes and the top digit's histogram without branching on the mask (an invalid
+// cell counts 0; its value, possibly NaN, is never compared), a second the median's bucket.
+ChannelSummary SummarizeChannel(const Table& t, int c, std::size_t n) {
+  const std::size_t cells = t.grid.NumCells();
+  std::vector<std::uint32_t> count(std::size_t{1} << 16, 0);
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  ChannelSummary cs{kInf, 0, -kInf};
+  for (std::size_t i = 0; i < cells; ++i) {
+    const double v = t.Value(i)[c];
+    const bool valid = t.valid[i] != 0;
+    cs.min = std::min(cs.min, valid ? v : kInf);
+    cs.max = std::max(cs.max, valid ? v : -kInf);
+    count[OrderKey(v) >> 48] += valid;
+  }
+  const auto for_each_key = [&](const auto& visit) {
+    for (std::size_t i = 0; i < cells; ++i) visit(OrderKey(t.Value(i)[c]), t.valid[i] != 0);
+  };
+  const std::size_t lo = n % 2 ? n / 2 : n / 2 - 1;
+  const std::array<std::uint64_t, 2> k = SelectRanks(count, for_each_key, lo, n / 2);
+  cs.median = n % 2 ? FromOrderKey(k[1]) : 0.5 * (FromOrderKey(k[1]) + FromOrderKey(k[0]));
+  return cs;
+}
+
+}  // namespace
+
 TableStats ComputeTableStats(const Table& t, const std::vector<double>& incidence_deg) {
   TableStats s;
   const Grid& g = t.grid;
@@ -54,29 +174,10 @@ TableStats ComputeTableStats(const Table& t, const std::vector<double>& incidenc
     ++s.valid;
     s.valid_below_horizon += !above;
   }
-  // One channel at a time through one buffer (a third of the memory of three copies), left
-  // uninitialised: every element is written before it is read.
   const std::size_t n = s.valid;
-  const auto buffer = std::make_unique_for_overwrite<double[]>(n);
-  double* const v = buffer.get();
   for (int c = 0; c < 3; ++c) {
-    ChannelSummary& cs = s.channels[c];
-    if (n == 0) {
-      cs.min = cs.median = cs.max = std::numeric_limits<double>::quiet_NaN();
-      continue;
-    }
-    std::size_t k = 0;
-    for (std::size_t i = 0; i < s.cells; ++i) {
-      if (t.valid[i]) v[k++] = t.Value(i)[c];
-    }
-    const auto [lo, hi] = std::minmax_element(v, v + n);
-    cs.min = *lo;
-    cs.max = *hi;
-    // Median: the middle element, or the mean of the two middle ones for an even count.
-    const std::size_t mid = n / 2;
-    std::nth_element(v, v + mid, v + n);
-    cs.median = v[mid];
-    if (n % 2 == 0) cs.median = 0.5 * (cs.median + *std::max_element(v, v + mid));
+    constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+    s.channels[c] = n == 0 ? ChannelSummary{kNaN, kNaN, kNaN} : SummarizeChannel(t, c, n);
   }
   for (double deg : incidence_deg) s.albedo.push_back(EstimateAlbedo(t, deg * kPi / 180.0));
   return s;

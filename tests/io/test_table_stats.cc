@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "core/synth.h"
 #include "core/table_stats.h"
@@ -149,6 +150,40 @@ TEST(TableStats, CountsAndChannelSummaries) {
   t.valid[last - 1] = !t.valid[last - 1];  // the other parity of the valid count
   ExpectStatsMatchBruteForce(t);
   EXPECT_EQ(ComputeTableStats(t, {}).valid_below_horizon, 1u + !g.CellAboveHorizon(last - 1));
+}
+
+// The medians are selected by the values' bit patterns (radix selection): any finite values
+// must give the full sort's medians, including negatives, zeros of both signs, subnormals,
+// values many orders of magnitude apart, long runs of one value and the two middle ranks
+// falling in different or equal buckets.
+TEST(TableStats, MediansOfAnyFiniteValuesMatchAFullSort) {
+  const Grid g{10, 10, 20, ThetaHMapping::kSqrt};
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  const std::vector<double> special = {0.0,    -0.0, 5e-324, -5e-324, 1.0,
+                                       1.0625, -1.0, 1e300,  -1e300,  2.2250738585072014e-308};
+  for (int trial = 0; trial < 12; ++trial) {
+    Table t = Table::Empty(g);
+    for (std::size_t i = 0; i < g.NumCells(); ++i) {
+      t.valid[i] = u(rng) < 0.9;
+      for (int c = 0; c < 3; ++c) {
+        const double r = u(rng);
+        double v = 0;
+        if (trial % 3 == 0) {
+          v = special[static_cast<std::size_t>(u(rng) * special.size())];  // runs of few values
+        } else if (trial % 3 == 1) {
+          v = (r < 0.3 ? -1 : 1) * std::pow(10.0, -300 + 600 * u(rng));  // every magnitude
+        } else {
+          v = 0.5 + 1e-9 * std::floor(8 * u(rng));  // one bucket, many duplicates
+        }
+        t.Value(i)[c] = v;
+      }
+    }
+    SCOPED_TRACE(trial);
+    ExpectStatsMatchBruteForce(t);
+    t.valid[0] = !t.valid[0];  // the other parity of the valid count
+    ExpectStatsMatchBruteForce(t);
+  }
 }
 
 }  // namespace
