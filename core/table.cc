@@ -108,6 +108,17 @@ Table Table::Empty(const Grid& grid) {
   return t;
 }
 
+Table Table::ForOverwrite(const Grid& grid) {
+  Table t;
+  t.grid = grid;
+  // The value array faulted in by one system call (the kernel zeroes the pages), not written.
+  t.rgb.reserve(3 * grid.NumCells());
+  PrefaultForWrite(t.rgb.data(), 3 * grid.NumCells() * sizeof(double));
+  t.rgb.resize(3 * grid.NumCells());
+  t.valid.resize(grid.NumCells());
+  return t;
+}
+
 std::size_t Table::CountValid() const {
   return static_cast<std::size_t>(std::count(valid.begin(), valid.end(), std::uint8_t{1}));
 }

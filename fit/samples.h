@@ -106,7 +106,7 @@ struct Samples {
   double total_weight = 0;          // sum of weight
   // The whole table's values (3 per cell), moved from the table by PrepareMetricSamples so that
   // a metric set holds no copy of them (22 MB for a MERL table); empty otherwise.
-  std::vector<double> table_rgb;
+  TableValues table_rgb;
 
   std::size_t NumSamples() const { return obs_begin.empty() ? 0 : obs_begin.size() - 1; }
   std::size_t NumObservations() const { return cell.size(); }

@@ -129,7 +129,8 @@ Table ReadMerl(const fs::path& path, MerlReadReport* report) {
   constexpr std::size_t kBlock = 16384;  // cells per block: 3 x 128 KiB
   std::array<std::vector<double>, 3> plane;
   for (auto& p : plane) p.resize(kBlock);
-  Table t = Table::Empty(grid);
+  // Every cell's values and mask are written below (or the read throws).
+  Table t = Table::ForOverwrite(grid);
   std::size_t negative = 0;
   for (std::size_t start = 0; start < n; start += kBlock) {
     const std::size_t m = std::min(kBlock, n - start);
