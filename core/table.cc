@@ -98,20 +98,17 @@ std::vector<std::uint8_t> Grid::AboveHorizonMask() const {
 }
 
 Table Table::Empty(const Grid& grid) {
-  Table t;
-  t.grid = grid;
-  // The value array (35 MB for MERL) faulted in by one system call, then zeroed.
-  t.rgb.reserve(3 * grid.NumCells());
-  PrefaultForWrite(t.rgb.data(), 3 * grid.NumCells() * sizeof(double));
-  t.rgb.assign(3 * grid.NumCells(), 0.0);
-  t.valid.assign(grid.NumCells(), 0);
+  Table t = ForOverwrite(grid);
+  std::fill(t.rgb.begin(), t.rgb.end(), 0.0);
+  std::fill(t.valid.begin(), t.valid.end(), std::uint8_t{0});
   return t;
 }
 
 Table Table::ForOverwrite(const Grid& grid) {
   Table t;
   t.grid = grid;
-  // The value array faulted in by one system call (the kernel zeroes the pages), not written.
+  // The value array (35 MB for MERL) faulted in by one system call (the kernel zeroes the
+  // pages), not written.
   t.rgb.reserve(3 * grid.NumCells());
   PrefaultForWrite(t.rgb.data(), 3 * grid.NumCells() * sizeof(double));
   t.rgb.resize(3 * grid.NumCells());

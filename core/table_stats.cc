@@ -76,52 +76,48 @@ RankBuckets FindRanks(const std::vector<std::uint32_t>& count, std::size_t lo, s
   return r;
 }
 
-// The keys of 0-based rank lo and hi = lo or lo + 1 among the keys `for_each_key` visits
-// (valid: weight 1, else 0), by radix selection 16 bits at a time, given `count`, the first
-// pass's histogram of the top digit: when the two ranks fall in different buckets, rank lo is
-// the largest key of its bucket and rank hi the smallest of its own (one more pass); else the
-// keys of their bucket are gathered and the next digit decides, down to a few thousand keys,
-// which nth_element orders.
+// The keys of 0-based rank lo and hi = lo or lo + 1 among the valid keys `for_each_key` visits,
+// by radix selection 16 bits at a time, given `count`, the first pass's histogram of the top
+// digit: when the two ranks fall in different buckets, rank lo is the largest key of its bucket
+// and rank hi the smallest of its own (one more pass); else the keys of their bucket are
+// gathered and the next digit decides, down to a few thousand keys, which nth_element orders.
 template <class ForEachKey>
 std::array<std::uint64_t, 2> SelectRanks(std::vector<std::uint32_t>& count,
                                          const ForEachKey& for_each_key, std::size_t lo,
                                          std::size_t hi) {
   int shift = 48;
-  RankBuckets r = FindRanks(count, lo, hi);
-  if (r.b_lo != r.b_hi) {
-    std::uint64_t k_lo = 0, k_hi = ~std::uint64_t{0};
-    for_each_key([&](std::uint64_t k, bool valid) {
-      const std::size_t b = k >> shift;
-      if (valid && b == r.b_lo) k_lo = std::max(k_lo, k);
-      if (valid && b == r.b_hi) k_hi = std::min(k_hi, k);
-    });
-    return {k_lo, k_hi};
-  }
+  const auto digit = [&](std::uint64_t k) { return (k >> shift) & 0xFFFF; };
+  // The keys still in play: the source's, until a bucket's are gathered.
   std::vector<std::uint64_t> keys;
-  keys.reserve(count[r.b_lo]);
-  for_each_key([&](std::uint64_t k, bool valid) {
-    if (valid && (k >> shift) == r.b_lo) keys.push_back(k);
-  });
-  lo -= r.below;
-  hi -= r.below;
-  // The gathered keys share every digit above `shift`: the next digit orders them.
-  while (keys.size() > 4096 && shift > 0) {
-    shift -= 16;
-    std::fill(count.begin(), count.end(), 0u);
-    for (const std::uint64_t k : keys) ++count[(k >> shift) & 0xFFFF];
-    r = FindRanks(count, lo, hi);
+  bool gathered = false;
+  const auto visit_keys = [&](const auto& visit) {
+    if (!gathered) return for_each_key(visit);
+    for (const std::uint64_t k : keys) visit(k, true);
+  };
+  for (;;) {
+    const RankBuckets r = FindRanks(count, lo, hi);
     if (r.b_lo != r.b_hi) {
       std::uint64_t k_lo = 0, k_hi = ~std::uint64_t{0};
-      for (const std::uint64_t k : keys) {
-        const std::size_t b = (k >> shift) & 0xFFFF;
-        if (b == r.b_lo) k_lo = std::max(k_lo, k);
-        if (b == r.b_hi) k_hi = std::min(k_hi, k);
-      }
+      visit_keys([&](std::uint64_t k, bool valid) {
+        if (valid && digit(k) == r.b_lo) k_lo = std::max(k_lo, k);
+        if (valid && digit(k) == r.b_hi) k_hi = std::min(k_hi, k);
+      });
       return {k_lo, k_hi};
     }
-    std::erase_if(keys, [&](std::uint64_t k) { return ((k >> shift) & 0xFFFF) != r.b_lo; });
+    std::vector<std::uint64_t> bucket;
+    bucket.reserve(count[r.b_lo]);
+    visit_keys([&](std::uint64_t k, bool valid) {
+      if (valid && digit(k) == r.b_lo) bucket.push_back(k);
+    });
+    keys = std::move(bucket);
+    gathered = true;
     lo -= r.below;
     hi -= r.below;
+    if (keys.size() <= 4096 || shift == 0) break;
+    // The gathered keys share every digit down to `shift`: the next one orders them.
+    shift -= 16;
+    std::fill(count.begin(), count.end(), 0u);
+    for (const std::uint64_t k : keys) ++count[digit(k)];
   }
   const auto at = [&](std::size_t rank) {
     const auto it = keys.begin() + static_cast<std::ptrdiff_t>(rank);

@@ -155,26 +155,29 @@ TEST(TableStats, CountsAndChannelSummaries) {
 // The medians are selected by the values' bit patterns (radix selection): any finite values
 // must give the full sort's medians, including negatives, zeros of both signs, subnormals,
 // values many orders of magnitude apart, long runs of one value and the two middle ranks
-// falling in different or equal buckets.
+// falling in different or equal buckets. 16000 cells, so that a bucket holding most of them
+// (the runs of few values, the duplicates) is narrowed by the lower digits too.
 TEST(TableStats, MediansOfAnyFiniteValuesMatchAFullSort) {
-  const Grid g{10, 10, 20, ThetaHMapping::kSqrt};
+  const Grid g{20, 20, 40, ThetaHMapping::kSqrt};
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(0, 1);
   const std::vector<double> special = {0.0,    -0.0, 5e-324, -5e-324, 1.0,
                                        1.0625, -1.0, 1e300,  -1e300,  2.2250738585072014e-308};
-  for (int trial = 0; trial < 12; ++trial) {
+  for (int trial = 0; trial < 16; ++trial) {
     Table t = Table::Empty(g);
     for (std::size_t i = 0; i < g.NumCells(); ++i) {
       t.valid[i] = u(rng) < 0.9;
       for (int c = 0; c < 3; ++c) {
         const double r = u(rng);
         double v = 0;
-        if (trial % 3 == 0) {
+        if (trial % 4 == 0) {
           v = special[static_cast<std::size_t>(u(rng) * special.size())];  // runs of few values
-        } else if (trial % 3 == 1) {
+        } else if (trial % 4 == 1) {
           v = (r < 0.3 ? -1 : 1) * std::pow(10.0, -300 + 600 * u(rng));  // every magnitude
-        } else {
+        } else if (trial % 4 == 2) {
           v = 0.5 + 1e-9 * std::floor(8 * u(rng));  // one bucket, many duplicates
+        } else {
+          v = 0.5 * (1 + 1e-6 * u(rng));  // one bucket down to the lowest digits, distinct
         }
         t.Value(i)[c] = v;
       }
